@@ -1,0 +1,10 @@
+//! Asset access: the only place (with `cli/`) that touches the file system.
+//!
+//! Every stage that needs a file (the parser for `include`, `scene::build` for OBJ files and
+//! images) asks a [`Loader`]. [`FsLoader`] reads the disk and records each path it was asked
+//! for, found or not: that record is exactly the set of files `scnc watch` must watch.
+//! [`MemLoader`] serves files from memory so that every stage is testable without a disk.
+
+mod loader;
+
+pub use loader::{FsLoader, Loader, MemLoader};

@@ -1,0 +1,1 @@
+//! Diagnostics: the bag of errors and warnings a compile produces, and how they are printed.

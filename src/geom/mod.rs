@@ -1,0 +1,9 @@
+//! Geometry primitives shared by the acceleration structures and the renderer: rays, bounds and
+//! ray–triangle intersection. No scene or file knowledge lives here.
+
+mod aabb;
+mod ray;
+pub mod triangle;
+
+pub use aabb::Aabb;
+pub use ray::Ray;

@@ -1,0 +1,27 @@
+//! Camera in the IR: a pin-hole camera placed in world space.
+//!
+//! Syntax: `camera main { eye (0, 1, -5)  target (0, 1, 0)  up (0, 1, 0)  fov 40deg }`
+//! or `camera main { transform { ... }  fov 40deg }` (the camera sits at its local origin, looks
+//! down its local +z with +y up). The checker turns both forms into the same orthonormal frame.
+
+use glam::Vec3;
+use serde::Serialize;
+
+use crate::source::Span;
+
+/// A pin-hole camera. `forward`, `up` and `right` are unit vectors and mutually orthogonal
+/// (the checker guarantees it: `up` is re-orthogonalised against `forward`).
+#[derive(Debug, Clone, Serialize)]
+pub struct Camera {
+    pub name: String,
+    pub eye: Vec3,
+    /// Unit view direction.
+    pub forward: Vec3,
+    /// Unit up vector, orthogonal to `forward`.
+    pub up: Vec3,
+    /// Unit right vector: `forward × up`, so the image's +x maps to it.
+    pub right: Vec3,
+    /// Vertical field of view in radians, in (0, π).
+    pub fov_y_rad: f32,
+    pub span: Span,
+}

@@ -1,0 +1,64 @@
+//! Meshes in the IR: where the triangles come from. Loading happens later, in `scene::build`.
+//!
+//! Syntax:
+//! ```text
+//! mesh tall  = obj("meshes/tall.obj")
+//! mesh tri   = inline { positions [(0,0,0) (1,0,0) (0,1,0)]  indices [0 1 2] }
+//! mesh ball  = sphere { radius 1  segments 48 }
+//! mesh floor = quad { size (2, 2) }
+//! mesh crate = box { size (1, 1, 1) }
+//! ```
+
+use std::path::PathBuf;
+
+use glam::{Vec2, Vec3};
+use serde::Serialize;
+
+use crate::source::Span;
+
+/// A file referenced by the scene, resolved relative to the `.scn` file that names it.
+#[derive(Debug, Clone, Serialize)]
+pub struct AssetPath {
+    /// The path to read (the including file's directory joined with what was written).
+    pub path: PathBuf,
+    /// The string as written in the `.scn`.
+    pub written: String,
+    /// The string literal's span, so a later "file not found" points at it.
+    pub span: Span,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Mesh {
+    pub name: String,
+    pub source: MeshSource,
+    pub span: Span,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub enum MeshSource {
+    /// A Wavefront OBJ file (triangulated on load; normals and UVs kept).
+    Obj(AssetPath),
+    Inline(InlineMesh),
+    Builtin(BuiltinShape),
+}
+
+/// Triangles written in the scene file. Validated: indices are in range, arrays are finite,
+/// `normals` and `uvs` are empty or one per position.
+#[derive(Debug, Clone, Serialize)]
+pub struct InlineMesh {
+    pub positions: Vec<Vec3>,
+    pub normals: Vec<Vec3>,
+    pub uvs: Vec<Vec2>,
+    pub indices: Vec<[u32; 3]>,
+}
+
+/// Built-in tessellated shapes, centred at the origin in their own space.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub enum BuiltinShape {
+    /// A rectangle in the xz-plane facing +y, `size.x` by `size.y`; UVs span [0,1]².
+    Quad { size: glam::Vec2 },
+    /// An axis-aligned box of the given full extents; each face has its own UVs and normals.
+    Box { size: Vec3 },
+    /// A UV sphere: `segments` around the equator, `segments / 2` rings.
+    Sphere { radius: f32, segments: u32 },
+}

@@ -1,0 +1,74 @@
+//! The validated scene description: the seam between the compiler and the renderer.
+//!
+//! `check::check` lowers the AST into a [`SceneDesc`]; `scene::build` turns it into render-ready
+//! data. Everything here is plain data: every name is resolved to an index, units are normalised
+//! (radians, linear RGB, world-space transforms), defaults are applied and values are validated,
+//! so later stages never re-check user input except what needs I/O (files that may be missing or
+//! corrupt; those errors point back at the [`AssetPath`] span). There are no expressions here:
+//! `let` constants and arithmetic are folded by the checker. Declarations nothing uses are dropped
+//! (and reported as warnings), so the IR holds only what the image needs.
+//!
+//! The types derive `Serialize` so that `scnc ir` and the insta snapshots can print them.
+
+mod camera;
+mod light;
+mod material;
+mod mesh;
+mod render_settings;
+mod texture;
+
+pub use camera::Camera;
+pub use light::{AreaLight, EnvSource, EnvironmentLight, Light, PointLight};
+pub use material::{ColorInput, GreenConvention, Material, NormalMap, ScalarInput};
+pub use mesh::{AssetPath, BuiltinShape, InlineMesh, Mesh, MeshSource};
+pub use render_settings::{Output, OutputFormat, RenderSettings, SamplePattern, ToneMap};
+pub use texture::{Filter, Texture, TextureEncoding, TextureSource, WrapMode};
+
+use glam::Mat4;
+use serde::Serialize;
+
+use crate::source::Span;
+
+/// Index into [`SceneDesc::meshes`].
+pub type MeshId = u32;
+/// Index into [`SceneDesc::materials`].
+pub type MaterialId = u32;
+/// Index into [`SceneDesc::textures`].
+pub type TextureId = u32;
+
+/// A fully resolved scene: what `check` produces and `scene::build` consumes.
+#[derive(Debug, Clone, Serialize)]
+pub struct SceneDesc {
+    /// Every camera declared, in declaration order (the CLI may pick any by name).
+    pub cameras: Vec<Camera>,
+    /// The camera `render { camera NAME }` chose, or the first one.
+    pub active_camera: usize,
+    pub meshes: Vec<Mesh>,
+    pub textures: Vec<Texture>,
+    pub materials: Vec<Material>,
+    /// Placed instances: groups are flattened, transforms composed to world space.
+    pub objects: Vec<Object>,
+    pub lights: Vec<Light>,
+    pub render: RenderSettings,
+}
+
+/// One placement of a mesh in the world. Many objects may share one mesh without copying it.
+#[derive(Debug, Clone, Serialize)]
+pub struct Object {
+    pub mesh: MeshId,
+    pub material: MaterialId,
+    /// Maps the mesh's own coordinates to world coordinates (all group transforms applied).
+    pub world_from_object: Mat4,
+    /// The `object` statement, for diagnostics raised while building.
+    pub span: Span,
+}
+
+impl SceneDesc {
+    pub fn camera(&self) -> Option<&Camera> {
+        self.cameras.get(self.active_camera)
+    }
+
+    pub fn camera_by_name(&self, name: &str) -> Option<usize> {
+        self.cameras.iter().position(|c| c.name == name)
+    }
+}

@@ -1,0 +1,24 @@
+//! scnc: a declarative scene-language compiler and direct-lighting ray tracer.
+//!
+//! ```text
+//! scene.scn ─ syntax::parse ─▶ SceneFile (AST, every node spanned)        error: ParseError
+//!           ─ check::check  ─▶ ir::SceneDesc (typed, names resolved,      errors: CheckError + warnings
+//!                               units normalised, validated, no I/O)
+//!           ─ scene::build  ─▶ Scene (world triangles + BVH, textures,    error: BuildError
+//!              (via Loader)     light tables, camera): only what is used
+//!           ─ render::render ─▶ Film (linear RGB radiance per pixel)     deterministic, cancellable
+//!           ─ film::write    ─▶ PNG (sRGB 8-bit), EXR / HDR / PFM          error: WriteError; atomic
+//! ```
+
+pub mod assets;
+pub mod bvh;
+pub mod check;
+pub mod cli;
+pub mod diag;
+pub mod film;
+pub mod geom;
+pub mod ir;
+pub mod render;
+pub mod scene;
+pub mod source;
+pub mod syntax;

@@ -1,0 +1,3 @@
+//! The `scnc` binary: a thin wrapper over `scnc::cli`.
+
+fn main() {}

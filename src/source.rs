@@ -1,0 +1,162 @@
+//! Source files and spans: the bottom of the pipeline.
+//!
+//! Every `.scn` file the compiler reads (the root scene and each `include`) is stored once in a
+//! [`SourceMap`] and named by a [`FileId`]. A [`Span`] is a byte range inside one of those files; it
+//! travels from the AST through the IR (paths keep the span of their string literal) so that a
+//! diagnostic raised in any later stage can point back at the text the user wrote.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use miette::{NamedSource, SourceSpan};
+use serde::Serialize;
+
+/// Index of a file inside a [`SourceMap`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+pub struct FileId(pub u32);
+
+/// A byte range `start..end` inside one source file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Span {
+    pub file: FileId,
+    pub start: u32,
+    pub end: u32,
+}
+
+impl Span {
+    pub fn new(file: FileId, start: usize, end: usize) -> Span {
+        debug_assert!(start <= end, "span start {start} after end {end}");
+        Span {
+            file,
+            start: start as u32,
+            end: end as u32,
+        }
+    }
+
+    /// The smallest span covering both `self` and `other` (same file assumed).
+    pub fn join(self, other: Span) -> Span {
+        debug_assert_eq!(self.file, other.file, "joining spans of different files");
+        Span {
+            file: self.file,
+            start: self.start.min(other.start),
+            end: self.end.max(other.end),
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        (self.end - self.start) as usize
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.start == self.end
+    }
+
+    pub fn range(&self) -> std::ops::Range<usize> {
+        self.start as usize..self.end as usize
+    }
+
+    /// The span as miette wants it.
+    pub fn source_span(&self) -> SourceSpan {
+        SourceSpan::new((self.start as usize).into(), self.len())
+    }
+}
+
+/// Spans serialise as `file#start..end` so that IR snapshots stay readable.
+impl Serialize for Span {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(&format!("{}#{}..{}", self.file.0, self.start, self.end))
+    }
+}
+
+/// One source file: where it lives, how it is shown in diagnostics, and its text.
+#[derive(Debug, Clone)]
+pub struct SourceFile {
+    /// The path used to read the file (absolute or relative to the working directory).
+    pub path: PathBuf,
+    /// The name shown in diagnostics: the path as the user or the including file wrote it.
+    pub name: String,
+    pub text: Arc<str>,
+}
+
+/// All source files of one compile, indexed by [`FileId`].
+#[derive(Debug, Clone, Default)]
+pub struct SourceMap {
+    files: Vec<SourceFile>,
+}
+
+impl SourceMap {
+    pub fn new() -> SourceMap {
+        SourceMap::default()
+    }
+
+    pub fn add(
+        &mut self,
+        path: impl Into<PathBuf>,
+        name: impl Into<String>,
+        text: impl Into<Arc<str>>,
+    ) -> FileId {
+        let id = FileId(self.files.len() as u32);
+        self.files.push(SourceFile {
+            path: path.into(),
+            name: name.into(),
+            text: text.into(),
+        });
+        id
+    }
+
+    pub fn get(&self, id: FileId) -> &SourceFile {
+        // ok: FileIds are only minted by `add` on this map.
+        &self.files[id.0 as usize]
+    }
+
+    pub fn files(&self) -> impl Iterator<Item = (FileId, &SourceFile)> {
+        self.files
+            .iter()
+            .enumerate()
+            .map(|(i, f)| (FileId(i as u32), f))
+    }
+
+    pub fn find(&self, path: &Path) -> Option<FileId> {
+        self.files
+            .iter()
+            .position(|f| f.path == path)
+            .map(|i| FileId(i as u32))
+    }
+
+    /// The text a span covers.
+    pub fn snippet(&self, span: Span) -> &str {
+        self.get(span.file).text.get(span.range()).unwrap_or("")
+    }
+
+    /// The file as a miette source, for diagnostics that label spans in it.
+    pub fn named_source(&self, id: FileId) -> NamedSource<Arc<str>> {
+        let f = self.get(id);
+        NamedSource::new(f.name.clone(), f.text.clone())
+    }
+
+    /// 1-based line and column of a byte offset, for plain messages.
+    pub fn line_col(&self, id: FileId, offset: usize) -> (usize, usize) {
+        let text = &self.get(id).text;
+        let offset = offset.min(text.len());
+        let before = &text[..text.floor_char_boundary_compat(offset)];
+        let line = before.matches('\n').count() + 1;
+        let col = before
+            .rfind('\n')
+            .map_or(before.len(), |i| before.len() - i - 1)
+            + 1;
+        (line, col)
+    }
+}
+
+trait FloorCharBoundary {
+    fn floor_char_boundary_compat(&self, i: usize) -> usize;
+}
+
+impl FloorCharBoundary for str {
+    fn floor_char_boundary_compat(&self, mut i: usize) -> usize {
+        while i > 0 && !self.is_char_boundary(i) {
+            i -= 1;
+        }
+        i
+    }
+}

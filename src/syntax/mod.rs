@@ -1,0 +1,1 @@
+//! Stage 1, syntax: `.scn` text → AST (`SceneFile`), every node spanned. Errors: `ParseError`.
