@@ -1,1 +1,1 @@
-//! Stage 4, render: `Scene` → `Film` (linear RGB radiance per pixel). Deterministic, cancellable.
+//! placeholder
