@@ -260,8 +260,7 @@ impl Builder<'_> {
                         .iter()
                         .map(|t| t.map(|i| world_from_object.transform_point3(m.positions[i as usize])))
                         .collect();
-                    let samples = a.samples.max(1) * self.desc.render.light_samples.max(1);
-                    if let Some(area) = AreaLight::new(a.radiance, a.two_sided, samples, world) {
+                                        if let Some(area) = AreaLight::new(a.radiance, a.two_sided, a.samples, world) {
                         instances.push(SceneInstance {
                             mesh,
                             surface: Surface::Emitter(lights.len() as u32),

@@ -25,7 +25,8 @@ pub struct PointLight {
 pub struct AreaLight {
     pub radiance: Vec3,
     pub two_sided: bool,
-    /// Shadow rays per light pick (the light's `samples` × the scene's `light_samples`).
+    /// Shadow rays each time this light is picked (its `samples`; the scene's `light_samples`
+    /// sets how many picks a shading point makes).
     pub samples: u32,
     /// World-space triangles.
     pub triangles: Vec<[Vec3; 3]>,
@@ -39,6 +40,9 @@ pub struct AreaLight {
 #[derive(Debug, Clone, Copy)]
 pub struct LightPoint {
     pub position: Vec3,
+    /// Per-axis bound on the rounding error of `position` (`γ(7)·Σ|bᵢ pᵢ|`, rounded up to
+    /// 8 ulps), used to offset shadow-ray end points off the emitter.
+    pub error: Vec3,
     pub normal: Vec3,
 }
 
@@ -74,8 +78,11 @@ impl AreaLight {
         let [p0, p1, p2] = self.triangles[i];
         let s = u0.sqrt();
         let (b1, b2) = (s * (1.0 - u.y), s * u.y);
+        let b0 = 1.0 - b1 - b2;
+        let abs_sum = (b0 * p0).abs() + (b1 * p1).abs() + (b2 * p2).abs();
         LightPoint {
-            position: p0 + b1 * (p1 - p0) + b2 * (p2 - p0),
+            position: b0 * p0 + b1 * p1 + b2 * p2,
+            error: 4.0 * f32::EPSILON * abs_sum,
             normal: self.normals[i],
         }
     }
