@@ -56,7 +56,10 @@ impl Fixture {
             span: self.literal("meshes/m.obj"),
         }];
         desc.materials = vec![phong("grey", Vec3::splat(0.5), 0.0, 1.0)];
-        desc.objects = vec![object(0, 0, Mat4::IDENTITY), object(0, 0, Mat4::from_translation(Vec3::X))];
+        desc.objects = vec![
+            object(0, 0, Mat4::IDENTITY),
+            object(0, 0, Mat4::from_translation(Vec3::X)),
+        ];
         desc.lights = vec![point_light(Vec3::new(0.0, 0.0, -2.0), 1.0)];
         scene::build(&desc, &self.sources, loader, &BuildOptions::default())
     }
@@ -66,7 +69,11 @@ impl Fixture {
         let mut loader = MemLoader::new();
         loader.insert("scenes/meshes/m.obj", bytes);
         let diags = self.build_obj(&loader).expect_err("bad OBJ");
-        assert_eq!(diags.len(), 1, "one diagnostic per faulty file, not per use: {diags:#?}");
+        assert_eq!(
+            diags.len(),
+            1,
+            "one diagnostic per faulty file, not per use: {diags:#?}"
+        );
         let d = diags.into_iter().next().expect("one");
         assert_eq!(d.severity, Severity::Error);
         self.assert_at_path(&d);
@@ -88,16 +95,29 @@ fn missing_obj_points_at_the_path() {
     let diags = fx.build_obj(&loader).expect_err("missing file");
     assert_eq!(diags.len(), 1);
     assert_eq!(diags[0].code, "scnc::build::missing_file");
-    assert!(diags[0].message.contains("meshes/m.obj"), "{}", diags[0].message);
+    assert!(
+        diags[0].message.contains("meshes/m.obj"),
+        "{}",
+        diags[0].message
+    );
     fx.assert_at_path(&diags[0]);
-    assert_eq!(loader.recorded(), vec![std::path::PathBuf::from("scenes/meshes/m.obj")]);
+    assert_eq!(
+        loader.recorded(),
+        vec![std::path::PathBuf::from("scenes/meshes/m.obj")]
+    );
 }
 
 #[test]
 fn corrupt_obj_bytes() {
     let fx = Fixture::new();
-    assert_eq!(fx.obj_error(b"v 1.0 banana 2\nf 1 2 3\n").code, "scnc::build::corrupt_obj");
-    assert_eq!(fx.obj_error(b"\xff\xfe\x00\x01binary junk").code, "scnc::build::corrupt_obj");
+    assert_eq!(
+        fx.obj_error(b"v 1.0 banana 2\nf 1 2 3\n").code,
+        "scnc::build::corrupt_obj"
+    );
+    assert_eq!(
+        fx.obj_error(b"\xff\xfe\x00\x01binary junk").code,
+        "scnc::build::corrupt_obj"
+    );
 }
 
 #[test]
@@ -154,7 +174,10 @@ fn a_good_obj_loads_once_for_two_instances_and_renders() {
     assert_eq!(scene.accel_stats().triangles, 4);
     assert!(scene.warnings.is_empty());
     let (film, _) = render_with(&scene, 1);
-    assert!(film.get(4, 4).x > 0.0, "the quad faces the camera and the light");
+    assert!(
+        film.get(4, 4).x > 0.0,
+        "the quad faces the camera and the light"
+    );
     // Only the OBJ was read: tobj did not go looking for the .mtl on its own.
     assert_eq!(loader.recorded().len(), 1);
 }
@@ -189,14 +212,20 @@ fn image_textures_and_environments_are_unsupported_at_their_paths() {
         visible: true,
         span: span(),
     })];
-    let diags = scene::build(&desc, &fx.sources, &MemLoader::new(), &BuildOptions::default())
-        .expect_err("unsupported");
+    let diags = scene::build(
+        &desc,
+        &fx.sources,
+        &MemLoader::new(),
+        &BuildOptions::default(),
+    )
+    .expect_err("unsupported");
     let mut labelled: Vec<&str> = diags
         .iter()
         .map(|d| {
             assert_eq!(d.code, "scnc::build::unsupported");
             assert!(d.help.is_some());
-            fx.sources.snippet(d.primary.as_ref().expect("labelled").span)
+            fx.sources
+                .snippet(d.primary.as_ref().expect("labelled").span)
         })
         .collect();
     labelled.sort();
@@ -219,5 +248,8 @@ fn no_camera_and_singular_transforms_are_errors() {
     };
     let diags = scene::build(&desc, &fx.sources, &MemLoader::new(), &opts).expect_err("bad");
     let codes: Vec<&str> = diags.iter().map(|d| d.code).collect();
-    assert_eq!(codes, ["scnc::build::no_camera", "scnc::build::singular_transform"]);
+    assert_eq!(
+        codes,
+        ["scnc::build::no_camera", "scnc::build::singular_transform"]
+    );
 }

@@ -100,11 +100,21 @@ fn a_square_area_light_gives_the_closed_form_irradiance() {
         .collect();
     let desc = plane_scene(1.0, vec![area_light(1, facing_down, le, false, 4)]);
     let scene = build(&desc, AccelKind::Bvh);
-    for p in [Vec3::ZERO, Vec3::new(0.2, 0.0, 0.1), Vec3::new(1.0, 0.0, -0.5)] {
+    for p in [
+        Vec3::ZERO,
+        Vec3::new(0.2, 0.0, 0.1),
+        Vec3::new(1.0, 0.0, -0.5),
+    ] {
         let exact = (FRAC_1_PI * le * polygon_irradiance(p, Vec3::Y, &corners)) as f64;
         let (mean, se) = estimate(&scene, p, 2000);
-        assert!(se < 0.03 * exact, "the test must be sharp: se {se} vs {exact}");
-        assert!((mean - exact).abs() < 4.0 * se, "at {p}: {mean} ± {se} vs {exact}");
+        assert!(
+            se < 0.03 * exact,
+            "the test must be sharp: se {se} vs {exact}"
+        );
+        assert!(
+            (mean - exact).abs() < 4.0 * se,
+            "at {p}: {mean} ± {se} vs {exact}"
+        );
     }
 }
 
@@ -121,16 +131,28 @@ fn one_sided_lights_emit_from_the_front_only_and_two_sided_from_both() {
     assert_eq!(lit(area_light(1, facing_up, 4.0, false, 2)), 0.0);
     let down = lit(area_light(1, facing_down, 4.0, false, 2));
     let both = lit(area_light(1, facing_up, 4.0, true, 2));
-    assert!(down > 0.0 && (down - both).abs() < 1e-6 * down, "{down} vs {both}");
+    assert!(
+        down > 0.0 && (down - both).abs() < 1e-6 * down,
+        "{down} vs {both}"
+    );
 
     // Seen directly, the front shows its radiance and the back is black.
-    let scene = build(&plane_scene(1.0, vec![area_light(1, facing_down, 4.0, false, 1)]), AccelKind::Bvh);
+    let scene = build(
+        &plane_scene(1.0, vec![area_light(1, facing_down, 4.0, false, 1)]),
+        AccelKind::Bvh,
+    );
     let mut counts = RayCounts::default();
     let mut s = Sampler::new(0, 0, 0, 0);
     let from_below = Ray::new(Vec3::new(0.0, 0.5, 0.0), Vec3::Y);
-    assert_eq!(radiance(&scene, &from_below, &mut s, &mut counts), Vec3::splat(4.0));
+    assert_eq!(
+        radiance(&scene, &from_below, &mut s, &mut counts),
+        Vec3::splat(4.0)
+    );
     let from_above = Ray::new(Vec3::new(0.0, 3.0, 0.0), -Vec3::Y);
-    assert_eq!(radiance(&scene, &from_above, &mut s, &mut counts), Vec3::ZERO);
+    assert_eq!(
+        radiance(&scene, &from_above, &mut s, &mut counts),
+        Vec3::ZERO
+    );
 }
 
 #[test]
@@ -152,6 +174,41 @@ fn constant_environment_over_a_diffuse_plane_is_albedo_times_radiance() {
     // Escaped camera rays show the sky.
     let scene = build(&desc, AccelKind::Bvh);
     let up = Ray::new(Vec3::new(0.0, 1.0, 0.0), Vec3::Y);
-    let got = radiance(&scene, &up, &mut Sampler::new(0, 0, 0, 0), &mut RayCounts::default());
+    let got = radiance(
+        &scene,
+        &up,
+        &mut Sampler::new(0, 0, 0, 0),
+        &mut RayCounts::default(),
+    );
     assert_eq!(got, Vec3::splat(2.0));
+}
+
+#[test]
+fn point_light_specular_highlight_matches_the_normalised_lobe() {
+    let light = Vec3::new(0.3, 2.0, 0.2);
+    let intensity = 3.0;
+    let mut desc = plane_scene(0.5, vec![point_light(light, intensity)]);
+    desc.materials = vec![phong("glossy", Vec3::splat(0.5), 0.3, 20.0)];
+    let (film, _) = render_with(&build(&desc, AccelKind::Bvh), 1);
+    let cam = PinholeCamera::new(&desc.cameras[0], 16, 12);
+    let mut saw_highlight = false;
+    for y in 0..12 {
+        for x in 0..16 {
+            let ray = cam.ray(Vec2::new(x as f32 + 0.5, y as f32 + 0.5));
+            let p = ray.at(-ray.origin.y / ray.dir.y);
+            let wi = (light - p).normalize();
+            let wo = -ray.dir;
+            let r = 2.0 * wi.y * Vec3::Y - wi;
+            let lobe = 0.3 * 22.0 / (2.0 * PI) * r.dot(wo).max(0.0).powf(20.0);
+            let f = 0.5 * FRAC_1_PI + lobe;
+            let expected = f * intensity * wi.y / (light - p).length_squared();
+            saw_highlight |= lobe > 0.5 * FRAC_1_PI;
+            let got = film.get(x, y).x;
+            assert!(
+                (got - expected).abs() <= 1e-4 * expected,
+                "({x},{y}): {got} vs {expected}"
+            );
+        }
+    }
+    assert!(saw_highlight, "the view must include the highlight");
 }

@@ -17,7 +17,10 @@ fn one_and_four_threads_give_identical_bits() {
     let (one, s1) = render_with(&scene, 1);
     let (four, s4) = render_with(&scene, 4);
     assert_eq!(one, four);
-    assert_eq!((s1.camera_rays, s1.shadow_rays), (s4.camera_rays, s4.shadow_rays));
+    assert_eq!(
+        (s1.camera_rays, s1.shadow_rays),
+        (s4.camera_rays, s4.shadow_rays)
+    );
     assert_eq!(s1.camera_rays, 32 * 32 * 4);
     assert!(s1.shadow_rays > 0);
     // The scene is lit: not a black image that would trivially match.
@@ -40,7 +43,10 @@ fn the_seed_changes_the_noise_but_not_the_mean_much() {
     let (b, _) = render_with(&build(&desc, AccelKind::Bvh), 2);
     assert_ne!(a, b);
     let (ma, mb) = (a.mean(), b.mean());
-    assert!((ma - mb).abs().max_element() < 0.05 * ma.max_element(), "{ma} vs {mb}");
+    assert!(
+        (ma - mb).abs().max_element() < 0.05 * ma.max_element(),
+        "{ma} vs {mb}"
+    );
 }
 
 #[test]
@@ -53,16 +59,32 @@ fn cancelling_stops_the_render_and_progress_reaches_one() {
     let seen = Mutex::new(Vec::new());
     let cancel = AtomicBool::new(false);
     let progress = |f: f32| seen.lock().expect("no panics while held").push(f);
-    render(&scene, &RenderOptions { spp: Some(1), threads: Some(2) }, &progress, &cancel)
-        .expect("not cancelled");
+    render(
+        &scene,
+        &RenderOptions {
+            spp: Some(1),
+            threads: Some(2),
+        },
+        &progress,
+        &cancel,
+    )
+    .expect("not cancelled");
     let seen = seen.into_inner().expect("no panics while held");
     assert_eq!(seen.len(), 9, "40×40 is 3×3 tiles of 16");
-    assert!(seen.iter().any(|&f| f == 1.0));
+    assert!(seen.contains(&1.0));
 
     // Cancelling from the progress callback (as Ctrl-C would, mid-render).
     let cancel = AtomicBool::new(false);
     let stop = |_: f32| cancel.store(true, Ordering::Relaxed);
-    let r = render(&scene, &RenderOptions { spp: Some(1), threads: Some(1) }, &stop, &cancel);
+    let r = render(
+        &scene,
+        &RenderOptions {
+            spp: Some(1),
+            threads: Some(1),
+        },
+        &stop,
+        &cancel,
+    );
     assert_eq!(r.err(), Some(Cancelled));
 }
 
@@ -70,14 +92,18 @@ fn cancelling_stops_the_render_and_progress_reaches_one() {
 fn an_empty_scene_builds_no_accel_and_shows_the_environment() {
     let mut desc = showcase(8, 1);
     desc.objects.clear();
-    desc.lights.retain(|l| matches!(l, scnc::ir::Light::Environment(_)));
+    desc.lights
+        .retain(|l| matches!(l, scnc::ir::Light::Environment(_)));
     let scene = build(&desc, AccelKind::Bvh);
     assert!(scene.accel.is_none());
     assert!(scene.meshes.is_empty(), "unused meshes are not built");
     assert!(scene.lights.by_power.is_none());
     let (film, stats) = render_with(&scene, 1);
     assert_eq!(stats.shadow_rays, 0);
-    assert!(film.pixels().iter().all(|&p| p == Vec3::new(0.1, 0.15, 0.2)));
+    assert!(film
+        .pixels()
+        .iter()
+        .all(|&p| p == Vec3::new(0.1, 0.15, 0.2)));
 }
 
 #[test]

@@ -18,7 +18,11 @@ fn gradient(w: u32, h: u32) -> Film {
     let mut f = Film::new(w, h);
     for y in 0..h {
         for x in 0..w {
-            f.set(x, y, Vec3::new(x as f32 / w as f32, y as f32 / h as f32, 2.5));
+            f.set(
+                x,
+                y,
+                Vec3::new(x as f32 / w as f32, y as f32 / h as f32, 2.5),
+            );
         }
     }
     f
@@ -122,7 +126,10 @@ fn writing_over_a_directory_fails_cleanly() {
     let err = write(&gradient(2, 2), &target, &WriteSettings::default()).expect_err("a directory");
     assert!(matches!(err, WriteError::Io { .. }));
     assert_eq!(err.to_diagnostic(None).code, "scnc::write::io");
-    assert_eq!(fs::read(target.join("keep.txt")).expect("untouched"), b"keep");
+    assert_eq!(
+        fs::read(target.join("keep.txt")).expect("untouched"),
+        b"keep"
+    );
     assert!(leftovers(&dir).is_empty());
 
     let missing_dir = dir.join("no/such/dir/out.png");
@@ -130,6 +137,10 @@ fn writing_over_a_directory_fails_cleanly() {
         write(&gradient(2, 2), &missing_dir, &WriteSettings::default()),
         Err(WriteError::Io { .. })
     ));
-    let unknown = write(&gradient(2, 2), &dir.join("x.jpg"), &WriteSettings::default());
+    let unknown = write(
+        &gradient(2, 2),
+        &dir.join("x.jpg"),
+        &WriteSettings::default(),
+    );
     assert!(matches!(unknown, Err(WriteError::UnknownFormat { .. })));
 }

@@ -25,7 +25,10 @@ fn grazing_light_and_thin_contact_shadow_at_every_scale() {
             ),
             settings(32, 32, 1),
         );
-        desc.meshes = vec![quad("floor", 4.0 * s, 4.0 * s), quad("lid", 2.0 * s, 4.0 * s)];
+        desc.meshes = vec![
+            quad("floor", 4.0 * s, 4.0 * s),
+            quad("lid", 2.0 * s, 4.0 * s),
+        ];
         desc.materials = vec![phong("white", Vec3::ONE, 0.0, 1.0)];
         desc.objects = vec![
             object(0, 0, Mat4::IDENTITY),
@@ -46,7 +49,12 @@ fn grazing_light_and_thin_contact_shadow_at_every_scale() {
                     continue; // the camera sees the lid there
                 }
                 if p.x < 0.08 * s {
-                    assert_eq!(got, 0.0, "scale {s}: light leaks under the lid at x = {}", p.x / s);
+                    assert_eq!(
+                        got,
+                        0.0,
+                        "scale {s}: light leaks under the lid at x = {}",
+                        p.x / s
+                    );
                     shadowed += 1;
                 } else if p.x > 0.12 * s {
                     let to_light = light - p;
@@ -61,7 +69,10 @@ fn grazing_light_and_thin_contact_shadow_at_every_scale() {
                 }
             }
         }
-        assert!(lit > 300 && shadowed > 20, "scale {s}: {lit} lit, {shadowed} shadowed");
+        assert!(
+            lit > 300 && shadowed > 20,
+            "scale {s}: {lit} lit, {shadowed} shadowed"
+        );
     }
 }
 
@@ -69,12 +80,20 @@ fn grazing_light_and_thin_contact_shadow_at_every_scale() {
 /// error in every axis), lit at a grazing angle: every visible pixel gets the full value.
 #[test]
 fn tilted_far_plane_has_no_acne() {
-    for (offset, s) in [(Vec3::new(3e4, -2e4, 5e4), 100.0f32), (Vec3::new(1e-3, 2e-3, -1e-3), 1e-3)] {
+    for (offset, s) in [
+        (Vec3::new(3e4, -2e4, 5e4), 100.0f32),
+        (Vec3::new(1e-3, 2e-3, -1e-3), 1e-3),
+    ] {
         let rotation = Quat::from_euler(glam::EulerRot::XYZ, 0.3, 0.7, -0.4);
         let normal = rotation * Vec3::Y;
         let tangent = rotation * Vec3::X;
         let mut desc = empty_desc(
-            camera(offset + 3.0 * s * normal + 0.5 * s * tangent, offset, tangent, 40.0),
+            camera(
+                offset + 3.0 * s * normal + 0.5 * s * tangent,
+                offset,
+                tangent,
+                40.0,
+            ),
             settings(24, 24, 1),
         );
         desc.meshes = vec![quad("floor", 20.0 * s, 20.0 * s)];

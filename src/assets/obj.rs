@@ -35,13 +35,14 @@ pub fn parse_obj(bytes: &[u8]) -> Result<ObjMesh, ObjError> {
         single_index: true,
         ignore_points: true,
         ignore_lines: true,
-        ..tobj::LoadOptions::default()
     };
     let mut reader = Cursor::new(bytes);
     // tobj is third-party code fed user bytes: a panic inside it must become a diagnostic, not
     // abort the compile (or kill `scnc watch`).
     let loaded = std::panic::catch_unwind(move || {
-        tobj::load_obj_buf(&mut reader, &options, |_| Ok((Vec::new(), Default::default())))
+        tobj::load_obj_buf(&mut reader, &options, |_| {
+            Ok((Vec::new(), Default::default()))
+        })
     })
     .map_err(|_| ObjError::Corrupt("the OBJ parser failed on this input".into()))?;
     let (models, _materials) = loaded.map_err(|e| match e {
@@ -75,8 +76,11 @@ pub fn parse_obj(bytes: &[u8]) -> Result<ObjMesh, ObjError> {
             );
         }
         if all_uvs {
-            out.uvs
-                .extend(mesh.texcoords.chunks_exact(2).map(|t| Vec2::new(t[0], t[1])));
+            out.uvs.extend(
+                mesh.texcoords
+                    .chunks_exact(2)
+                    .map(|t| Vec2::new(t[0], t[1])),
+            );
         }
         for face in mesh.indices.chunks_exact(3) {
             if let Some(&bad) = face.iter().find(|&&i| i as usize >= count) {

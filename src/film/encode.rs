@@ -16,15 +16,21 @@ pub fn png(film: &Film, settings: &WriteSettings) -> Result<Vec<u8>, String> {
         .collect();
     let mut out = Vec::new();
     image::codecs::png::PngEncoder::new(&mut out)
-        .write_image(&bytes, film.width(), film.height(), image::ExtendedColorType::Rgb8)
+        .write_image(
+            &bytes,
+            film.width(),
+            film.height(),
+            image::ExtendedColorType::Rgb8,
+        )
         .map_err(|e| e.to_string())?;
     Ok(out)
 }
 
 fn finite(film: &Film) -> impl Iterator<Item = [f32; 3]> + '_ {
-    film.pixels()
-        .iter()
-        .map(|p| p.to_array().map(|c| if c.is_finite() { c.max(0.0) } else { 0.0 }))
+    film.pixels().iter().map(|p| {
+        p.to_array()
+            .map(|c| if c.is_finite() { c.max(0.0) } else { 0.0 })
+    })
 }
 
 pub fn exr(film: &Film) -> Result<Vec<u8>, String> {
@@ -32,7 +38,12 @@ pub fn exr(film: &Film) -> Result<Vec<u8>, String> {
     let bytes: Vec<u8> = floats.iter().flat_map(|f| f.to_ne_bytes()).collect();
     let mut out = Cursor::new(Vec::new());
     image::codecs::openexr::OpenExrEncoder::new(&mut out)
-        .write_image(&bytes, film.width(), film.height(), image::ExtendedColorType::Rgb32F)
+        .write_image(
+            &bytes,
+            film.width(),
+            film.height(),
+            image::ExtendedColorType::Rgb32F,
+        )
         .map_err(|e| e.to_string())?;
     Ok(out.into_inner())
 }

@@ -45,7 +45,7 @@ impl Film {
     /// The pixel at column `x`, row `y` (0, 0 = top-left); black outside the image.
     pub fn get(&self, x: u32, y: u32) -> Vec3 {
         if x < self.width && y < self.height {
-            self.pixels[(y * self.width + x) as usize]
+            self.pixels[y as usize * self.width as usize + x as usize]
         } else {
             Vec3::ZERO
         }
@@ -53,7 +53,7 @@ impl Film {
 
     pub fn set(&mut self, x: u32, y: u32, value: Vec3) {
         if x < self.width && y < self.height {
-            self.pixels[(y * self.width + x) as usize] = value;
+            self.pixels[y as usize * self.width as usize + x as usize] = value;
         }
     }
 

@@ -92,7 +92,10 @@ mod tests {
             assert_eq!(apply(curve, -3.0), 0.0);
             assert_eq!(apply(curve, f32::NAN), 0.0);
             assert!((apply(curve, 1e12) - 1.0).abs() < 1e-6, "{curve:?}");
-            assert!((apply(curve, f32::INFINITY) - 1.0).abs() < 1e-6, "{curve:?}");
+            assert!(
+                (apply(curve, f32::INFINITY) - 1.0).abs() < 1e-6,
+                "{curve:?}"
+            );
         }
         assert_eq!(clamp(1.0), 1.0);
         assert_eq!(reinhard(1.0), 0.5);
@@ -106,7 +109,10 @@ mod tests {
         assert!((srgb_encode(1.0) - 1.0).abs() < 1e-6);
         assert!((srgb_encode(0.18) - 0.461_356).abs() < 1e-4);
         assert!((srgb_encode(0.002) - 0.025_84).abs() < 1e-6);
-        assert_eq!(to_srgb8(Vec3::new(0.0, 0.5, 1.0), 0.0, ToneMap::Clamp), [0, 188, 255]);
+        assert_eq!(
+            to_srgb8(Vec3::new(0.0, 0.5, 1.0), 0.0, ToneMap::Clamp),
+            [0, 188, 255]
+        );
         // One stop of exposure doubles the radiance before the curve.
         assert_eq!(
             to_srgb8(Vec3::splat(0.25), 1.0, ToneMap::Clamp),

@@ -133,7 +133,10 @@ pub fn write_atomic_with(
         std::process::id(),
         TEMP_COUNTER.fetch_add(1, Ordering::Relaxed)
     ));
-    let mut file = OpenOptions::new().write(true).create_new(true).open(&temp)?;
+    let mut file = OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&temp)?;
     let result = fill(&mut file)
         .and_then(|()| file.sync_all())
         .and_then(|()| {

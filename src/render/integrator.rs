@@ -69,8 +69,16 @@ fn shade(
     let Some(mat) = scene.materials.get(material as usize) else {
         return Vec3::ZERO;
     };
-    let ng = if hit.ng.dot(wo) < 0.0 { -hit.ng } else { hit.ng };
-    let ns = if hit.ns.dot(ng) < 0.0 { -hit.ns } else { hit.ns };
+    let ng = if hit.ng.dot(wo) < 0.0 {
+        -hit.ng
+    } else {
+        hit.ng
+    };
+    let ns = if hit.ns.dot(ng) < 0.0 {
+        -hit.ns
+    } else {
+        hit.ns
+    };
     let t = &scene.textures;
     let phong = Phong {
         diffuse: t.color(mat.diffuse, hit.uv),

@@ -177,9 +177,7 @@ impl Job<'_> {
     pub fn pixel(&self, x: u32, y: u32, counts: &mut RayCounts) -> Vec3 {
         let mut sum = Vec3::ZERO;
         for (s, offset) in self.offsets.iter().enumerate() {
-            let ray = self
-                .camera
-                .ray(Vec2::new(x as f32, y as f32) + *offset);
+            let ray = self.camera.ray(Vec2::new(x as f32, y as f32) + *offset);
             let mut sampler = Sampler::new(self.scene.settings.seed, x, y, s as u32);
             let l = radiance(self.scene, &ray, &mut sampler, counts);
             // A non-finite sample (a degenerate configuration the guards missed) must not

@@ -24,18 +24,23 @@ pub fn offsets(n: u32, pattern: SamplePattern) -> Vec<Vec2> {
                     let row = j * n + (n - 1 - i);
                     Vec2::new((col as f32 + 0.5) / cells, (row as f32 + 0.5) / cells)
                 }
-                SamplePattern::Grid => Vec2::new(
-                    (j as f32 + 0.5) / n as f32,
-                    (i as f32 + 0.5) / n as f32,
-                ),
+                SamplePattern::Grid => {
+                    Vec2::new((j as f32 + 0.5) / n as f32, (i as f32 + 0.5) / n as f32)
+                }
             });
         }
     }
     out
 }
 
-/// Samples per side for a requested sample count: the smallest N with N² ≥ `spp`.
+/// The largest pattern side: 256² = 65 536 samples per pixel (a `--spp` typo must not try to
+/// allocate billions of sample positions).
+pub const MAX_SIDE: u32 = 256;
+
+/// Samples per side for a requested sample count: the smallest N with N² ≥ `spp`, at most
+/// [`MAX_SIDE`].
 pub fn side_for(spp: u32) -> u32 {
+    let spp = spp.min(MAX_SIDE * MAX_SIDE);
     let mut n = (spp.max(1) as f64).sqrt().floor() as u32;
     while n * n < spp.max(1) {
         n += 1;
@@ -50,9 +55,8 @@ mod tests {
     #[test]
     fn n2_is_the_classic_rgss() {
         let p = offsets(2, SamplePattern::RotatedGrid);
-        let expected = [(1, 3), (3, 7), (5, 1), (7, 5)].map(|(x, y)| {
-            Vec2::new(x as f32 / 8.0, y as f32 / 8.0)
-        });
+        let expected = [(1, 3), (3, 7), (5, 1), (7, 5)]
+            .map(|(x, y)| Vec2::new(x as f32 / 8.0, y as f32 / 8.0));
         assert_eq!(p, expected.to_vec());
     }
 
@@ -77,6 +81,16 @@ mod tests {
     fn grid_is_at_cell_centres_and_side_rounds_up() {
         let p = offsets(3, SamplePattern::Grid);
         assert!(p.contains(&Vec2::new(0.5, 0.5)) && p.contains(&Vec2::new(1.0 / 6.0, 5.0 / 6.0)));
-        assert_eq!([side_for(0), side_for(1), side_for(4), side_for(5), side_for(16)], [1, 1, 2, 3, 4]);
+        assert_eq!(
+            [
+                side_for(0),
+                side_for(1),
+                side_for(4),
+                side_for(5),
+                side_for(16),
+                side_for(u32::MAX)
+            ],
+            [1, 1, 2, 3, 4, MAX_SIDE]
+        );
     }
 }

@@ -54,7 +54,9 @@ mod tests {
         let mut a = Sampler::new(7, 3, 4, 5);
         let mut b = Sampler::new(7, 3, 4, 5);
         let xs: Vec<f32> = (0..10_000).map(|_| a.next_1d()).collect();
-        assert!(xs.iter().all(|&x| x == b.next_1d() && (0.0..1.0).contains(&x)));
+        assert!(xs
+            .iter()
+            .all(|&x| x == b.next_1d() && (0.0..1.0).contains(&x)));
         let mean = xs.iter().sum::<f32>() / xs.len() as f32;
         // Standard error of the mean of U(0,1) over 1e4 values is 0.0029.
         assert!((mean - 0.5).abs() < 4.0 * 0.0029, "mean {mean}");

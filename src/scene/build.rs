@@ -14,7 +14,9 @@ use glam::{Affine3A, Mat3, Vec3};
 use super::lights::{AreaLight, Environment, Light, Lights, PointLight};
 use super::mesh::{MeshProblem, TriMesh};
 use super::texture::{Texture, Textures};
-use super::{BuildError, BuildOptions, BuildTimings, Scene, SceneInstance, Surface, SurfaceMaterial};
+use super::{
+    BuildError, BuildOptions, BuildTimings, Scene, SceneInstance, Surface, SurfaceMaterial,
+};
 use crate::assets::obj::{parse_obj, ObjError};
 use crate::assets::Loader;
 use crate::bvh::{Accel, Instance, MeshRef};
@@ -258,9 +260,11 @@ impl Builder<'_> {
                     let world: Vec<[Vec3; 3]> = m
                         .triangles
                         .iter()
-                        .map(|t| t.map(|i| world_from_object.transform_point3(m.positions[i as usize])))
+                        .map(|t| {
+                            t.map(|i| world_from_object.transform_point3(m.positions[i as usize]))
+                        })
                         .collect();
-                                        if let Some(area) = AreaLight::new(a.radiance, a.two_sided, a.samples, world) {
+                    if let Some(area) = AreaLight::new(a.radiance, a.two_sided, a.samples, world) {
                         instances.push(SceneInstance {
                             mesh,
                             surface: Surface::Emitter(lights.len() as u32),
@@ -313,11 +317,14 @@ impl Builder<'_> {
         let decl = &self.desc.meshes[id as usize];
         let (raw, span, written) = match &decl.source {
             MeshSource::Obj(path) => {
-                let bytes = self.loader.read(&path.path).map_err(|source| BuildError::Read {
-                    written: path.written.clone(),
-                    span: path.span,
-                    source,
-                })?;
+                let bytes = self
+                    .loader
+                    .read(&path.path)
+                    .map_err(|source| BuildError::Read {
+                        written: path.written.clone(),
+                        span: path.span,
+                        source,
+                    })?;
                 let obj = parse_obj(&bytes).map_err(|e| match e {
                     ObjError::Corrupt(reason) => BuildError::CorruptObj {
                         written: path.written.clone(),
@@ -347,9 +354,11 @@ impl Builder<'_> {
                 };
                 (mesh, decl.span, decl.name.clone())
             }
-            MeshSource::Builtin(shape) => {
-                (super::shapes::tessellate(shape), decl.span, decl.name.clone())
-            }
+            MeshSource::Builtin(shape) => (
+                super::shapes::tessellate(shape),
+                decl.span,
+                decl.name.clone(),
+            ),
         };
         let name = decl.name.clone();
         let v = raw.validate().map_err(|p| match p {
@@ -371,7 +380,8 @@ impl Builder<'_> {
             },
         })?;
         if v.total == 0 {
-            self.problems.push(BuildError::EmptyMesh { mesh: name, span });
+            self.problems
+                .push(BuildError::EmptyMesh { mesh: name, span });
         } else if v.dropped > 0 {
             self.problems.push(BuildError::SomeDegenerate {
                 mesh: name,

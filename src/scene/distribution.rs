@@ -12,7 +12,13 @@ pub struct Distribution1D {
 impl Distribution1D {
     /// `None` when there is nothing to pick: no weights, or none positive and finite.
     pub fn new(weights: &[f32]) -> Option<Distribution1D> {
-        let clean = |w: f32| if w.is_finite() && w > 0.0 { w as f64 } else { 0.0 };
+        let clean = |w: f32| {
+            if w.is_finite() && w > 0.0 {
+                w as f64
+            } else {
+                0.0
+            }
+        };
         let total: f64 = weights.iter().map(|&w| clean(w)).sum();
         if total <= 0.0 {
             return None;
@@ -48,9 +54,7 @@ impl Distribution1D {
     pub fn sample(&self, u: f32) -> (usize, f32, f32) {
         // First i with cdf[i+1] > u, skipping zero-weight buckets.
         let n = self.pmf.len();
-        let i = self.cdf[1..]
-            .partition_point(|&c| c <= u)
-            .min(n - 1);
+        let i = self.cdf[1..].partition_point(|&c| c <= u).min(n - 1);
         let (lo, hi) = (self.cdf[i], self.cdf[i + 1]);
         let remapped = if hi > lo {
             ((u - lo) / (hi - lo)).clamp(0.0, 1.0 - f32::EPSILON / 2.0)

@@ -148,7 +148,11 @@ mod tests {
     fn area_samples_land_on_the_mesh_uniformly() {
         // Two triangles of areas 1 and 3 (a 1×1 and a 3×1 rectangle half).
         let tris = vec![
-            [Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0)],
+            [
+                Vec3::ZERO,
+                Vec3::new(2.0, 0.0, 0.0),
+                Vec3::new(0.0, 1.0, 0.0),
+            ],
             [
                 Vec3::new(10.0, 0.0, 0.0),
                 Vec3::new(16.0, 0.0, 0.0),

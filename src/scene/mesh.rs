@@ -81,8 +81,7 @@ impl TriMesh {
         }
         let total = self.triangles.len();
         let positions = &self.positions;
-        self.triangles
-            .retain(|t| !is_degenerate(positions, *t));
+        self.triangles.retain(|t| !is_degenerate(positions, *t));
         let dropped = total - self.triangles.len();
         if total > 0 && self.triangles.is_empty() {
             return Err(MeshProblem::AllDegenerate { count: total });

@@ -16,7 +16,12 @@ pub fn tessellate(shape: &BuiltinShape) -> TriMesh {
     match *shape {
         BuiltinShape::Quad { size } => {
             let mut m = TriMesh::default();
-            push_face(&mut m, Vec3::ZERO, Vec3::X * size.x / 2.0, -Vec3::Z * size.y / 2.0);
+            push_face(
+                &mut m,
+                Vec3::ZERO,
+                Vec3::X * size.x / 2.0,
+                -Vec3::Z * size.y / 2.0,
+            );
             m
         }
         BuiltinShape::Box { size } => {
@@ -64,7 +69,11 @@ fn sphere(radius: f32, segments: u32) -> TriMesh {
         let theta = PI * k as f32 / rings as f32;
         for j in 0..=cols {
             let phi = 2.0 * PI * j as f32 / cols as f32;
-            let dir = Vec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin());
+            let dir = Vec3::new(
+                theta.sin() * phi.cos(),
+                theta.cos(),
+                theta.sin() * phi.sin(),
+            );
             let u = if k == 0 || k == rings {
                 ((j as f32 + 0.5) / cols as f32).min(1.0)
             } else {
@@ -109,7 +118,10 @@ mod tests {
             let centroid = (p0 + p1 + p2) / 3.0;
             assert!(n.dot(outward(centroid)) > 0.0, "triangle faces inwards");
             for i in [a, b, c] {
-                assert!(n.dot(m.normals[i as usize]) > 0.0, "vertex normal disagrees");
+                assert!(
+                    n.dot(m.normals[i as usize]) > 0.0,
+                    "vertex normal disagrees"
+                );
                 let uv = m.uvs[i as usize];
                 assert!((0.0..=1.0).contains(&uv.x) && (0.0..=1.0).contains(&uv.y));
             }

@@ -94,7 +94,13 @@ pub fn point_light(position: Vec3, intensity: f32) -> Light {
     })
 }
 
-pub fn area_light(mesh: u32, world_from_object: Mat4, radiance: f32, two_sided: bool, samples: u32) -> Light {
+pub fn area_light(
+    mesh: u32,
+    world_from_object: Mat4,
+    radiance: f32,
+    two_sided: bool,
+    samples: u32,
+) -> Light {
     Light::Area(AreaLight {
         name: "panel".into(),
         mesh,
@@ -150,7 +156,12 @@ pub fn render_with(scene: &Scene, threads: usize) -> (Film, RenderStats) {
 /// environment lights, specular highlights.
 pub fn showcase(size: u32, spp: u32) -> SceneDesc {
     let mut desc = empty_desc(
-        camera(Vec3::new(0.0, 2.0, -5.0), Vec3::new(0.0, 0.5, 0.0), Vec3::Y, 45.0),
+        camera(
+            Vec3::new(0.0, 2.0, -5.0),
+            Vec3::new(0.0, 0.5, 0.0),
+            Vec3::Y,
+            45.0,
+        ),
         settings(size, size, spp),
     );
     desc.meshes = vec![
@@ -197,7 +208,8 @@ pub fn showcase(size: u32, spp: u32) -> SceneDesc {
         point_light(Vec3::new(2.0, 3.0, -2.0), 6.0),
         area_light(
             3,
-            Mat4::from_translation(Vec3::new(0.0, 2.5, 0.0)) * Mat4::from_rotation_x(std::f32::consts::PI),
+            Mat4::from_translation(Vec3::new(0.0, 2.5, 0.0))
+                * Mat4::from_rotation_x(std::f32::consts::PI),
             5.0,
             false,
             4,
