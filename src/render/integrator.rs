@@ -3,8 +3,9 @@
 //! At a hit: the material's `ambient` is always added; then `light_samples` lights are picked by
 //! power (stratified over the pick's CDF), each point light gives one shadow ray and each area
 //! light `samples` shadow rays at stratified points (Hammersley points with a per-pick
-//! Cranley–Patterson rotation), sampled by area:
-//! `L = L_e · f · cos θ · cos θ_l / r² / pdf_area` with `pdf_area = 1 / total_area`. A constant
+//! Cranley–Patterson rotation): a triangle is picked by area, then a point on it either by
+//! solid angle (`L_e · f · cos θ · Ω / pmf`, see `spherical`) or by area
+//! (`L_e · f · cos θ · cos θ_l / r² / pdf_area`, `pdf_area = pmf / area`). A constant
 //! environment adds `light_samples` cosine-weighted directions (`L_env · f · π` when the
 //! direction is unoccluded). Visibility is decided by the geometric normal (a light behind the
 //! surface contributes nothing, whatever the shading normal says); the BRDF uses the shading
@@ -21,9 +22,10 @@ use glam::{Vec2, Vec3};
 
 use super::brdf::Phong;
 use super::rng::{radical_inverse_2, Sampler};
+use super::spherical;
 use super::surface::{offset_origin, surface_hit, SurfaceHit};
 use crate::geom::Ray;
-use crate::scene::{AreaLight, Light, Scene, Surface};
+use crate::scene::{AreaLight, Light, LightSampling, Scene, Surface};
 
 /// Rays traced, by kind.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -33,6 +35,15 @@ pub struct RayCounts {
 }
 
 const SHADOW_EPSILON: f32 = 1e-4;
+
+/// A sampled point on an emitter, seen from a shading point.
+struct LightSample {
+    /// Unit direction from the shading point.
+    wi: Vec3,
+    position: Vec3,
+    error: Vec3,
+    weight: f32,
+}
 
 /// Radiance arriving at the camera along `ray` (a unit-direction camera ray).
 pub fn radiance(scene: &Scene, ray: &Ray, sampler: &mut Sampler, counts: &mut RayCounts) -> Vec3 {
@@ -148,30 +159,81 @@ impl Shading<'_> {
                 ((i as f32 + 0.5) / n as f32 + rotation.x).fract(),
                 (radical_inverse_2(i) + rotation.y).fract(),
             );
-            let lp = light.sample(u);
-            let to_light = lp.position - self.hit.p;
-            let dist2 = to_light.length_squared();
-            if dist2 == 0.0 || !dist2.is_finite() {
+            let (t, pmf, u0) = light.pick(u.x);
+            let u = Vec2::new(u0, u.y);
+            let tri = &light.triangles[t];
+            let normal = light.normals[t];
+            // The back of a one-sided emitter sends nothing: no ray needed.
+            if !light.two_sided && normal.dot(self.hit.p - tri[0]) <= 0.0 {
                 continue;
             }
-            let wi = to_light / dist2.sqrt();
-            let cos_light = -lp.normal.dot(wi);
-            let cos_light = if light.two_sided {
-                cos_light.abs()
-            } else {
-                cos_light
+            let Some(s) = self.sample_triangle(light, t, pmf, u) else {
+                continue;
             };
-            if cos_light <= 0.0 {
-                continue;
-            }
             // Stop the shadow ray just off the emitter, on the shading point's side.
-            let target = offset_origin(lp.position, lp.error, lp.normal, -wi);
-            if let Some(cos) = self.unoccluded(wi, target, 0.0, counts) {
-                let f = self.phong.eval(self.ns, wi, self.wo);
-                sum += light.radiance * f * (cos * cos_light / dist2 * light.total_area);
+            let target = offset_origin(s.position, s.error, normal, -s.wi);
+            if let Some(cos) = self.unoccluded(s.wi, target, 0.0, counts) {
+                let f = self.phong.eval(self.ns, s.wi, self.wo);
+                sum += light.radiance * f * (cos * s.weight);
             }
         }
         sum / n as f32
+    }
+
+    /// A point on triangle `t` of `light` (picked with probability `pmf`) and the factor that
+    /// turns `L_e · f · cos θ` into an unbiased estimate: `Ω / pmf` when sampled by solid angle,
+    /// `cos θ_l · area / (r² · pmf)` when sampled by area.
+    fn sample_triangle(
+        &self,
+        light: &AreaLight,
+        t: usize,
+        pmf: f32,
+        u: Vec2,
+    ) -> Option<LightSample> {
+        let p = self.hit.p;
+        let tri = &light.triangles[t];
+        let normal = light.normals[t];
+        if self.scene.light_sampling == LightSampling::SolidAngle {
+            let omega = spherical::solid_angle(p, tri);
+            if (spherical::MIN_SOLID_ANGLE..=spherical::MAX_SOLID_ANGLE).contains(&omega) {
+                let (wi, omega) = spherical::sample(p, tri, u)?;
+                let denom = normal.dot(wi);
+                let dist = normal.dot(tri[0] - p) / denom;
+                if !(dist > 0.0 && dist.is_finite()) {
+                    return None;
+                }
+                let position = p + dist * wi;
+                return Some(LightSample {
+                    wi,
+                    position,
+                    error: 4.0 * f32::EPSILON * position.abs(),
+                    weight: omega / pmf,
+                });
+            }
+        }
+        let lp = light.point_on(t, u);
+        let to_light = lp.position - p;
+        let dist2 = to_light.length_squared();
+        if dist2 == 0.0 || !dist2.is_finite() {
+            return None;
+        }
+        let wi = to_light / dist2.sqrt();
+        let cos_light = -normal.dot(wi);
+        let cos_light = if light.two_sided {
+            cos_light.abs()
+        } else {
+            cos_light
+        };
+        if cos_light <= 0.0 {
+            return None;
+        }
+        let area = pmf * light.total_area;
+        Some(LightSample {
+            wi,
+            position: lp.position,
+            error: lp.error,
+            weight: cos_light * area / (dist2 * pmf),
+        })
     }
 
     fn environment(&self, sampler: &mut Sampler, counts: &mut RayCounts) -> Vec3 {

@@ -11,6 +11,7 @@ pub mod camera;
 pub mod integrator;
 pub mod pattern;
 pub mod rng;
+pub mod spherical;
 pub mod surface;
 
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};

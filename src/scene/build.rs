@@ -110,6 +110,7 @@ pub fn build(
         materials,
         textures,
         lights,
+        light_sampling: Default::default(),
         timings: BuildTimings {
             asset_load,
             accel_build,

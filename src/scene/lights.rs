@@ -74,9 +74,20 @@ impl AreaLight {
 
     /// A point uniform by area over the whole mesh; its density is `1 / total_area`.
     pub fn sample(&self, u: Vec2) -> LightPoint {
-        let (i, _, u0) = self.by_area.sample(u.x);
+        let (i, _, u0) = self.pick(u.x);
+        self.point_on(i, Vec2::new(u0, u.y))
+    }
+
+    /// A triangle chosen with probability proportional to its area: its index, that
+    /// probability, and `u` rescaled to [0, 1) for reuse.
+    pub fn pick(&self, u: f32) -> (usize, f32, f32) {
+        self.by_area.sample(u)
+    }
+
+    /// A point uniform by area on triangle `i`.
+    pub fn point_on(&self, i: usize, u: Vec2) -> LightPoint {
         let [p0, p1, p2] = self.triangles[i];
-        let s = u0.sqrt();
+        let s = u.x.sqrt();
         let (b1, b2) = (s * (1.0 - u.y), s * u.y);
         let b0 = 1.0 - b1 - b2;
         let abs_sum = (b0 * p0).abs() + (b1 * p1).abs() + (b2 * p2).abs();
