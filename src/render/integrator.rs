@@ -24,6 +24,7 @@ use super::brdf::Phong;
 use super::rng::{radical_inverse_2, Sampler};
 use super::spherical;
 use super::surface::{offset_origin, surface_hit, SurfaceHit};
+use crate::geom::triangle::moller_trumbore;
 use crate::geom::Ray;
 use crate::scene::{AreaLight, Light, LightSampling, Scene, Surface};
 
@@ -192,21 +193,19 @@ impl Shading<'_> {
     ) -> Option<LightSample> {
         let p = self.hit.p;
         let tri = &light.triangles[t];
-        let normal = light.normals[t];
         if self.scene.light_sampling == LightSampling::SolidAngle {
             let omega = spherical::solid_angle(p, tri);
             if (spherical::MIN_SOLID_ANGLE..=spherical::MAX_SOLID_ANGLE).contains(&omega) {
                 let (wi, omega) = spherical::sample(p, tri, u)?;
-                let denom = normal.dot(wi);
-                let dist = normal.dot(tri[0] - p) / denom;
-                if !(dist > 0.0 && dist.is_finite()) {
-                    return None;
-                }
-                let position = p + dist * wi;
+                // The point where the direction meets the triangle, rebuilt from barycentrics
+                // so its error bound is the same as for area samples. A direction that rounds
+                // to just outside an edge is dropped (a bias of the order of f32 rounding).
+                let b = moller_trumbore(&Ray::new(p, wi), tri[0], tri[1], tri[2])?;
+                let lp = light.at_barycentrics(t, b.u, b.v);
                 return Some(LightSample {
                     wi,
-                    position,
-                    error: 4.0 * f32::EPSILON * position.abs(),
+                    position: lp.position,
+                    error: lp.error,
                     weight: omega / pmf,
                 });
             }
@@ -218,7 +217,7 @@ impl Shading<'_> {
             return None;
         }
         let wi = to_light / dist2.sqrt();
-        let cos_light = -normal.dot(wi);
+        let cos_light = -lp.normal.dot(wi);
         let cos_light = if light.two_sided {
             cos_light.abs()
         } else {

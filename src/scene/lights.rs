@@ -86,9 +86,13 @@ impl AreaLight {
 
     /// A point uniform by area on triangle `i`.
     pub fn point_on(&self, i: usize, u: Vec2) -> LightPoint {
-        let [p0, p1, p2] = self.triangles[i];
         let s = u.x.sqrt();
-        let (b1, b2) = (s * (1.0 - u.y), s * u.y);
+        self.at_barycentrics(i, s * (1.0 - u.y), s * u.y)
+    }
+
+    /// The point `(1 − b1 − b2)·p0 + b1·p1 + b2·p2` of triangle `i`.
+    pub fn at_barycentrics(&self, i: usize, b1: f32, b2: f32) -> LightPoint {
+        let [p0, p1, p2] = self.triangles[i];
         let b0 = 1.0 - b1 - b2;
         let abs_sum = (b0 * p0).abs() + (b1 * p1).abs() + (b2 * p2).abs();
         LightPoint {
