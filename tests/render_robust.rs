@@ -111,3 +111,58 @@ fn tilted_far_plane_has_no_acne() {
         assert_eq!(dark, 0, "offset {offset}: {dark} pixels in self-shadow");
     }
 }
+
+/// Irradiance is scale-invariant: an area light over a plane gives the same pixel values at
+/// 1e-4, 1 and 1e5 (same seeds, both sampling strategies), so neither the shadow ray's start
+/// nor its end point self-intersects at any scale.
+#[test]
+fn area_light_shading_is_scale_invariant() {
+    use scnc::geom::Ray;
+    use scnc::render::integrator::{radiance, RayCounts};
+    use scnc::render::rng::Sampler;
+    use scnc::scene::LightSampling;
+
+    for sampling in [LightSampling::Area, LightSampling::SolidAngle] {
+        let mut results = Vec::new();
+        for s in [1e-4f32, 1.0, 1e5] {
+            let mut desc = empty_desc(
+                camera(Vec3::new(0.0, 4.0 * s, 0.0), Vec3::ZERO, Vec3::Z, 60.0),
+                settings(4, 4, 1),
+            );
+            desc.meshes = vec![
+                quad("floor", 20.0 * s, 20.0 * s),
+                quad("panel", 0.5 * s, 0.5 * s),
+            ];
+            desc.materials = vec![phong("white", Vec3::ONE, 0.0, 1.0)];
+            desc.objects = vec![object(0, 0, Mat4::IDENTITY)];
+            let placement = Mat4::from_translation(Vec3::new(0.2 * s, s, 0.1 * s))
+                * Mat4::from_rotation_x(std::f32::consts::PI);
+            desc.lights = vec![area_light(1, placement, 3.0, false, 4)];
+            let mut scene = build(&desc, AccelKind::Bvh);
+            scene.light_sampling = sampling;
+            let mut sum = 0.0f64;
+            let mut counts = RayCounts::default();
+            for (k, p) in [(0.0, 0.0), (0.3, -0.2), (1.5, 0.7)].iter().enumerate() {
+                let p = Vec3::new(p.0 * s, 0.0, p.1 * s);
+                let eye = p + Vec3::new(s, s, 0.0);
+                let ray = Ray::new(eye, (p - eye).normalize());
+                for i in 0..64 {
+                    let mut sampler = Sampler::new(k as u64, 0, 0, i);
+                    let l = radiance(&scene, &ray, &mut sampler, &mut counts).x;
+                    assert!(
+                        l > 0.0,
+                        "{sampling:?}, scale {s}: sample {i} at {p} occluded"
+                    );
+                    sum += l as f64;
+                }
+            }
+            results.push(sum);
+        }
+        for r in &results {
+            assert!(
+                (r - results[1]).abs() < 1e-3 * results[1],
+                "{sampling:?}: {results:?}"
+            );
+        }
+    }
+}
