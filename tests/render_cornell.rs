@@ -164,7 +164,7 @@ fn cornell_box_looks_like_the_cornell_box() {
     // while the back wall and most of the image are lit.
     assert_eq!(film.get(16, 0), Vec3::ZERO);
     assert!(
-        film.get(16, 10).min_element() > 0.05,
+        film.get(16, 10).min_element() > 0.02,
         "back wall {}",
         film.get(16, 10)
     );

@@ -106,8 +106,8 @@ fn solid_angle_sampling_beats_area_sampling_where_it_is_used() {
 }
 // Measured on the development machine (debug profile, opt-level 1; one shading point, 4000
 // samples, no occluders so the shadow ray is nearly free):
-//   side/height 8.00: variance ×31.9 lower, 1.6× the time per sample
-//   side/height 0.50: variance ×4.1 lower,  1.6× the time per sample
-//   side/height 0.05: variance ×2.7 lower,  1.6× the time per sample
+//   side/height 8.00: variance ×29.7 lower, 1.6× the time per sample
+//   side/height 0.50: variance ×4.3 lower,  1.6× the time per sample
+//   side/height 0.05: variance ×2.8 lower,  1.6× the time per sample
 // In a real scene each sample also traces a shadow ray, which dominates its cost, so solid-angle
 // sampling is the default (`LightSampling::SolidAngle`).

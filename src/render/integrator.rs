@@ -1,13 +1,16 @@
 //! Stage 4: direct lighting along one camera ray.
 //!
 //! At a hit: the material's `ambient` is always added; then `light_samples` lights are picked by
-//! power (stratified over the pick's CDF), each point light gives one shadow ray and each area
-//! light `samples` shadow rays at stratified points (Hammersley points with a per-pick
-//! Cranley–Patterson rotation): a triangle is picked by area, then a point on it either by
+//! power, each point light gives one shadow ray and each area light `samples` shadow rays: a
+//! triangle is picked by area, then a point on it either by
 //! solid angle (`L_e · f · cos θ · Ω / pmf`, see `spherical`) or by area
 //! (`L_e · f · cos θ · cos θ_l / r² / pdf_area`, `pdf_area = pmf / area`). A constant
 //! environment adds `light_samples` cosine-weighted directions (`L_env · f · π` when the
-//! direction is unoccluded). Visibility is decided by the geometric normal (a light behind the
+//! direction is unoccluded). Every one of these random choices is stratified over all the
+//! samples of the pixel, not just within one pixel sample: sample `s` of `S` uses points
+//! `s·m … s·m + m − 1` of one set of `S·m` scrambled Hammersley points per pixel and stream
+//! (`Sampler::stratified_2d`), so 16 pixel samples with one shadow ray each sample an area light
+//! as evenly as one pixel sample with 16. Visibility is decided by the geometric normal (a light behind the
 //! surface contributes nothing, whatever the shading normal says); the BRDF uses the shading
 //! normal flipped to the viewer's side of the geometric one.
 //!
@@ -21,7 +24,7 @@ use std::f32::consts::PI;
 use glam::{Vec2, Vec3};
 
 use super::brdf::Phong;
-use super::rng::{radical_inverse_2, Sampler};
+use super::rng::Sampler;
 use super::spherical;
 use super::surface::{offset_origin, surface_hit, SurfaceHit};
 use crate::geom::triangle::moller_trumbore;
@@ -36,6 +39,11 @@ pub struct RayCounts {
 }
 
 const SHADOW_EPSILON: f32 = 1e-4;
+
+/// Per-pixel stratification streams: light picks, the environment, then one per light.
+const STREAM_PICK: u64 = 0;
+const STREAM_ENVIRONMENT: u64 = 1;
+const STREAM_LIGHTS: u64 = 2;
 
 /// A sampled point on an emitter, seen from a shading point.
 struct LightSample {
@@ -128,10 +136,12 @@ impl Shading<'_> {
             return Vec3::ZERO;
         };
         let picks = self.picks();
-        let rotation = sampler.next_1d();
+        let (s, count) = sampler.index();
         let mut sum = Vec3::ZERO;
         for k in 0..picks {
-            let u = ((k as f32 + rotation) / picks as f32).min(1.0 - f32::EPSILON / 2.0);
+            // Stratified over all the picks of all the pixel's samples.
+            let j = s * picks + k;
+            let u = sampler.stratified_2d(STREAM_PICK, j, count * picks).x;
             let (index, pmf, _) = by_power.sample(u);
             let contribution = match &self.scene.lights.lights[index] {
                 Light::Point(p) => {
@@ -144,22 +154,28 @@ impl Shading<'_> {
                             self.phong.eval(self.ns, wi, self.wo) * p.intensity * cos / dist2
                         })
                 }
-                Light::Area(a) => self.area_light(a, sampler, counts),
+                Light::Area(a) => self.area_light(a, index, j, count * picks, sampler, counts),
             };
             sum += contribution / pmf;
         }
         sum / picks as f32
     }
 
-    fn area_light(&self, light: &AreaLight, sampler: &mut Sampler, counts: &mut RayCounts) -> Vec3 {
+    /// `light` is `lights[index]`, picked for the `pick`-th of `picks` picks in the pixel.
+    fn area_light(
+        &self,
+        light: &AreaLight,
+        index: usize,
+        pick: u32,
+        picks: u32,
+        sampler: &mut Sampler,
+        counts: &mut RayCounts,
+    ) -> Vec3 {
         let n = light.samples;
-        let rotation = sampler.next_2d();
         let mut sum = Vec3::ZERO;
         for i in 0..n {
-            let u = Vec2::new(
-                ((i as f32 + 0.5) / n as f32 + rotation.x).fract(),
-                (radical_inverse_2(i) + rotation.y).fract(),
-            );
+            let stream = STREAM_LIGHTS + index as u64;
+            let u = sampler.stratified_2d(stream, pick * n + i, picks * n);
             let (t, pmf, u0) = light.pick(u.x);
             let u = Vec2::new(u0, u.y);
             let tri = &light.triangles[t];
@@ -243,13 +259,10 @@ impl Shading<'_> {
             return Vec3::ZERO;
         }
         let picks = self.picks();
-        let rotation = sampler.next_1d();
+        let (s, count) = sampler.index();
         let mut sum = Vec3::ZERO;
         for k in 0..picks {
-            let u = Vec2::new(
-                ((k as f32 + rotation) / picks as f32).min(1.0 - f32::EPSILON / 2.0),
-                sampler.next_1d(),
-            );
+            let u = sampler.stratified_2d(STREAM_ENVIRONMENT, s * picks + k, count * picks);
             let wi = cosine_hemisphere(self.ns, u);
             if wi.dot(self.ng) <= 0.0 {
                 continue;

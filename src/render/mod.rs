@@ -179,7 +179,9 @@ impl Job<'_> {
         let mut sum = Vec3::ZERO;
         for (s, offset) in self.offsets.iter().enumerate() {
             let ray = self.camera.ray(Vec2::new(x as f32, y as f32) + *offset);
-            let mut sampler = Sampler::new(self.scene.settings.seed, x, y, s as u32);
+            let count = self.offsets.len() as u32;
+            let mut sampler =
+                Sampler::for_pixel_sample(self.scene.settings.seed, x, y, s as u32, count);
             let l = radiance(self.scene, &ray, &mut sampler, counts);
             // A non-finite sample (a degenerate configuration the guards missed) must not
             // poison the pixel.
