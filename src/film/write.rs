@@ -42,13 +42,16 @@ impl Default for WriteSettings {
     }
 }
 
-#[derive(Debug, thiserror::Error)]
+#[derive(Debug, thiserror::Error, miette::Diagnostic)]
 pub enum WriteError {
     #[error("cannot tell the image format of `{}` (use .png, .exr, .hdr or .pfm)", path.display())]
+    #[diagnostic(code(scnc::write::unknown_format))]
     UnknownFormat { path: PathBuf },
     #[error("cannot encode `{}`: {message}", path.display())]
+    #[diagnostic(code(scnc::write::encode))]
     Encode { path: PathBuf, message: String },
     #[error("cannot write `{}`: {source}", path.display())]
+    #[diagnostic(code(scnc::write::io))]
     Io {
         path: PathBuf,
         #[source]

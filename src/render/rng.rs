@@ -93,11 +93,6 @@ fn to_unit(h: u64) -> f32 {
     (h >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
 }
 
-/// The van der Corput radical inverse in base 2 (second coordinate of Hammersley points).
-pub fn radical_inverse_2(i: u32) -> f32 {
-    (i.reverse_bits() >> 8) as f32 * (1.0 / (1u32 << 24) as f32)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -146,13 +141,5 @@ mod tests {
         let a = Sampler::new(0, 0, 0, 1).stratified_2d(0, 0, 1);
         let b = Sampler::new(0, 0, 0, 2).stratified_2d(0, 0, 1);
         assert_ne!(a, b);
-    }
-
-    #[test]
-    fn radical_inverse_is_stratified() {
-        assert_eq!(radical_inverse_2(0), 0.0);
-        assert_eq!(radical_inverse_2(1), 0.5);
-        assert_eq!(radical_inverse_2(2), 0.25);
-        assert_eq!(radical_inverse_2(3), 0.75);
     }
 }
