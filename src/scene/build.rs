@@ -12,16 +12,17 @@ use std::time::Instant;
 use glam::{Affine3A, Mat3, Vec3};
 
 use super::lights::{AreaLight, Environment, Light, Lights, PointLight};
-use super::mesh::{MeshProblem, TriMesh};
+use super::load::load_mesh;
+use super::mesh::TriMesh;
 use super::texture::{Texture, Textures};
 use super::{
     BuildError, BuildOptions, BuildTimings, Scene, SceneInstance, Surface, SurfaceMaterial,
 };
-use crate::assets::obj::{parse_obj, ObjError};
+
 use crate::assets::Loader;
 use crate::bvh::{Accel, Instance, MeshRef};
 use crate::diag::{Diagnostic, Severity};
-use crate::ir::{self, ColorInput, EnvSource, MeshSource, ScalarInput, TextureSource};
+use crate::ir::{self, ColorInput, EnvSource, ScalarInput, TextureSource};
 use crate::source::{SourceMap, Span};
 
 /// Builds the scene. `_sources` holds the `.scn` files every span points into (diagnostics are
@@ -299,9 +300,10 @@ impl Builder<'_> {
         if let Some(done) = slot {
             return *done;
         }
-        let result = self.load_mesh(id);
-        let index = match result {
-            Ok(mesh) => {
+        let decl = self.desc.meshes.get(id as usize)?;
+        let index = match load_mesh(decl, self.loader) {
+            Ok((mesh, warning)) => {
+                self.problems.extend(warning);
                 self.meshes.push(mesh);
                 Some(self.meshes.len() as u32 - 1)
             }
@@ -312,85 +314,5 @@ impl Builder<'_> {
         };
         self.mesh_slots[id as usize] = Some(index);
         index
-    }
-
-    fn load_mesh(&mut self, id: ir::MeshId) -> Result<TriMesh, BuildError> {
-        let decl = &self.desc.meshes[id as usize];
-        let (raw, span, written) = match &decl.source {
-            MeshSource::Obj(path) => {
-                let bytes = self
-                    .loader
-                    .read(&path.path)
-                    .map_err(|source| BuildError::Read {
-                        written: path.written.clone(),
-                        span: path.span,
-                        source,
-                    })?;
-                let obj = parse_obj(&bytes).map_err(|e| match e {
-                    ObjError::Corrupt(reason) => BuildError::CorruptObj {
-                        written: path.written.clone(),
-                        span: path.span,
-                        reason,
-                    },
-                    ObjError::IndexOutOfRange(reason) => BuildError::IndexOutOfRange {
-                        written: path.written.clone(),
-                        span: path.span,
-                        reason,
-                    },
-                })?;
-                let mesh = TriMesh {
-                    positions: obj.positions,
-                    normals: obj.normals,
-                    uvs: obj.uvs,
-                    triangles: obj.triangles,
-                };
-                (mesh, path.span, path.written.clone())
-            }
-            MeshSource::Inline(m) => {
-                let mesh = TriMesh {
-                    positions: m.positions.clone(),
-                    normals: m.normals.clone(),
-                    uvs: m.uvs.clone(),
-                    triangles: m.indices.clone(),
-                };
-                (mesh, decl.span, decl.name.clone())
-            }
-            MeshSource::Builtin(shape) => (
-                super::shapes::tessellate(shape),
-                decl.span,
-                decl.name.clone(),
-            ),
-        };
-        let name = decl.name.clone();
-        let v = raw.validate().map_err(|p| match p {
-            MeshProblem::IndexOutOfRange { triangle, index } => BuildError::IndexOutOfRange {
-                written,
-                span,
-                reason: format!("triangle {triangle} uses vertex {index}"),
-            },
-            MeshProblem::NonFinite { index, value } => BuildError::NonFiniteVertex {
-                mesh: name.clone(),
-                index,
-                value: format!("{value}"),
-                span,
-            },
-            MeshProblem::AllDegenerate { count } => BuildError::AllDegenerate {
-                mesh: name.clone(),
-                count,
-                span,
-            },
-        })?;
-        if v.total == 0 {
-            self.problems
-                .push(BuildError::EmptyMesh { mesh: name, span });
-        } else if v.dropped > 0 {
-            self.problems.push(BuildError::SomeDegenerate {
-                mesh: name,
-                count: v.dropped,
-                total: v.total,
-                span,
-            });
-        }
-        Ok(v.mesh)
     }
 }

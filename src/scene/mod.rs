@@ -11,6 +11,7 @@ mod build;
 pub mod distribution;
 mod error;
 pub mod lights;
+mod load;
 pub mod mesh;
 pub mod shapes;
 pub mod texture;
