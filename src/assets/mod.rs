@@ -4,7 +4,9 @@
 //! images) asks a [`Loader`]. [`FsLoader`] reads the disk and records each path it was asked
 //! for, found or not: that record is exactly the set of files `scnc watch` must watch.
 //! [`MemLoader`] serves files from memory so that every stage is testable without a disk.
+//! [`obj`] decodes OBJ bytes (read through a `Loader`) into triangles.
 
 mod loader;
+pub mod obj;
 
 pub use loader::{FsLoader, Loader, MemLoader};

@@ -1,0 +1,159 @@
+//! Stage 5: [`write`] a film to a file chosen by extension, atomically.
+//!
+//! Syntax: `render { output "out.png" }` or `scnc render -o out.exr`. The bytes are encoded in
+//! memory first, then written to a temporary file next to the target (same directory, so the
+//! rename cannot cross file systems), fsynced and renamed over the target. On any error the
+//! temporary file is removed and the previous image, if any, is untouched; an interrupted run
+//! leaves at worst a stray `.NAME.*.tmp` file, never a truncated image.
+
+use std::fs::{self, File, OpenOptions};
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use super::{encode, Film};
+use crate::diag::Diagnostic;
+use crate::ir::{OutputFormat, RenderSettings, ToneMap};
+use crate::source::Span;
+
+/// How radiance becomes 8-bit values (PNG only; float formats store radiance as is).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WriteSettings {
+    /// Stops: radiance is multiplied by 2^exposure.
+    pub exposure: f32,
+    pub tonemap: ToneMap,
+}
+
+impl WriteSettings {
+    pub fn from_render(settings: &RenderSettings) -> WriteSettings {
+        WriteSettings {
+            exposure: settings.exposure,
+            tonemap: settings.tonemap,
+        }
+    }
+}
+
+impl Default for WriteSettings {
+    fn default() -> WriteSettings {
+        WriteSettings {
+            exposure: 0.0,
+            tonemap: ToneMap::Clamp,
+        }
+    }
+}
+
+#[derive(Debug, thiserror::Error, miette::Diagnostic)]
+pub enum WriteError {
+    #[error("cannot tell the image format of `{}` (use .png, .exr, .hdr or .pfm)", path.display())]
+    #[diagnostic(code(scnc::write::unknown_format))]
+    UnknownFormat { path: PathBuf },
+    #[error("cannot encode `{}`: {message}", path.display())]
+    #[diagnostic(code(scnc::write::encode))]
+    Encode { path: PathBuf, message: String },
+    #[error("cannot write `{}`: {source}", path.display())]
+    #[diagnostic(code(scnc::write::io))]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: io::Error,
+    },
+}
+
+impl WriteError {
+    pub fn code(&self) -> &'static str {
+        match self {
+            WriteError::UnknownFormat { .. } => "scnc::write::unknown_format",
+            WriteError::Encode { .. } => "scnc::write::encode",
+            WriteError::Io { .. } => "scnc::write::io",
+        }
+    }
+
+    /// As a diagnostic, labelled at the `output "…"` literal when the path came from the scene.
+    pub fn to_diagnostic(&self, span: Option<Span>) -> Diagnostic {
+        let mut d = Diagnostic::error(self.code(), self.to_string());
+        if let Some(span) = span {
+            d = d.at(span, "output written here");
+        }
+        if let WriteError::UnknownFormat { .. } = self {
+            d = d.help("the extension chooses the format: .png, .exr, .hdr or .pfm");
+        }
+        d
+    }
+}
+
+/// The format an output path asks for, by its extension (case-insensitive).
+pub fn format_for_path(path: &Path) -> Option<OutputFormat> {
+    let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+    match ext.as_str() {
+        "png" => Some(OutputFormat::Png),
+        "exr" => Some(OutputFormat::Exr),
+        "hdr" => Some(OutputFormat::Hdr),
+        "pfm" => Some(OutputFormat::Pfm),
+        _ => None,
+    }
+}
+
+/// Encodes `film` in the format `path`'s extension names and writes it atomically.
+pub fn write(film: &Film, path: &Path, settings: &WriteSettings) -> Result<(), WriteError> {
+    let format = format_for_path(path).ok_or_else(|| WriteError::UnknownFormat {
+        path: path.to_path_buf(),
+    })?;
+    let encoded = match format {
+        OutputFormat::Png => encode::png(film, settings),
+        OutputFormat::Exr => encode::exr(film),
+        OutputFormat::Hdr => encode::hdr(film),
+        OutputFormat::Pfm => Ok(encode::pfm(film)),
+    };
+    let bytes = encoded.map_err(|message| WriteError::Encode {
+        path: path.to_path_buf(),
+        message,
+    })?;
+    write_atomic_with(path, |f| f.write_all(&bytes)).map_err(|source| WriteError::Io {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// Writes `path` atomically: `fill` writes a fresh temporary file in the same directory, which
+/// is then fsynced and renamed over `path`. If `fill`, the sync or the rename fails, the
+/// temporary file is removed and `path` is left as it was.
+pub fn write_atomic_with(
+    path: &Path,
+    fill: impl FnOnce(&mut File) -> io::Result<()>,
+) -> io::Result<()> {
+    let name = path.file_name().ok_or_else(|| {
+        io::Error::new(io::ErrorKind::InvalidInput, "the output path names no file")
+    })?;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let temp = dir.join(format!(
+        ".{}.{}.{}.tmp",
+        name.to_string_lossy(),
+        std::process::id(),
+        TEMP_COUNTER.fetch_add(1, Ordering::Relaxed)
+    ));
+    let mut file = OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&temp)?;
+    let result = fill(&mut file)
+        .and_then(|()| file.sync_all())
+        .and_then(|()| {
+            drop(file);
+            fs::rename(&temp, path)
+        });
+    if let Err(e) = result {
+        // Best effort: the error that matters is the one being returned.
+        let _ = fs::remove_file(&temp);
+        return Err(e);
+    }
+    // Make the rename itself durable where the platform allows syncing a directory.
+    if let Ok(d) = File::open(dir) {
+        let _ = d.sync_all();
+    }
+    Ok(())
+}

@@ -1,0 +1,95 @@
+//! Stage 4: the pin-hole camera, film coordinates → world rays.
+//!
+//! Syntax: `camera main { eye (0, 1, -5)  target (0, 1, 0)  up (0, 1, 0)  fov 40deg }` (the
+//! checker turns it into an orthonormal frame). The vertical field of view is `fov`; the
+//! horizontal one follows from the aspect ratio. Film coordinates are in pixels with (0, 0) the
+//! top-left corner of the image: +x maps to the camera's `right`, −y (up the image) to `up`.
+
+use glam::{Vec2, Vec3};
+
+use crate::geom::Ray;
+use crate::ir;
+
+#[derive(Debug, Clone, Copy)]
+pub struct PinholeCamera {
+    eye: Vec3,
+    forward: Vec3,
+    /// `right · tan(fov_y / 2) · aspect`: the image plane's half width at distance 1.
+    half_width: Vec3,
+    /// `up · tan(fov_y / 2)`.
+    half_height: Vec3,
+    size_px: Vec2,
+}
+
+impl PinholeCamera {
+    pub fn new(camera: &ir::Camera, width: u32, height: u32) -> PinholeCamera {
+        let size_px = Vec2::new(width.max(1) as f32, height.max(1) as f32);
+        let tan_half = (camera.fov_y_rad / 2.0).tan();
+        let aspect = size_px.x / size_px.y;
+        PinholeCamera {
+            eye: camera.eye,
+            forward: camera.forward,
+            half_width: camera.right * tan_half * aspect,
+            half_height: camera.up * tan_half,
+            size_px,
+        }
+    }
+
+    /// The ray through film position `film_px` (pixels, from the top-left corner); its
+    /// direction is unit length so that `t` is a distance.
+    pub fn ray(&self, film_px: Vec2) -> Ray {
+        let x = 2.0 * film_px.x / self.size_px.x - 1.0;
+        let y = 1.0 - 2.0 * film_px.y / self.size_px.y;
+        let dir = self.forward + x * self.half_width + y * self.half_height;
+        Ray::new(self.eye, dir.normalize())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn camera(fov_y_deg: f32) -> ir::Camera {
+        ir::Camera {
+            name: "main".into(),
+            eye: Vec3::new(1.0, 2.0, 3.0),
+            forward: Vec3::Z,
+            up: Vec3::Y,
+            right: Vec3::Z.cross(Vec3::Y),
+            fov_y_rad: fov_y_deg.to_radians(),
+            span: crate::source::Span::new(crate::source::FileId(0), 0, 0),
+        }
+    }
+
+    #[test]
+    fn centre_ray_is_forward_and_starts_at_the_eye() {
+        let c = PinholeCamera::new(&camera(50.0), 64, 32);
+        let r = c.ray(Vec2::new(32.0, 16.0));
+        assert!((r.dir - Vec3::Z).length() < 1e-6);
+        assert_eq!(r.origin, Vec3::new(1.0, 2.0, 3.0));
+    }
+
+    #[test]
+    fn edges_and_corners_make_the_expected_angles() {
+        let fov_y = 40.0_f32.to_radians();
+        let (w, h) = (80u32, 40u32);
+        let cam = camera(40.0);
+        let c = PinholeCamera::new(&cam, w, h);
+        let tan_y = (fov_y / 2.0).tan();
+        let tan_x = tan_y * w as f32 / h as f32;
+        let angle = |p: Vec2| c.ray(p).dir.dot(Vec3::Z).clamp(-1.0, 1.0).acos();
+        // Top edge centre: exactly half the vertical fov, pointing up.
+        let top = c.ray(Vec2::new(40.0, 0.0));
+        assert!((angle(Vec2::new(40.0, 0.0)) - fov_y / 2.0).abs() < 1e-5);
+        assert!(top.dir.y > 0.0);
+        // Right edge centre: half the horizontal fov, towards camera.right.
+        let right = c.ray(Vec2::new(80.0, 20.0));
+        assert!((angle(Vec2::new(80.0, 20.0)) - tan_x.atan()).abs() < 1e-5);
+        assert!(right.dir.dot(cam.right) > 0.0);
+        // Top-left corner.
+        let corner = (tan_x * tan_x + tan_y * tan_y).sqrt().atan();
+        assert!((angle(Vec2::ZERO) - corner).abs() < 1e-5);
+        let d = c.ray(Vec2::ZERO).dir;
+        assert!(d.dot(cam.right) < 0.0 && d.dot(cam.up) > 0.0);
+    }
+}

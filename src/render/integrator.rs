@@ -1,0 +1,326 @@
+//! Stage 4: direct lighting along one camera ray.
+//!
+//! At a hit: the material's `ambient` is always added; then `light_samples` lights are picked by
+//! power, each point light gives one shadow ray and each area light `samples` shadow rays: a
+//! triangle is picked by area, then a point on it either by
+//! solid angle (`L_e · f · cos θ · Ω / pmf`, see `spherical`) or by area
+//! (`L_e · f · cos θ · cos θ_l / r² / pdf_area`, `pdf_area = pmf / area`). A constant
+//! environment adds `light_samples` cosine-weighted directions (`L_env · f · π` when the
+//! direction is unoccluded). Every one of these random choices is stratified over all the
+//! samples of the pixel, not just within one pixel sample: sample `s` of `S` uses points
+//! `s·m … s·m + m − 1` of one set of `S·m` scrambled Hammersley points per pixel and stream
+//! (`Sampler::stratified_2d`), so 16 pixel samples with one shadow ray each sample an area light
+//! as evenly as one pixel sample with 16. Visibility is decided by the geometric normal (a light behind the
+//! surface contributes nothing, whatever the shading normal says); the BRDF uses the shading
+//! normal flipped to the viewer's side of the geometric one.
+//!
+//! Shadow rays start at the offset origin (see `surface`) and stop short of the light: towards a
+//! point light at `(1 − 1e-4)` of the distance, towards an area light at a point itself offset
+//! off the emitter's surface towards the shading point, so the sampled emitter never occludes
+//! itself while any other geometry in between still does.
+
+use std::f32::consts::PI;
+
+use glam::{Vec2, Vec3};
+
+use super::brdf::Phong;
+use super::rng::Sampler;
+use super::spherical;
+use super::surface::{offset_origin, surface_hit, SurfaceHit};
+use crate::geom::triangle::moller_trumbore;
+use crate::geom::Ray;
+use crate::scene::{AreaLight, Light, LightSampling, Scene, Surface};
+
+/// Rays traced, by kind.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct RayCounts {
+    pub camera: u64,
+    pub shadow: u64,
+}
+
+const SHADOW_EPSILON: f32 = 1e-4;
+
+/// Per-pixel stratification streams: light picks, the environment, then one per light.
+const STREAM_PICK: u64 = 0;
+const STREAM_ENVIRONMENT: u64 = 1;
+const STREAM_LIGHTS: u64 = 2;
+
+/// A sampled point on an emitter, seen from a shading point.
+struct LightSample {
+    /// Unit direction from the shading point.
+    wi: Vec3,
+    position: Vec3,
+    error: Vec3,
+    weight: f32,
+}
+
+/// Radiance arriving at the camera along `ray` (a unit-direction camera ray).
+pub fn radiance(scene: &Scene, ray: &Ray, sampler: &mut Sampler, counts: &mut RayCounts) -> Vec3 {
+    counts.camera += 1;
+    let hit = scene
+        .accel
+        .as_ref()
+        .and_then(|a| a.closest_hit(ray))
+        .and_then(|h| surface_hit(scene, &h));
+    let Some(hit) = hit else {
+        return match scene.lights.environment {
+            Some(env) if env.visible => env.radiance,
+            _ => Vec3::ZERO,
+        };
+    };
+    let wo = -ray.dir.normalize();
+    match hit.surface {
+        Surface::Emitter(i) => match scene.lights.lights.get(i as usize) {
+            Some(Light::Area(a)) if a.two_sided || hit.ng.dot(wo) > 0.0 => a.radiance,
+            _ => Vec3::ZERO,
+        },
+        Surface::Material(m) => shade(scene, &hit, m, wo, sampler, counts),
+    }
+}
+
+fn shade(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    material: u32,
+    wo: Vec3,
+    sampler: &mut Sampler,
+    counts: &mut RayCounts,
+) -> Vec3 {
+    let Some(mat) = scene.materials.get(material as usize) else {
+        return Vec3::ZERO;
+    };
+    let ng = if hit.ng.dot(wo) < 0.0 {
+        -hit.ng
+    } else {
+        hit.ng
+    };
+    let ns = if hit.ns.dot(ng) < 0.0 {
+        -hit.ns
+    } else {
+        hit.ns
+    };
+    let t = &scene.textures;
+    let phong = Phong {
+        diffuse: t.color(mat.diffuse, hit.uv),
+        specular: t.color(mat.specular, hit.uv),
+        shininess: t.scalar(mat.shininess, hit.uv),
+    };
+    let at = Shading {
+        scene,
+        hit,
+        ng,
+        ns,
+        wo,
+        phong,
+    };
+    mat.ambient + at.lights(sampler, counts) + at.environment(sampler, counts)
+}
+
+struct Shading<'a> {
+    scene: &'a Scene,
+    hit: &'a SurfaceHit,
+    /// Geometric and shading normals, both on the viewer's side.
+    ng: Vec3,
+    ns: Vec3,
+    wo: Vec3,
+    phong: Phong,
+}
+
+impl Shading<'_> {
+    fn picks(&self) -> u32 {
+        self.scene.settings.light_samples.max(1)
+    }
+
+    fn lights(&self, sampler: &mut Sampler, counts: &mut RayCounts) -> Vec3 {
+        let Some(by_power) = &self.scene.lights.by_power else {
+            return Vec3::ZERO;
+        };
+        let picks = self.picks();
+        let (s, count) = sampler.index();
+        let mut sum = Vec3::ZERO;
+        for k in 0..picks {
+            // Stratified over all the picks of all the pixel's samples.
+            let j = s * picks + k;
+            let u = sampler.stratified_2d(STREAM_PICK, j, count * picks).x;
+            let (index, pmf, _) = by_power.sample(u);
+            let contribution = match &self.scene.lights.lights[index] {
+                Light::Point(p) => {
+                    let to_light = p.position - self.hit.p;
+                    let dist2 = to_light.length_squared();
+                    let wi = to_light / dist2.sqrt();
+                    let target = p.position;
+                    self.unoccluded(wi, target, SHADOW_EPSILON, counts)
+                        .map_or(Vec3::ZERO, |cos| {
+                            self.phong.eval(self.ns, wi, self.wo) * p.intensity * cos / dist2
+                        })
+                }
+                Light::Area(a) => self.area_light(a, index, j, count * picks, sampler, counts),
+            };
+            sum += contribution / pmf;
+        }
+        sum / picks as f32
+    }
+
+    /// `light` is `lights[index]`, picked for the `pick`-th of `picks` picks in the pixel.
+    fn area_light(
+        &self,
+        light: &AreaLight,
+        index: usize,
+        pick: u32,
+        picks: u32,
+        sampler: &mut Sampler,
+        counts: &mut RayCounts,
+    ) -> Vec3 {
+        let n = light.samples;
+        let mut sum = Vec3::ZERO;
+        for i in 0..n {
+            let stream = STREAM_LIGHTS + index as u64;
+            let u = sampler.stratified_2d(stream, pick * n + i, picks * n);
+            let (t, pmf, u0) = light.pick(u.x);
+            let u = Vec2::new(u0, u.y);
+            let tri = &light.triangles[t];
+            let normal = light.normals[t];
+            // The back of a one-sided emitter sends nothing: no ray needed.
+            if !light.two_sided && normal.dot(self.hit.p - tri[0]) <= 0.0 {
+                continue;
+            }
+            let Some(s) = self.sample_triangle(light, t, pmf, u) else {
+                continue;
+            };
+            // Stop the shadow ray just off the emitter, on the shading point's side.
+            let target = offset_origin(s.position, s.error, normal, -s.wi);
+            if let Some(cos) = self.unoccluded(s.wi, target, 0.0, counts) {
+                let f = self.phong.eval(self.ns, s.wi, self.wo);
+                sum += light.radiance * f * (cos * s.weight);
+            }
+        }
+        sum / n as f32
+    }
+
+    /// A point on triangle `t` of `light` (picked with probability `pmf`) and the factor that
+    /// turns `L_e · f · cos θ` into an unbiased estimate: `Ω / pmf` when sampled by solid angle,
+    /// `cos θ_l · area / (r² · pmf)` when sampled by area.
+    fn sample_triangle(
+        &self,
+        light: &AreaLight,
+        t: usize,
+        pmf: f32,
+        u: Vec2,
+    ) -> Option<LightSample> {
+        let p = self.hit.p;
+        let tri = &light.triangles[t];
+        if self.scene.light_sampling == LightSampling::SolidAngle {
+            let omega = spherical::solid_angle(p, tri);
+            if (spherical::MIN_SOLID_ANGLE..=spherical::MAX_SOLID_ANGLE).contains(&omega) {
+                let (wi, omega) = spherical::sample(p, tri, u)?;
+                // The point where the direction meets the triangle, rebuilt from barycentrics
+                // so its error bound is the same as for area samples. A direction that rounds
+                // to just outside an edge is dropped (a bias of the order of f32 rounding).
+                let b = moller_trumbore(&Ray::new(p, wi), tri[0], tri[1], tri[2])?;
+                let lp = light.at_barycentrics(t, b.u, b.v);
+                return Some(LightSample {
+                    wi,
+                    position: lp.position,
+                    error: lp.error,
+                    weight: omega / pmf,
+                });
+            }
+        }
+        let lp = light.point_on(t, u);
+        let to_light = lp.position - p;
+        let dist2 = to_light.length_squared();
+        if dist2 == 0.0 || !dist2.is_finite() {
+            return None;
+        }
+        let wi = to_light / dist2.sqrt();
+        let cos_light = -lp.normal.dot(wi);
+        let cos_light = if light.two_sided {
+            cos_light.abs()
+        } else {
+            cos_light
+        };
+        if cos_light <= 0.0 {
+            return None;
+        }
+        let area = pmf * light.total_area;
+        Some(LightSample {
+            wi,
+            position: lp.position,
+            error: lp.error,
+            weight: cos_light * area / (dist2 * pmf),
+        })
+    }
+
+    fn environment(&self, sampler: &mut Sampler, counts: &mut RayCounts) -> Vec3 {
+        let Some(env) = self.scene.lights.environment else {
+            return Vec3::ZERO;
+        };
+        if env.radiance == Vec3::ZERO {
+            return Vec3::ZERO;
+        }
+        let picks = self.picks();
+        let (s, count) = sampler.index();
+        let mut sum = Vec3::ZERO;
+        for k in 0..picks {
+            let u = sampler.stratified_2d(STREAM_ENVIRONMENT, s * picks + k, count * picks);
+            let wi = cosine_hemisphere(self.ns, u);
+            if wi.dot(self.ng) <= 0.0 {
+                continue;
+            }
+            counts.shadow += 1;
+            let origin = offset_origin(self.hit.p, self.hit.p_error, self.ng, wi);
+            let blocked = self
+                .scene
+                .accel
+                .as_ref()
+                .is_some_and(|a| a.any_hit(&Ray::new(origin, wi)));
+            if !blocked {
+                // f · L · cos θ / pdf with pdf = cos θ / π.
+                sum += self.phong.eval(self.ns, wi, self.wo) * env.radiance * PI;
+            }
+        }
+        sum / picks as f32
+    }
+
+    /// Traces the shadow ray towards `target` (direction `wi`, unit). Returns the shading
+    /// cosine if the light is above the geometric surface, in front of the shading normal and
+    /// unoccluded.
+    fn unoccluded(
+        &self,
+        wi: Vec3,
+        target: Vec3,
+        shorten: f32,
+        counts: &mut RayCounts,
+    ) -> Option<f32> {
+        let cos = self.ns.dot(wi);
+        if wi.dot(self.ng) <= 0.0 || cos <= 0.0 || !wi.is_finite() {
+            return None;
+        }
+        counts.shadow += 1;
+        let origin = offset_origin(self.hit.p, self.hit.p_error, self.ng, wi);
+        let ray = Ray::segment(origin, target - origin, 1.0 - shorten);
+        let blocked = self.scene.accel.as_ref().is_some_and(|a| a.any_hit(&ray));
+        (!blocked).then_some(cos)
+    }
+}
+
+/// A direction around unit `n` with density `cos θ / π` (Malley's method on a concentric disk).
+pub fn cosine_hemisphere(n: Vec3, u: Vec2) -> Vec3 {
+    let d = concentric_disk(u);
+    let z = (1.0 - d.length_squared()).max(0.0).sqrt();
+    let (t, b) = n.any_orthonormal_pair();
+    (d.x * t + d.y * b + z * n).normalize()
+}
+
+fn concentric_disk(u: Vec2) -> Vec2 {
+    let o = 2.0 * u - Vec2::ONE;
+    if o == Vec2::ZERO {
+        return Vec2::ZERO;
+    }
+    let (r, theta) = if o.x.abs() > o.y.abs() {
+        (o.x, PI / 4.0 * (o.y / o.x))
+    } else {
+        (o.y, PI / 2.0 - PI / 4.0 * (o.x / o.y))
+    };
+    r * Vec2::new(theta.cos(), theta.sin())
+}

@@ -1,0 +1,318 @@
+//! Stage 3 entry point: [`build`] turns a validated `ir::SceneDesc` into a render-ready
+//! [`Scene`], loading files through the [`Loader`] and collecting every problem it finds
+//! (one diagnostic per faulty file or mesh, not just the first).
+//!
+//! Only what is used is built: meshes named by objects or area lights (each loaded once however
+//! many instances place it), textures reachable from used materials, light tables only when
+//! there are lights, and no acceleration structure at all when there are no triangles.
+
+use std::collections::BTreeSet;
+use std::time::Instant;
+
+use glam::{Affine3A, Mat3, Vec3};
+
+use super::lights::{AreaLight, Environment, Light, Lights, PointLight};
+use super::load::load_mesh;
+use super::mesh::TriMesh;
+use super::texture::{Texture, Textures};
+use super::{
+    BuildError, BuildOptions, BuildTimings, Scene, SceneInstance, Surface, SurfaceMaterial,
+};
+
+use crate::assets::Loader;
+use crate::bvh::{Accel, Instance, MeshRef};
+use crate::diag::{Diagnostic, Severity};
+use crate::ir::{self, ColorInput, EnvSource, ScalarInput, TextureSource};
+use crate::source::{SourceMap, Span};
+
+/// Builds the scene. `_sources` holds the `.scn` files every span points into (diagnostics are
+/// labelled there; nothing is read from them here). On failure, returns every error found
+/// together with the warnings; on success, warnings are in [`Scene::warnings`].
+pub fn build(
+    desc: &ir::SceneDesc,
+    _sources: &SourceMap,
+    loader: &dyn Loader,
+    options: &BuildOptions,
+) -> Result<Scene, Vec<Diagnostic>> {
+    let start = Instant::now();
+    let mut b = Builder {
+        desc,
+        loader,
+        problems: Vec::new(),
+        meshes: Vec::new(),
+        mesh_slots: vec![None; desc.meshes.len()],
+    };
+    let camera_index = options.camera.unwrap_or(desc.active_camera);
+    let camera = desc.cameras.get(camera_index).cloned();
+    if camera.is_none() {
+        b.problems.push(BuildError::NoCamera {
+            which: match options.camera {
+                Some(i) => format!("number {i}"),
+                None => "to render from".into(),
+            },
+        });
+    }
+
+    let (materials, textures) = b.materials();
+    let environment = b.environment();
+
+    let assets_start = Instant::now();
+    let mut instances = Vec::new();
+    for object in &desc.objects {
+        let Some(mesh) = b.mesh(object.mesh) else {
+            continue;
+        };
+        if let Some((world_from_object, normal_from_object)) =
+            b.transform(object.world_from_object, object.span)
+        {
+            instances.push(SceneInstance {
+                mesh,
+                surface: Surface::Material(object.material),
+                world_from_object,
+                normal_from_object,
+            });
+        }
+    }
+    let lights = b.lights(&mut instances, environment);
+    let asset_load = assets_start.elapsed();
+
+    let mut diags: Vec<Diagnostic> = b.problems.iter().map(BuildError::to_diagnostic).collect();
+    let (Some(camera), false) = (camera, diags.iter().any(|d| d.severity == Severity::Error))
+    else {
+        diags.sort_by_key(|d| std::cmp::Reverse(d.severity));
+        return Err(diags);
+    };
+
+    let accel_start = Instant::now();
+    let triangles: usize = instances
+        .iter()
+        .map(|i| b.meshes[i.mesh as usize].triangles.len())
+        .sum();
+    let accel = (triangles > 0).then(|| {
+        let refs: Vec<MeshRef<'_>> = b.meshes.iter().map(TriMesh::as_mesh_ref).collect();
+        let accel_instances: Vec<Instance> = instances
+            .iter()
+            .map(|i| Instance::new(i.mesh, i.world_from_object))
+            .collect();
+        Accel::build(&refs, &accel_instances, options.accel)
+    });
+    let accel_build = if accel.is_some() {
+        accel_start.elapsed()
+    } else {
+        Default::default()
+    };
+
+    Ok(Scene {
+        camera,
+        settings: desc.render.clone(),
+        meshes: b.meshes,
+        instances,
+        accel,
+        materials,
+        textures,
+        lights,
+        light_sampling: Default::default(),
+        timings: BuildTimings {
+            asset_load,
+            accel_build,
+            total: start.elapsed(),
+        },
+        warnings: diags,
+    })
+}
+
+struct Builder<'a> {
+    desc: &'a ir::SceneDesc,
+    loader: &'a dyn Loader,
+    problems: Vec<BuildError>,
+    meshes: Vec<TriMesh>,
+    /// Per `ir::MeshId`: not tried yet, or `Some(index into meshes)` / `Some(None)` if it failed.
+    mesh_slots: Vec<Option<Option<u32>>>,
+}
+
+impl Builder<'_> {
+    fn materials(&mut self) -> (Vec<SurfaceMaterial>, Textures) {
+        let used: BTreeSet<u32> = self.desc.objects.iter().map(|o| o.material).collect();
+        let mut textures = Textures {
+            slots: vec![None; self.desc.textures.len()],
+        };
+        let mut visited = vec![false; self.desc.textures.len()];
+        for &id in &used {
+            let Some(m) = self.desc.materials.get(id as usize) else {
+                continue;
+            };
+            let mut roots = Vec::new();
+            for input in [m.diffuse, m.specular] {
+                if let ColorInput::Texture(t) = input {
+                    roots.push(t);
+                }
+            }
+            if let ScalarInput::Texture(t) = m.shininess {
+                roots.push(t);
+            }
+            for t in roots {
+                self.texture(t, &mut textures, &mut visited);
+            }
+            if m.normal_map.is_some() {
+                self.problems.push(BuildError::Unsupported {
+                    what: format!("the normal map of material `{}`", m.name),
+                    span: m.span,
+                    help: "normal maps arrive with image textures (issue 4); remove it for now"
+                        .into(),
+                });
+            }
+        }
+        let materials = self
+            .desc
+            .materials
+            .iter()
+            .map(|m| SurfaceMaterial {
+                diffuse: m.diffuse,
+                specular: m.specular,
+                shininess: m.shininess,
+                ambient: m.ambient,
+            })
+            .collect();
+        (materials, textures)
+    }
+
+    fn texture(&mut self, id: ir::TextureId, out: &mut Textures, visited: &mut [bool]) {
+        let Some(seen) = visited.get_mut(id as usize) else {
+            return;
+        };
+        if std::mem::replace(seen, true) {
+            return;
+        }
+        let Some(t) = self.desc.textures.get(id as usize) else {
+            return;
+        };
+        let resolved = match &t.source {
+            TextureSource::Constant(c) => Texture::Constant(*c),
+            TextureSource::Checker { even, odd, scale } => {
+                for input in [even, odd] {
+                    if let ColorInput::Texture(inner) = input {
+                        self.texture(*inner, out, visited);
+                    }
+                }
+                Texture::Checker {
+                    even: *even,
+                    odd: *odd,
+                    scale: *scale,
+                }
+            }
+            TextureSource::Image { file, .. } => {
+                self.problems.push(BuildError::Unsupported {
+                    what: format!("the image texture `{}`", file.written),
+                    span: file.span,
+                    help: "image textures arrive with issue 4; use a checker or a colour for now"
+                        .into(),
+                });
+                return;
+            }
+        };
+        out.slots[id as usize] = Some(resolved);
+    }
+
+    fn environment(&mut self) -> Option<Environment> {
+        let mut env: Option<Environment> = None;
+        for light in &self.desc.lights {
+            let ir::Light::Environment(e) = light else {
+                continue;
+            };
+            match &e.source {
+                EnvSource::Constant(c) => {
+                    let prev = env.unwrap_or(Environment {
+                        radiance: Vec3::ZERO,
+                        visible: false,
+                    });
+                    env = Some(Environment {
+                        radiance: prev.radiance + *c * e.intensity,
+                        visible: prev.visible || e.visible,
+                    });
+                }
+                EnvSource::Image(file) => self.problems.push(BuildError::Unsupported {
+                    what: format!("the environment image `{}`", file.written),
+                    span: file.span,
+                    help: "image environments arrive with issue 5; use a constant colour for now"
+                        .into(),
+                }),
+            }
+        }
+        env
+    }
+
+    fn lights(&mut self, instances: &mut Vec<SceneInstance>, env: Option<Environment>) -> Lights {
+        let mut lights = Vec::new();
+        for light in &self.desc.lights {
+            match light {
+                ir::Light::Point(p) => lights.push(Light::Point(PointLight {
+                    position: p.position,
+                    intensity: p.intensity,
+                })),
+                ir::Light::Area(a) => {
+                    let Some(mesh) = self.mesh(a.mesh) else {
+                        continue;
+                    };
+                    let Some((world_from_object, normal_from_object)) =
+                        self.transform(a.world_from_object, a.span)
+                    else {
+                        continue;
+                    };
+                    let m = &self.meshes[mesh as usize];
+                    let world: Vec<[Vec3; 3]> = m
+                        .triangles
+                        .iter()
+                        .map(|t| {
+                            t.map(|i| world_from_object.transform_point3(m.positions[i as usize]))
+                        })
+                        .collect();
+                    if let Some(area) = AreaLight::new(a.radiance, a.two_sided, a.samples, world) {
+                        instances.push(SceneInstance {
+                            mesh,
+                            surface: Surface::Emitter(lights.len() as u32),
+                            world_from_object,
+                            normal_from_object,
+                        });
+                        lights.push(Light::Area(area));
+                    }
+                }
+                ir::Light::Environment(_) => {}
+            }
+        }
+        Lights::new(lights, env)
+    }
+
+    /// The affine map and its normal matrix, or an error if it cannot place anything.
+    fn transform(&mut self, m: glam::Mat4, span: Span) -> Option<(Affine3A, Mat3)> {
+        let affine = Affine3A::from_mat4(m);
+        let linear = Mat3::from(affine.matrix3);
+        let det = linear.determinant();
+        if !(det.is_finite() && det != 0.0 && m.is_finite()) {
+            self.problems.push(BuildError::SingularTransform { span });
+            return None;
+        }
+        Some((affine, linear.inverse().transpose()))
+    }
+
+    /// Loads (once) and validates mesh `id`; `None` if it failed (the problem is recorded).
+    fn mesh(&mut self, id: ir::MeshId) -> Option<u32> {
+        let slot = self.mesh_slots.get(id as usize)?;
+        if let Some(done) = slot {
+            return *done;
+        }
+        let decl = self.desc.meshes.get(id as usize)?;
+        let index = match load_mesh(decl, self.loader) {
+            Ok((mesh, warning)) => {
+                self.problems.extend(warning);
+                self.meshes.push(mesh);
+                Some(self.meshes.len() as u32 - 1)
+            }
+            Err(e) => {
+                self.problems.push(e);
+                None
+            }
+        };
+        self.mesh_slots[id as usize] = Some(index);
+        index
+    }
+}

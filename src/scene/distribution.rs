@@ -1,0 +1,98 @@
+//! Stage 3 helper: a discrete distribution sampled by inverting its CDF. Used to pick a light
+//! by power and a triangle of an area light by area, in O(log n) whatever the count.
+
+/// Picks index `i` with probability `weights[i] / Σ weights`.
+#[derive(Debug, Clone)]
+pub struct Distribution1D {
+    /// `cdf[i]` = Σ_{k<i} w_k / total; `cdf[0] = 0`, `cdf[n] = 1`.
+    cdf: Vec<f32>,
+    pmf: Vec<f32>,
+}
+
+impl Distribution1D {
+    /// `None` when there is nothing to pick: no weights, or none positive and finite.
+    pub fn new(weights: &[f32]) -> Option<Distribution1D> {
+        let clean = |w: f32| {
+            if w.is_finite() && w > 0.0 {
+                w as f64
+            } else {
+                0.0
+            }
+        };
+        let total: f64 = weights.iter().map(|&w| clean(w)).sum();
+        if total <= 0.0 {
+            return None;
+        }
+        let mut cdf = Vec::with_capacity(weights.len() + 1);
+        let mut acc = 0.0f64;
+        cdf.push(0.0);
+        for &w in weights {
+            acc += clean(w);
+            cdf.push((acc / total) as f32);
+        }
+        if let Some(last) = cdf.last_mut() {
+            *last = 1.0;
+        }
+        let pmf = weights.iter().map(|&w| (clean(w) / total) as f32).collect();
+        Some(Distribution1D { cdf, pmf })
+    }
+
+    pub fn len(&self) -> usize {
+        self.pmf.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.pmf.is_empty()
+    }
+
+    pub fn pmf(&self, i: usize) -> f32 {
+        self.pmf.get(i).copied().unwrap_or(0.0)
+    }
+
+    /// For `u` in [0, 1): the index, its probability, and `u` rescaled to [0, 1) within the
+    /// chosen bucket (so one random number can serve twice without losing stratification).
+    pub fn sample(&self, u: f32) -> (usize, f32, f32) {
+        // First i with cdf[i+1] > u, skipping zero-weight buckets.
+        let n = self.pmf.len();
+        let i = self.cdf[1..].partition_point(|&c| c <= u).min(n - 1);
+        let (lo, hi) = (self.cdf[i], self.cdf[i + 1]);
+        let remapped = if hi > lo {
+            ((u - lo) / (hi - lo)).clamp(0.0, 1.0 - f32::EPSILON / 2.0)
+        } else {
+            0.5
+        };
+        (i, self.pmf[i], remapped)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn empty_or_zero_weights_give_none() {
+        assert!(Distribution1D::new(&[]).is_none());
+        assert!(Distribution1D::new(&[0.0, f32::NAN, -1.0]).is_none());
+    }
+
+    #[test]
+    fn frequencies_match_weights_and_zero_weights_are_never_picked() {
+        let w = [1.0, 0.0, 3.0, 4.0];
+        let d = Distribution1D::new(&w).expect("positive weights");
+        let n = 8000;
+        let mut counts = [0usize; 4];
+        for k in 0..n {
+            let (i, pmf, r) = d.sample((k as f32 + 0.5) / n as f32);
+            assert!((0.0..1.0).contains(&r));
+            assert_eq!(pmf, d.pmf(i));
+            counts[i] += 1;
+        }
+        assert_eq!(counts[1], 0);
+        for i in 0..4 {
+            let expected = w[i] / 8.0 * n as f32;
+            assert!((counts[i] as f32 - expected).abs() <= 1.0, "{counts:?}");
+        }
+        let sum: f32 = (0..4).map(|i| d.pmf(i)).sum();
+        assert!((sum - 1.0).abs() < 1e-6);
+    }
+}

@@ -1,0 +1,160 @@
+//! Stage 3: render-ready triangle meshes in object space, and their validation.
+//!
+//! Every mesh source (`mesh m = obj("m.obj")`, `inline { ... }`, `quad`/`box`/`sphere`) ends up
+//! as a [`TriMesh`]. [`TriMesh::validate`] is the one gate between user data and the renderer:
+//! indices in range, positions finite, degenerate (zero-area) triangles dropped and counted,
+//! normals and UVs either one per position or absent.
+
+use glam::{Vec2, Vec3};
+
+use crate::bvh::MeshRef;
+
+/// Triangles sharing a vertex array. `normals` and `uvs` are empty or one per position.
+#[derive(Debug, Clone, Default)]
+pub struct TriMesh {
+    pub positions: Vec<Vec3>,
+    pub normals: Vec<Vec3>,
+    pub uvs: Vec<Vec2>,
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// Why a mesh cannot be rendered (converted into a `BuildError` by the caller, who knows the
+/// mesh's name and span).
+#[derive(Debug, Clone, PartialEq)]
+pub enum MeshProblem {
+    IndexOutOfRange { triangle: usize, index: u32 },
+    NonFinite { index: usize, value: Vec3 },
+    AllDegenerate { count: usize },
+}
+
+/// A validated mesh and how many triangles were dropped as degenerate.
+#[derive(Debug)]
+pub struct Validated {
+    pub mesh: TriMesh,
+    pub dropped: usize,
+    pub total: usize,
+}
+
+impl TriMesh {
+    pub fn as_mesh_ref(&self) -> MeshRef<'_> {
+        MeshRef {
+            positions: &self.positions,
+            triangles: &self.triangles,
+        }
+    }
+
+    /// Checks indices and positions, drops degenerate triangles, discards unusable normal/UV
+    /// arrays (wrong length) and replaces non-finite or zero normals by none at all.
+    pub fn validate(mut self) -> Result<Validated, MeshProblem> {
+        let n = self.positions.len();
+        for (t, tri) in self.triangles.iter().enumerate() {
+            if let Some(&index) = tri.iter().find(|&&i| i as usize >= n) {
+                return Err(MeshProblem::IndexOutOfRange { triangle: t, index });
+            }
+        }
+        if let Some((index, &value)) = self
+            .positions
+            .iter()
+            .enumerate()
+            .find(|(_, p)| !p.is_finite())
+        {
+            return Err(MeshProblem::NonFinite { index, value });
+        }
+        if self.normals.len() != n
+            || self
+                .normals
+                .iter()
+                .any(|v| !v.is_finite() || v.length_squared() == 0.0)
+        {
+            self.normals.clear();
+        }
+        for v in &mut self.normals {
+            *v = v.normalize();
+        }
+        if self.uvs.len() != n {
+            self.uvs.clear();
+        }
+        for uv in &mut self.uvs {
+            if !uv.is_finite() {
+                *uv = Vec2::ZERO;
+            }
+        }
+        let total = self.triangles.len();
+        let positions = &self.positions;
+        self.triangles.retain(|t| !is_degenerate(positions, *t));
+        let dropped = total - self.triangles.len();
+        if total > 0 && self.triangles.is_empty() {
+            return Err(MeshProblem::AllDegenerate { count: total });
+        }
+        Ok(Validated {
+            mesh: self,
+            dropped,
+            total,
+        })
+    }
+}
+
+/// Zero area, or so close to it that the normal's direction is meaningless: the sine of the
+/// angle between the two edges is below f32 epsilon. Indices must be in range.
+pub fn is_degenerate(positions: &[Vec3], [a, b, c]: [u32; 3]) -> bool {
+    let p = |i: u32| positions[i as usize];
+    let (e1, e2) = (p(b) - p(a), p(c) - p(a));
+    let cross = e1.cross(e2).length();
+    !(cross.is_finite() && cross > f32::EPSILON * e1.length() * e2.length())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tri_mesh(positions: Vec<Vec3>, triangles: Vec<[u32; 3]>) -> TriMesh {
+        TriMesh {
+            positions,
+            triangles,
+            ..TriMesh::default()
+        }
+    }
+
+    #[test]
+    fn drops_degenerate_and_counts_them() {
+        let m = tri_mesh(
+            vec![Vec3::ZERO, Vec3::X, Vec3::Y, 2.0 * Vec3::X],
+            vec![[0, 1, 2], [0, 1, 3], [1, 1, 2]],
+        );
+        let v = m.validate().expect("one good triangle remains");
+        assert_eq!((v.dropped, v.total, v.mesh.triangles.len()), (2, 3, 1));
+    }
+
+    #[test]
+    fn reports_bad_index_nan_and_all_degenerate() {
+        let bad = tri_mesh(vec![Vec3::ZERO, Vec3::X, Vec3::Y], vec![[0, 1, 3]]);
+        assert_eq!(
+            bad.validate().unwrap_err(),
+            MeshProblem::IndexOutOfRange {
+                triangle: 0,
+                index: 3
+            }
+        );
+        let nan = tri_mesh(
+            vec![Vec3::ZERO, Vec3::new(f32::NAN, 0.0, 0.0), Vec3::Y],
+            vec![[0, 1, 2]],
+        );
+        assert!(matches!(
+            nan.validate(),
+            Err(MeshProblem::NonFinite { index: 1, .. })
+        ));
+        let flat = tri_mesh(vec![Vec3::ZERO, Vec3::X, 2.0 * Vec3::X], vec![[0, 1, 2]]);
+        assert_eq!(
+            flat.validate().unwrap_err(),
+            MeshProblem::AllDegenerate { count: 1 }
+        );
+    }
+
+    #[test]
+    fn tiny_and_huge_triangles_are_not_degenerate() {
+        for s in [1e-4_f32, 1e5] {
+            let m = tri_mesh(vec![Vec3::ZERO, s * Vec3::X, s * Vec3::Y], vec![[0, 1, 2]]);
+            assert_eq!(m.validate().expect("valid").dropped, 0, "scale {s}");
+        }
+    }
+}

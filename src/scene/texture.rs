@@ -1,0 +1,100 @@
+//! Stage 3/4: material inputs evaluated at a hit's UV.
+//!
+//! Syntax: `texture board = checker { even #ffffff  odd #202020  scale 8 }`, constants, and
+//! `phong { diffuse board  specular 0.4  shininess 64 }`. Image textures (`image("wood.png")`)
+//! are rejected at build time until issue 4 implements them.
+
+use glam::{Vec2, Vec3};
+
+use crate::ir::{ColorInput, ScalarInput};
+
+/// A texture the renderer can evaluate.
+#[derive(Debug, Clone)]
+pub enum Texture {
+    Constant(Vec3),
+    /// `scale` squares per unit of u and of v; the square containing (0, 0)..(1/scale, 1/scale)
+    /// is `even`.
+    Checker {
+        even: ColorInput,
+        odd: ColorInput,
+        scale: f32,
+    },
+}
+
+/// Textures indexed by `ir::TextureId`; `None` for the ones the scene does not use.
+#[derive(Debug, Clone, Default)]
+pub struct Textures {
+    pub slots: Vec<Option<Texture>>,
+}
+
+/// Checkers may nest (a checker of checkers); the checker stage rejects cycles, and this bound
+/// keeps a cycle that slipped through from recursing forever (it evaluates to black).
+const MAX_NESTING: u32 = 16;
+
+impl Textures {
+    pub fn color(&self, input: ColorInput, uv: Vec2) -> Vec3 {
+        self.color_at_depth(input, uv, 0)
+    }
+
+    /// A scalar input: a constant, or the red channel of a texture.
+    pub fn scalar(&self, input: ScalarInput, uv: Vec2) -> f32 {
+        match input {
+            ScalarInput::Constant(v) => v,
+            ScalarInput::Texture(id) => self.color_at_depth(ColorInput::Texture(id), uv, 0).x,
+        }
+    }
+
+    fn color_at_depth(&self, input: ColorInput, uv: Vec2, depth: u32) -> Vec3 {
+        let id = match input {
+            ColorInput::Constant(c) => return c,
+            ColorInput::Texture(id) => id,
+        };
+        if depth >= MAX_NESTING {
+            return Vec3::ZERO;
+        }
+        match self.slots.get(id as usize).and_then(Option::as_ref) {
+            Some(Texture::Constant(c)) => *c,
+            Some(Texture::Checker { even, odd, scale }) => {
+                let cell = (uv * *scale).floor();
+                let parity = (cell.x + cell.y).rem_euclid(2.0);
+                let pick = if parity < 0.5 { *even } else { *odd };
+                self.color_at_depth(pick, uv, depth + 1)
+            }
+            None => Vec3::ZERO,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn checker_alternates_and_handles_negative_uv() {
+        let t = Textures {
+            slots: vec![Some(Texture::Checker {
+                even: ColorInput::Constant(Vec3::ONE),
+                odd: ColorInput::Constant(Vec3::ZERO),
+                scale: 2.0,
+            })],
+        };
+        let at = |u, v| t.color(ColorInput::Texture(0), Vec2::new(u, v)).x;
+        assert_eq!(at(0.1, 0.1), 1.0);
+        assert_eq!(at(0.6, 0.1), 0.0);
+        assert_eq!(at(0.6, 0.6), 1.0);
+        assert_eq!(at(-0.1, 0.1), 0.0);
+        assert_eq!(t.scalar(ScalarInput::Texture(0), Vec2::new(0.1, 0.6)), 0.0);
+    }
+
+    #[test]
+    fn a_cycle_terminates() {
+        let t = Textures {
+            slots: vec![Some(Texture::Checker {
+                even: ColorInput::Texture(0),
+                odd: ColorInput::Texture(0),
+                scale: 1.0,
+            })],
+        };
+        assert_eq!(t.color(ColorInput::Texture(0), Vec2::ZERO), Vec3::ZERO);
+    }
+}
