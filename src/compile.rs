@@ -233,7 +233,15 @@ impl<'l> Driver<'l> {
                     "scnc::include::not_found",
                     format!("cannot read included file `{written}`"),
                 )
-                .at(span, format!("{}: {e}", path.display()))
+                .at(
+                    span,
+                    match e.kind() {
+                        std::io::ErrorKind::NotFound => {
+                            format!("{} does not exist", path.display())
+                        }
+                        _ => format!("{}: {e}", path.display()),
+                    },
+                )
                 .help("include paths are relative to the file that contains the include"),
             ),
         }
@@ -250,10 +258,12 @@ impl<'l> Driver<'l> {
         let scene = if sources.files().next().is_some() {
             let (scene, check_diags) = check::check(&statements, &sources);
             // When parsing failed, statements are missing: suppress checker errors that only
-            // say something is missing or unused, which would be noise.
-            diags.extend(check_diags.into_iter().filter(|d| {
-                !parse_failed || !matches!(d.code, "scnc::check::no_camera" | "scnc::check::unused")
-            }));
+            // say something is missing, unknown or unused, which would be noise.
+            diags.extend(
+                check_diags
+                    .into_iter()
+                    .filter(|d| !parse_failed || !is_cascade(d.code)),
+            );
             scene
         } else {
             None
@@ -271,6 +281,20 @@ impl<'l> Driver<'l> {
             diagnostics: diags,
         }
     }
+}
+
+/// Checker codes that are only consequences of statements lost to syntax errors.
+fn is_cascade(code: &str) -> bool {
+    matches!(
+        code,
+        "scnc::check::no_camera"
+            | "scnc::check::unused"
+            | "scnc::check::unknown_material"
+            | "scnc::check::unknown_mesh"
+            | "scnc::check::unknown_texture"
+            | "scnc::check::unknown_camera"
+            | "scnc::check::unknown_name"
+    )
 }
 
 /// UTF-8 text without NUL bytes, or why not.

@@ -62,6 +62,10 @@ impl Checker<'_> {
                 Some(s) => {
                     let help = if s.name.starts_with('x') {
                         "write the two sizes apart: `512 x 512`".to_string()
+                    } else if s.name.starts_with("deg") {
+                        "write `deg`, e.g. `30deg`".to_string()
+                    } else if s.name.starts_with("rad") {
+                        "write `rad`, e.g. `0.5rad`".to_string()
                     } else {
                         suggest::help_for(&s.name, &["deg", "rad"], "units")
                     };
@@ -148,6 +152,9 @@ impl Checker<'_> {
         }
         if let Some((v, _)) = self.lets.get(name) {
             return Some(v.clone());
+        }
+        if self.poisoned.contains(name) {
+            return None;
         }
         let candidates: Vec<&str> = self.lets.keys().map(String::as_str).collect();
         let help = match suggest::did_you_mean(name, candidates.iter().copied()) {

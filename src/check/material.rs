@@ -142,7 +142,10 @@ impl Checker<'_> {
     /// A reflectance: a colour with every channel in [0, 1].
     fn albedo(&mut self, e: &Expr, key: &str) -> Option<DVec3> {
         if let Some(name) = e.as_name() {
-            if !self.lets.contains_key(name) && !matches!(name, "true" | "false") {
+            if !self.lets.contains_key(name)
+                && !self.poisoned.contains(name)
+                && !matches!(name, "true" | "false")
+            {
                 // Neither a texture nor a constant: say both were looked for.
                 let mut candidates: Vec<String> = self.lets.keys().cloned().collect();
                 candidates.extend(self.texture_names());

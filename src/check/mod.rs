@@ -38,6 +38,8 @@ pub struct Checker<'s> {
     pub sources: &'s SourceMap,
     pub diags: Vec<Diagnostic>,
     pub lets: HashMap<String, (Value, Span)>,
+    /// Constants whose value had an error: uses stay silent instead of cascading.
+    pub poisoned: std::collections::HashSet<String>,
     tables: [Table; 6],
     /// Lowered declarations, indexed like their table (None when they had errors).
     textures: Vec<Option<ir::Texture>>,
@@ -60,6 +62,7 @@ impl<'s> Checker<'s> {
             sources,
             diags: Vec::new(),
             lets: HashMap::new(),
+            poisoned: Default::default(),
             tables: Default::default(),
             textures: Vec::new(),
             materials: Vec::new(),
@@ -82,9 +85,13 @@ impl<'s> Checker<'s> {
         &mut self.tables[ns as usize]
     }
 
-    /// Registers a declared name; reports a duplicate with the first declaration.
-    fn declare(&mut self, ns: Namespace, name: &str, span: Span) {
-        if let Some(first) = self.table(ns).declare(name, span) {
+    /// Registers a declared name; reports a duplicate with the first declaration and returns
+    /// false for it (a duplicate is not lowered, so tables and lowered vectors stay aligned).
+    fn declare(&mut self, ns: Namespace, name: &str, span: Span) -> bool {
+        let Some(first) = self.table(ns).declare(name, span) else {
+            return true;
+        };
+        {
             self.error(
                 Diagnostic::error(
                     "scnc::check::duplicate_name",
@@ -95,6 +102,7 @@ impl<'s> Checker<'s> {
                 .help("rename one of them"),
             );
         }
+        false
     }
 
     fn let_stmt(&mut self, name: &crate::syntax::Ident, value: &crate::syntax::Expr) {
@@ -121,8 +129,13 @@ impl<'s> Checker<'s> {
             );
             return;
         }
-        if let Some(v) = self.eval(value) {
-            self.lets.insert(name.name.clone(), (v, name.span));
+        match self.eval(value) {
+            Some(v) => {
+                self.lets.insert(name.name.clone(), (v, name.span));
+            }
+            None => {
+                self.poisoned.insert(name.name.clone());
+            }
         }
     }
 }
@@ -140,8 +153,9 @@ pub fn check(statements: &[Stmt], sources: &SourceMap) -> (Option<ir::SceneDesc>
             Stmt::Version { .. } | Stmt::Include { .. } => {}
             Stmt::Let { name, value, .. } => cx.let_stmt(name, value),
             Stmt::Camera { name, body, span } => {
-                cx.declare(Namespace::Camera, &name.name, name.span);
-                cameras.push((name, body, *span));
+                if cx.declare(Namespace::Camera, &name.name, name.span) {
+                    cameras.push((name, body, *span));
+                }
             }
             Stmt::Decl(d) => {
                 let ns = match d.kind {
@@ -150,8 +164,9 @@ pub fn check(statements: &[Stmt], sources: &SourceMap) -> (Option<ir::SceneDesc>
                     DeclKind::Mesh => Namespace::Mesh,
                     DeclKind::Light => Namespace::Light,
                 };
-                cx.declare(ns, &d.name.name, d.name.span);
-                decls[ns as usize].push(d);
+                if cx.declare(ns, &d.name.name, d.name.span) {
+                    decls[ns as usize].push(d);
+                }
             }
             Stmt::Object(_) | Stmt::Group(_) => placements.push(stmt),
             Stmt::Render { body, span } => renders.push((body, *span)),

@@ -59,7 +59,7 @@ impl Checker<'_> {
     }
 
     fn group(&mut self, g: &GroupStmt, parent: Mat4) {
-        self.declare(Namespace::Group, &g.name.name, g.name.span);
+        let _ = self.declare(Namespace::Group, &g.name.name, g.name.span);
         let props = self.split(
             &g.body,
             "a group",

@@ -94,6 +94,12 @@ impl Checker<'_> {
 
     fn resolution(&mut self, p: &super::props::Prop, s: &mut ir::RenderSettings) -> Option<()> {
         let form = "resolution 640 x 480";
+        if let [one] = p.values.as_slice() {
+            // `640x480` reads as 640 with unit `x480`: evaluating it explains that.
+            if self.eval(one).is_none() {
+                return None;
+            }
+        }
         let v = self.arity(p, 3, form)?;
         if v[1].as_name() != Some("x") {
             self.error(

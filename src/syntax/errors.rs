@@ -60,10 +60,28 @@ fn token_at(chunk: &str, offset: usize) -> &str {
 }
 
 pub(super) fn from_pest(file: FileId, base: usize, chunk: &str, e: &Error<Rule>) -> Diagnostic {
-    let pos = match e.location {
+    let mut pos = match e.location {
         InputLocation::Pos(p) => p,
         InputLocation::Span((s, _)) => s,
     };
+    // With error detail on, pest knows the farthest point reached and the literal tokens it
+    // wanted there (`=`, `}`), which its rule-level report misses.
+    let mut literals: Vec<String> = Vec::new();
+    if let Some(attempts) = e.parse_attempts() {
+        if attempts.max_position >= pos && attempts.max_position <= chunk.len() {
+            if attempts.max_position > pos {
+                pos = attempts.max_position;
+            }
+            for t in attempts.expected_tokens() {
+                // Only structural punctuation: value starts (`#`, `-`, `[`) are "a value" and
+                // comment starts are always possible.
+                let token = t.to_string();
+                if matches!(token.as_str(), "=" | "{" | "}" | "(" | ")" | "," | "]") {
+                    literals.push(format!("`{token}`"));
+                }
+            }
+        }
+    }
     let found = token_at(chunk, pos);
     let first_token = chunk.len() - chunk.trim_start().len();
     // A word where a statement should start: most likely a misspelled keyword.
@@ -102,15 +120,16 @@ pub(super) fn from_pest(file: FileId, base: usize, chunk: &str, e: &Error<Rule>)
             ));
         }
     }
-    let expected = match &e.variant {
-        ErrorVariant::ParsingError { positives, .. } => {
-            let mut names: Vec<&str> = positives.iter().map(|r| describe(*r)).collect();
-            names.sort_unstable();
-            names.dedup();
-            names
+    let mut expected: Vec<&str> = literals.iter().map(String::as_str).collect();
+    if let ErrorVariant::ParsingError { positives, .. } = &e.variant {
+        if !literals.is_empty() && e.parse_attempts().is_some_and(|a| a.max_position > pos0(e)) {
+            // The rule-level positives are about an earlier position; the literals say it all.
+        } else {
+            expected.extend(positives.iter().map(|r| describe(*r)));
         }
-        ErrorVariant::CustomError { .. } => Vec::new(),
-    };
+    }
+    expected.sort_unstable();
+    expected.dedup();
     let (start, end) = if found.is_empty() {
         // At the end of the chunk: point at the last character before it.
         let p = chunk.trim_end().len();
@@ -131,10 +150,19 @@ pub(super) fn from_pest(file: FileId, base: usize, chunk: &str, e: &Error<Rule>)
         format!("unexpected {what}"),
     )
     .at(Span::new(file, base + start, base + end), "unexpected here");
-    if !expected.is_empty() {
+    if matches!(found, "*" | "/" | "+") {
+        d = d.help("inside a block each value is one term: write arithmetic in parentheses, e.g. `intensity (2 * 5)`, or use a `let`");
+    } else if !expected.is_empty() {
         d = d.help(format!("expected {}", join_or(&expected)));
     }
     d
+}
+
+fn pos0(e: &Error<Rule>) -> usize {
+    match e.location {
+        InputLocation::Pos(p) => p,
+        InputLocation::Span((s, _)) => s,
+    }
 }
 
 fn join_or(items: &[&str]) -> String {

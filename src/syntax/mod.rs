@@ -40,6 +40,9 @@ pub fn parse(file: FileId, text: &str) -> (SceneFile, Vec<Diagnostic>) {
 
 /// Error recovery: parse each chunk between resync points separately.
 fn parse_chunks(file: FileId, text: &str, scanned: &scan::Scan) -> (SceneFile, Vec<Diagnostic>) {
+    // Record the literal tokens pest tried at the failure point (`=`, `}`), for the messages.
+    // Only the error path turns this on; it never changes whether a parse succeeds.
+    pest::set_error_detail(true);
     let mut starts: Vec<usize> = vec![0];
     starts.extend(scanned.resync.iter().copied().filter(|&s| s > 0));
     starts.push(text.len());

@@ -3,7 +3,8 @@
 //! It finds (1) where nesting of `( [ {` and block comments gets deeper than [`MAX_NESTING`]
 //! (pest's parser is recursive: an adversarial `((((...` must become a diagnostic, never a stack
 //! overflow), (2) the resynchronisation points used for syntax-error recovery: starts of lines
-//! that begin with a name at bracket depth 0, or with a top-level keyword in column 0, and (3)
+//! that begin with a name at bracket depth 0, or in column 0 with a keyword that only starts
+//! top-level statements (not `object`/`group`, which nest), and (3)
 //! the innermost unclosed bracket at the end of a region, for "this `{` is never closed".
 
 /// Deepest nesting of brackets and block comments accepted.
@@ -62,7 +63,11 @@ pub fn scan(text: &str) -> Scan {
             if is_ident_start(b) {
                 let column0 = i == 0 || bytes[i - 1] == b'\n';
                 let word = word_at(bytes, i);
-                let keyword = STATEMENT_KEYWORDS.iter().any(|k| k.as_bytes() == word);
+                // `object` and `group` also nest inside groups, so only the others resync
+                // inside brackets.
+                let keyword = STATEMENT_KEYWORDS
+                    .iter()
+                    .any(|k| k.as_bytes() == word && !matches!(*k, "object" | "group"));
                 if depth == 0 || (column0 && keyword) {
                     out.resync.push(i);
                 }
