@@ -27,6 +27,15 @@ impl ArrayError {
     }
 }
 
+/// The end of the (UTF-8) character starting at `start`, so error spans never split one.
+fn char_end(b: &[u8], start: usize) -> usize {
+    let mut end = (start + 1).min(b.len()).max(start);
+    while end < b.len() && (b[end] & 0xC0) == 0x80 {
+        end += 1;
+    }
+    end
+}
+
 struct Reader<'a> {
     b: &'a [u8],
     i: usize,
@@ -57,7 +66,7 @@ impl<'a> Reader<'a> {
     }
 
     fn err(&self, start: usize, message: impl Into<String>) -> ArrayError {
-        let end = (start + 1).min(self.b.len()).max(start);
+        let end = char_end(self.b, start);
         ArrayError {
             message: message.into(),
             start,
@@ -177,7 +186,7 @@ pub fn triangles(text: &str) -> Result<Vec<[u32; 3]>, ArrayError> {
                 return Err(ArrayError {
                     message: "expected a whole, non-negative index".into(),
                     start: i,
-                    end: i + 1,
+                    end: char_end(b, i),
                 })
             }
         }
@@ -186,7 +195,7 @@ pub fn triangles(text: &str) -> Result<Vec<[u32; 3]>, ArrayError> {
         return Err(ArrayError {
             message: format!("{} indices left over: indices come in threes", n),
             start: end,
-            end: end + 1,
+            end: char_end(b, end),
         });
     }
     Ok(out)

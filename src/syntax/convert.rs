@@ -17,7 +17,7 @@ use crate::source::{FileId, Span};
 
 /// Most nodes one top-level expression may have. Keeps every later recursion over expressions
 /// (folding, dropping) shallow whatever the input.
-pub const MAX_EXPR_NODES: usize = 1000;
+pub const MAX_EXPR_NODES: usize = 256;
 
 pub(super) struct Converter {
     pub file: FileId,
@@ -255,7 +255,12 @@ impl Converter {
         }
         let mut operands: Vec<Expr> = Vec::new();
         let mut ops: Vec<BinOp> = Vec::new();
+        let whole = pair.clone();
         for p in pair.into_inner() {
+            if self.overflowed() {
+                // Stop building: the caller replaces the whole expression anyway.
+                return self.error_expr(&whole);
+            }
             if p.as_rule() == Rule::bin_op {
                 let op = match p.as_str() {
                     "+" => BinOp::Add,
