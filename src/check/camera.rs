@@ -5,7 +5,7 @@
 //! camera sits at its local origin looking down local +z with +y up). `up` defaults to
 //! (0, 1, 0), `fov` (vertical) to 40deg and must lie in (0deg, 180deg).
 
-use glam::{DVec3, Vec3};
+use glam::DVec3;
 
 use super::Checker;
 use crate::diag::Diagnostic;
@@ -117,7 +117,7 @@ impl Checker<'_> {
             eye: eye.as_vec3(),
             forward: forward.as_vec3(),
             up: up.as_vec3(),
-            right: Vec3::from(right.as_vec3()),
+            right: right.as_vec3(),
             fov_y_rad: fov as f32,
             span,
         })

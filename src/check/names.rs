@@ -154,7 +154,7 @@ impl Checker<'_> {
             }
         }
         let mut materials = Vec::new();
-        for i in 0..self.materials.len() {
+        for (i, slot) in material_map.iter_mut().enumerate() {
             if !self.used_materials[i] {
                 continue;
             }
@@ -167,21 +167,21 @@ impl Checker<'_> {
                 if let Some(n) = &mut m.normal_map {
                     n.texture = texture_map[n.texture as usize].unwrap_or(0);
                 }
-                material_map[i] = Some(materials.len() as u32);
+                *slot = Some(materials.len() as u32);
                 materials.push(m);
             }
         }
         let user_meshes = self.table(Namespace::Mesh).names.len();
         let mut mesh_map = vec![None; self.meshes.len()];
         let mut meshes = Vec::new();
-        for i in 0..self.meshes.len() {
+        for (i, slot) in mesh_map.iter_mut().enumerate() {
             let used = self.used_meshes.get(i).copied().unwrap_or(true);
             if !used && i < user_meshes {
                 self.warn_unused(Namespace::Mesh, i);
                 continue;
             }
             if let Some(m) = self.meshes[i].take() {
-                mesh_map[i] = Some(meshes.len() as u32);
+                *slot = Some(meshes.len() as u32);
                 meshes.push(m);
             }
         }

@@ -96,9 +96,7 @@ impl Checker<'_> {
         let form = "resolution 640 x 480";
         if let [one] = p.values.as_slice() {
             // `640x480` reads as 640 with unit `x480`: evaluating it explains that.
-            if self.eval(one).is_none() {
-                return None;
-            }
+            self.eval(one)?;
         }
         let v = self.arity(p, 3, form)?;
         if v[1].as_name() != Some("x") {

@@ -43,7 +43,7 @@ where
 }
 
 /// "did you mean `x`?" or, when nothing is close, the list of valid choices.
-pub fn help_for<'a>(name: &str, candidates: &[&'a str], what: &str) -> String {
+pub fn help_for(name: &str, candidates: &[&str], what: &str) -> String {
     match did_you_mean(name, candidates.iter().copied()) {
         Some(best) => format!("did you mean `{best}`?"),
         None if candidates.is_empty() => format!("there are no {what} to choose from"),
