@@ -14,6 +14,7 @@ pub mod assets;
 pub mod bvh;
 pub mod check;
 pub mod cli;
+pub mod compile;
 pub mod diag;
 pub mod film;
 pub mod geom;

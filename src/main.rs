@@ -1,3 +1,5 @@
 //! The `scnc` binary: a thin wrapper over `scnc::cli`.
 
-fn main() {}
+fn main() -> std::process::ExitCode {
+    scnc::cli::main()
+}

@@ -1,2 +1,240 @@
 //! Stage 2, check: AST → `ir::SceneDesc` (names resolved, expressions folded, units normalised,
-//! values validated). Reports every error and warning found.
+//! values validated). Reports every error and warning found, then returns the IR only if there
+//! was no error.
+//!
+//! Order: `let` constants are folded in statement order (a constant may use earlier ones);
+//! declarations are registered first (so a block may name a declaration written after it), then
+//! lowered kind by kind (one file each: textures, materials, meshes, lights, objects and groups,
+//! cameras, render settings). Finally declarations nothing uses are reported as warnings and
+//! dropped, and the surviving indices are compacted (`names.rs`).
+
+pub mod array;
+mod camera;
+mod eval;
+mod light;
+mod material;
+mod mesh;
+mod names;
+mod object;
+mod props;
+mod render;
+mod texture;
+pub mod transform;
+pub mod value;
+
+pub use eval::FUNCTIONS;
+
+use std::collections::HashMap;
+
+use crate::diag::Diagnostic;
+use crate::ir;
+use crate::source::{SourceMap, Span};
+use crate::syntax::{Decl, DeclKind, Stmt};
+use names::{Namespace, Table};
+use value::Value;
+
+/// The checker's state for one compile.
+pub struct Checker<'s> {
+    pub sources: &'s SourceMap,
+    pub diags: Vec<Diagnostic>,
+    pub lets: HashMap<String, (Value, Span)>,
+    /// Constants whose value had an error: uses stay silent instead of cascading.
+    pub poisoned: std::collections::HashSet<String>,
+    tables: [Table; 6],
+    /// Lowered declarations, indexed like their table (None when they had errors).
+    textures: Vec<Option<ir::Texture>>,
+    materials: Vec<Option<ir::Material>>,
+    meshes: Vec<Option<ir::Mesh>>,
+    lights: Vec<ir::Light>,
+    objects: Vec<ir::Object>,
+    cameras: Vec<ir::Camera>,
+    /// Which textures each material (by table index) refers to.
+    material_textures: Vec<Vec<usize>>,
+    used_materials: Vec<bool>,
+    used_meshes: Vec<bool>,
+    /// Index into `cameras` chosen by `render { camera NAME }`.
+    active_camera: usize,
+}
+
+impl<'s> Checker<'s> {
+    fn new(sources: &'s SourceMap) -> Checker<'s> {
+        Checker {
+            sources,
+            diags: Vec::new(),
+            lets: HashMap::new(),
+            poisoned: Default::default(),
+            tables: Default::default(),
+            textures: Vec::new(),
+            materials: Vec::new(),
+            meshes: Vec::new(),
+            lights: Vec::new(),
+            objects: Vec::new(),
+            cameras: Vec::new(),
+            material_textures: Vec::new(),
+            used_materials: Vec::new(),
+            used_meshes: Vec::new(),
+            active_camera: 0,
+        }
+    }
+
+    pub fn error(&mut self, d: Diagnostic) {
+        self.diags.push(d);
+    }
+
+    fn table(&mut self, ns: Namespace) -> &mut Table {
+        &mut self.tables[ns as usize]
+    }
+
+    /// Registers a declared name; reports a duplicate with the first declaration and returns
+    /// false for it (a duplicate is not lowered, so tables and lowered vectors stay aligned).
+    fn declare(&mut self, ns: Namespace, name: &str, span: Span) -> bool {
+        let Some(first) = self.table(ns).declare(name, span) else {
+            return true;
+        };
+        {
+            self.error(
+                Diagnostic::error(
+                    "scnc::check::duplicate_name",
+                    format!("{} `{name}` is declared twice", ns.what()),
+                )
+                .at(span, "declared again here")
+                .also(first, "first declared here")
+                .help("rename one of them"),
+            );
+        }
+        false
+    }
+
+    fn let_stmt(&mut self, name: &crate::syntax::Ident, value: &crate::syntax::Expr) {
+        if matches!(name.name.as_str(), "true" | "false") {
+            self.error(
+                Diagnostic::error(
+                    "scnc::check::reserved_name",
+                    format!("`{}` is a reserved word", name.name),
+                )
+                .at(name.span, "cannot be a constant"),
+            );
+            return;
+        }
+        if let Some((_, first)) = self.lets.get(&name.name) {
+            let first = *first;
+            self.error(
+                Diagnostic::error(
+                    "scnc::check::duplicate_name",
+                    format!("constant `{}` is declared twice", name.name),
+                )
+                .at(name.span, "declared again here")
+                .also(first, "first declared here")
+                .help("rename one of them"),
+            );
+            return;
+        }
+        match self.eval(value) {
+            Some(v) => {
+                self.lets.insert(name.name.clone(), (v, name.span));
+            }
+            None => {
+                self.poisoned.insert(name.name.clone());
+            }
+        }
+    }
+}
+
+/// Checks parsed statements (every file's, includes expanded in place, in order) and lowers
+/// them into the IR. `sources` gives file paths for resolving relative asset paths.
+pub fn check(statements: &[Stmt], sources: &SourceMap) -> (Option<ir::SceneDesc>, Vec<Diagnostic>) {
+    let mut cx = Checker::new(sources);
+    let mut decls: [Vec<&Decl>; 4] = Default::default();
+    let mut renders = Vec::new();
+    let mut cameras = Vec::new();
+    let mut placements = Vec::new();
+    for stmt in statements {
+        match stmt {
+            Stmt::Version { .. } | Stmt::Include { .. } => {}
+            Stmt::Let { name, value, .. } => cx.let_stmt(name, value),
+            Stmt::Camera { name, body, span } => {
+                if cx.declare(Namespace::Camera, &name.name, name.span) {
+                    cameras.push((name, body, *span));
+                }
+            }
+            Stmt::Decl(d) => {
+                let ns = match d.kind {
+                    DeclKind::Material => Namespace::Material,
+                    DeclKind::Texture => Namespace::Texture,
+                    DeclKind::Mesh => Namespace::Mesh,
+                    DeclKind::Light => Namespace::Light,
+                };
+                if cx.declare(ns, &d.name.name, d.name.span) {
+                    decls[ns as usize].push(d);
+                }
+            }
+            Stmt::Object(_) | Stmt::Group(_) => placements.push(stmt),
+            Stmt::Render { body, span } => renders.push((body, *span)),
+        }
+    }
+    for d in &decls[Namespace::Texture as usize] {
+        let t = cx.texture(d);
+        cx.textures.push(t);
+    }
+    for d in &decls[Namespace::Material as usize] {
+        let (m, texs) = cx.material(d);
+        cx.materials.push(m);
+        cx.material_textures.push(texs);
+    }
+    for d in &decls[Namespace::Mesh as usize] {
+        let m = cx.mesh(d);
+        cx.meshes.push(m);
+    }
+    cx.used_materials = vec![false; cx.materials.len()];
+    cx.used_meshes = vec![false; cx.meshes.len()];
+    for d in &decls[Namespace::Light as usize] {
+        cx.light(d);
+    }
+    for stmt in placements {
+        cx.placement(stmt);
+    }
+    for (name, body, span) in cameras {
+        if let Some(c) = cx.camera(name, body, span) {
+            cx.cameras.push(c);
+        }
+    }
+    if let Some((_, span)) = renders.get(1) {
+        let first = renders[0].1;
+        cx.error(
+            Diagnostic::error(
+                "scnc::check::duplicate_render",
+                "more than one `render` block",
+            )
+            .at(*span, "second `render` block")
+            .also(first, "first here")
+            .help("merge them into one"),
+        );
+    }
+    let settings = cx.render(renders.first().map(|(b, s)| (*b, *s)));
+    let scene = cx.finish(settings);
+    let failed = cx.diags.iter().any(Diagnostic::is_error);
+    let diags = cx.diags;
+    (scene.filter(|_| !failed), diags)
+}
+
+impl Checker<'_> {
+    /// A string literal naming a file, resolved relative to the directory of the `.scn` file
+    /// that contains it.
+    pub fn asset_path(&mut self, e: &crate::syntax::Expr) -> Option<ir::AssetPath> {
+        let written = self.string(e)?;
+        if written.is_empty() {
+            self.error(
+                Diagnostic::error("scnc::check::empty_path", "empty file name")
+                    .at(e.span, "empty string"),
+            );
+            return None;
+        }
+        let file = &self.sources.get(e.span.file).path;
+        let dir = file.parent().unwrap_or_else(|| std::path::Path::new(""));
+        Some(ir::AssetPath {
+            path: dir.join(&written),
+            written,
+            span: e.span,
+        })
+    }
+}

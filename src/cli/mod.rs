@@ -1,2 +1,45 @@
-//! The command line: runs the pipeline once (`render`, `check`, `ir`) or in a loop (`watch`).
-//! Only this module prints.
+//! The command line: runs the pipeline once (`check`, `ir`, later `render`) or in a loop
+//! (`watch`). Only this module prints.
+//!
+//! Each subcommand lives in its own file with its own `Args` struct and `run` function; adding
+//! one means a new file, a variant in [`Command`] and an arm in [`run`].
+
+mod check;
+mod ir;
+pub mod report;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+pub use check::CheckArgs;
+pub use ir::IrArgs;
+pub use report::{DiagArgs, DiagnosticFormat};
+
+/// scnc: a declarative scene-language compiler and ray tracer.
+#[derive(Debug, Parser)]
+#[command(name = "scnc", version, about)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Check a scene: report every error and warning (exit 0 clean, 1 on errors).
+    Check(CheckArgs),
+    /// Print a scene's validated intermediate representation as JSON.
+    Ir(IrArgs),
+}
+
+/// Parses the process arguments and runs the chosen command.
+pub fn main() -> ExitCode {
+    run(Cli::parse())
+}
+
+pub fn run(cli: Cli) -> ExitCode {
+    match cli.command {
+        Command::Check(args) => check::run(&args),
+        Command::Ir(args) => ir::run(&args),
+    }
+}

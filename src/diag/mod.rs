@@ -1,9 +1,17 @@
 //! Diagnostics: errors and warnings as data, carried with spans from every stage.
 //!
-//! Each stage has its own error type; all of them convert into [`Diagnostic`], the one shape the
-//! CLI prints (fancy on a terminal, plain in tests, JSON for editors). A compile collects many
-//! diagnostics in one run; warnings never stop it.
+//! Each stage reports [`Diagnostic`] records, the one shape the CLI prints: [`render_fancy`] on
+//! a terminal (miette), [`render_plain`] in tests and logs (fixed width, no colour), and
+//! [`render_json`] for editors. A compile collects many diagnostics in one run; warnings never
+//! stop it.
 
 mod diagnostic;
+mod fancy;
+mod json;
+mod plain;
+pub mod suggest;
 
 pub use diagnostic::{Diagnostic, Label, Severity};
+pub use fancy::render_fancy;
+pub use json::render_json;
+pub use plain::{render_plain, render_plain_all, summary};

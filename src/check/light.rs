@@ -1,0 +1,251 @@
+//! Stage 2, check: `light NAME = ...` → `ir::Light`.
+//!
+//! Syntax: `light bulb = point { position (0, 4, 0)  intensity rgb(10, 10, 10) }`;
+//! `light ceiling = area { quad P0 P1 P2 P3  radiance rgb(17, 12, 4)  two_sided false
+//! samples 4 }` (the quad emits from the side where P0 → P1 → P2 turns counter-clockwise:
+//! normal = (P1 − P0) × (P2 − P0));
+//! `light panel = area { mesh floor  transform { translate (0, 3, 0) }  radiance 5 }`;
+//! `light sky = environment { image("sky.hdr")  intensity 1  rotate 90deg  visible true }` or
+//! `environment { color rgb(0.5, 0.6, 0.9) }`. Defaults: point intensity 1; area two_sided
+//! false, samples 1 (1..=1024); environment intensity 1, rotate 0deg, visible true.
+//! A light that emits nothing is a warning.
+
+use glam::{DVec3, Mat4, Vec3};
+
+use super::names::Namespace;
+use super::Checker;
+use crate::diag::{suggest, Diagnostic};
+use crate::ir;
+use crate::syntax::{Block, Decl};
+
+const KINDS: &[&str] = &["point", "area", "environment"];
+
+impl Checker<'_> {
+    pub(super) fn light(&mut self, d: &Decl) {
+        let empty = Block {
+            items: Vec::new(),
+            span: d.span,
+        };
+        let body = d.body.as_ref().unwrap_or(&empty);
+        let light = match (d.ctor.name.name.as_str(), &d.ctor.args) {
+            ("point", None) => self.point_light(d, body),
+            ("area", None) => self.area_light(d, body),
+            ("environment", None) => self.environment_light(d, body),
+            (name, _) => {
+                self.error(
+                    Diagnostic::error(
+                        "scnc::check::unknown_light_kind",
+                        format!("unknown light kind `{name}`"),
+                    )
+                    .at(d.ctor.span, "not a light kind")
+                    .help(suggest::help_for(name, KINDS, "light kinds")),
+                );
+                None
+            }
+        };
+        if let Some(l) = light {
+            self.lights.push(l);
+        }
+    }
+
+    fn dark_warning(&mut self, d: &Decl, emitted: Vec3) {
+        if emitted.max_element() == 0.0 {
+            self.error(
+                Diagnostic::warning(
+                    "scnc::check::dark_light",
+                    format!("light `{}` emits nothing", d.name.name),
+                )
+                .at(d.name.span, "zero radiance")
+                .help("give it a positive radiance or intensity, or remove it"),
+            );
+        }
+    }
+
+    fn point_light(&mut self, d: &Decl, body: &Block) -> Option<ir::Light> {
+        let props = self.split(body, "a point light", &["position", "intensity"], &[], &[]);
+        let position = match props.get("position") {
+            Some(p) => self.one(p, "position (0, 4, 0)").and_then(|e| self.vec3(e)),
+            None => {
+                self.error(
+                    Diagnostic::error("scnc::check::missing_key", "a point light needs `position`")
+                        .at(d.name.span, "no position")
+                        .help("write `position (x, y, z)`"),
+                );
+                None
+            }
+        };
+        let intensity = match props.get("intensity") {
+            None => Some(DVec3::ONE),
+            Some(p) => self
+                .one(p, "intensity rgb(10, 10, 10)")
+                .and_then(|e| self.color(e)),
+        };
+        let intensity = intensity?.as_vec3();
+        self.dark_warning(d, intensity);
+        Some(ir::Light::Point(ir::PointLight {
+            name: d.name.name.clone(),
+            position: position?.as_vec3(),
+            intensity,
+            span: d.name.span,
+        }))
+    }
+
+    fn area_light(&mut self, d: &Decl, body: &Block) -> Option<ir::Light> {
+        let keys = &["quad", "mesh", "radiance", "two_sided", "samples"];
+        let props = self.split(body, "an area light", keys, &[], &["transform"]);
+        let world = self.transforms(&props.transforms, "an area light");
+        let mesh = match (props.get("quad"), props.get("mesh")) {
+            (Some(q), None) => self.arity(q, 4, "quad P0 P1 P2 P3").and_then(|v| {
+                let pts: Vec<Option<DVec3>> = v.iter().map(|e| self.vec3(e)).collect();
+                let pts: Option<Vec<DVec3>> = pts.into_iter().collect();
+                let pts = pts?;
+                if (pts[1] - pts[0]).cross(pts[2] - pts[0]).length() == 0.0 {
+                    self.error(
+                        Diagnostic::error("scnc::check::degenerate_quad", "the quad has no area")
+                            .at(q.span(), "its first three corners are in a line"),
+                    );
+                    return None;
+                }
+                let id = self.meshes.len();
+                self.meshes.push(Some(ir::Mesh {
+                    name: format!("light {}", d.name.name),
+                    source: ir::MeshSource::Inline(ir::InlineMesh {
+                        positions: pts.iter().map(|p| p.as_vec3()).collect(),
+                        normals: Vec::new(),
+                        uvs: Vec::new(),
+                        indices: vec![[0, 1, 2], [0, 2, 3]],
+                    }),
+                    span: q.key_span,
+                }));
+                Some(id)
+            }),
+            (None, Some(m)) => self.one(m, "mesh NAME").and_then(|e| {
+                let id = self.resolve(Namespace::Mesh, e)?;
+                if let Some(u) = self.used_meshes.get_mut(id) {
+                    *u = true;
+                }
+                Some(id)
+            }),
+            (Some(q), Some(m)) => {
+                self.error(
+                    Diagnostic::error(
+                        "scnc::check::conflicting_keys",
+                        "an area light takes either `quad` or `mesh`, not both",
+                    )
+                    .at(m.key_span, "mesh here")
+                    .also(q.key_span, "quad here"),
+                );
+                None
+            }
+            (None, None) => {
+                self.error(
+                    Diagnostic::error(
+                        "scnc::check::missing_key",
+                        "an area light needs a shape: `quad P0 P1 P2 P3` or `mesh NAME`",
+                    )
+                    .at(d.name.span, "no shape"),
+                );
+                None
+            }
+        };
+        let radiance = match props.get("radiance") {
+            Some(p) => self
+                .one(p, "radiance rgb(17, 12, 4)")
+                .and_then(|e| self.color(e)),
+            None => {
+                self.error(
+                    Diagnostic::error("scnc::check::missing_key", "an area light needs `radiance`")
+                        .at(d.name.span, "no radiance")
+                        .help("write `radiance rgb(17, 12, 4)` (linear)"),
+                );
+                None
+            }
+        };
+        let two_sided = match props.get("two_sided") {
+            None => Some(false),
+            Some(p) => self.one(p, "two_sided true").and_then(|e| self.boolean(e)),
+        };
+        let samples = match props.get("samples") {
+            None => Some(1),
+            Some(p) => self
+                .one(p, "samples 4")
+                .and_then(|e| self.int_in(e, 1, 1024, "area light samples")),
+        };
+        let radiance = radiance?.as_vec3();
+        self.dark_warning(d, radiance);
+        Some(ir::Light::Area(ir::AreaLight {
+            name: d.name.name.clone(),
+            mesh: mesh? as u32,
+            world_from_object: world.unwrap_or(Mat4::IDENTITY),
+            radiance,
+            two_sided: two_sided?,
+            samples: samples? as u32,
+            span: d.name.span,
+        }))
+        .filter(|_| world.is_some())
+    }
+
+    fn environment_light(&mut self, d: &Decl, body: &Block) -> Option<ir::Light> {
+        let keys = &["image", "color", "intensity", "rotate", "visible"];
+        let props = self.split(body, "an environment light", keys, &[], &[]);
+        let source = match (props.get("image"), props.get("color")) {
+            (Some(i), None) => self
+                .one(i, "image(\"sky.hdr\")")
+                .and_then(|e| self.asset_path(e))
+                .map(ir::EnvSource::Image),
+            (None, Some(c)) => self
+                .one(c, "color rgb(0.5, 0.6, 0.9)")
+                .and_then(|e| self.color(e))
+                .map(|c| ir::EnvSource::Constant(c.as_vec3())),
+            (Some(i), Some(c)) => {
+                self.error(
+                    Diagnostic::error(
+                        "scnc::check::conflicting_keys",
+                        "an environment takes either `image(...)` or `color`, not both",
+                    )
+                    .at(c.key_span, "color here")
+                    .also(i.key_span, "image here"),
+                );
+                None
+            }
+            (None, None) => {
+                self.error(
+                    Diagnostic::error(
+                        "scnc::check::missing_key",
+                        "an environment needs `image(\"file.hdr\")` or `color C`",
+                    )
+                    .at(d.name.span, "no source"),
+                );
+                None
+            }
+        };
+        let intensity = match props.get("intensity") {
+            None => Some(1.0),
+            Some(p) => self
+                .one(p, "intensity 1")
+                .and_then(|e| self.num_in(e, 0.0, f64::MAX, "intensity")),
+        };
+        let rotation = match props.get("rotate") {
+            None => Some(0.0),
+            Some(p) => self.one(p, "rotate 90deg").and_then(|e| self.angle(e)),
+        };
+        let visible = match props.get("visible") {
+            None => Some(true),
+            Some(p) => self.one(p, "visible true").and_then(|e| self.boolean(e)),
+        };
+        let intensity = intensity? as f32;
+        let emitted = match &source {
+            Some(ir::EnvSource::Constant(c)) => *c * intensity,
+            _ => Vec3::splat(intensity),
+        };
+        self.dark_warning(d, emitted);
+        Some(ir::Light::Environment(ir::EnvironmentLight {
+            name: d.name.name.clone(),
+            source: source?,
+            intensity,
+            rotation_y_rad: rotation? as f32,
+            visible: visible?,
+            span: d.name.span,
+        }))
+    }
+}

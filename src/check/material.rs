@@ -1,0 +1,187 @@
+//! Stage 2, check: `material NAME = phong { ... }` → `ir::Material`.
+//!
+//! Syntax: `material shiny = phong { diffuse #808080  specular 0.4  shininess 64  ambient 0 }`,
+//! `material wood = phong { diffuse woodtex  normal_map bumps  normal_strength 0.8
+//! normal_green opengl }`. Defaults: diffuse 0.5 grey, specular 0, shininess 32, ambient 0,
+//! no normal map, normal_strength 1, normal_green opengl. Albedos (diffuse, specular) are
+//! reflectances: each channel in [0, 1]. `diffuse`, `specular` and `shininess` may name a
+//! texture instead of giving a constant.
+
+use glam::DVec3;
+
+use super::names::Namespace;
+use super::Checker;
+use crate::diag::{suggest, Diagnostic};
+use crate::ir;
+use crate::syntax::{Decl, Expr};
+
+const KEYS: &[&str] = &[
+    "diffuse",
+    "specular",
+    "shininess",
+    "ambient",
+    "normal_map",
+    "normal_strength",
+    "normal_green",
+];
+
+impl Checker<'_> {
+    /// Lowers a material; also returns the texture table indices it refers to.
+    pub(super) fn material(&mut self, d: &Decl) -> (Option<ir::Material>, Vec<usize>) {
+        let mut textures = Vec::new();
+        if d.ctor.name.name != "phong" || d.ctor.args.is_some() {
+            self.error(
+                Diagnostic::error(
+                    "scnc::check::unknown_material_kind",
+                    format!("unknown material kind `{}`", d.ctor.name.name),
+                )
+                .at(d.ctor.span, "not a material kind")
+                .help(suggest::help_for(
+                    &d.ctor.name.name,
+                    &["phong"],
+                    "material kinds",
+                )),
+            );
+            return (None, textures);
+        }
+        let empty = crate::syntax::Block {
+            items: Vec::new(),
+            span: d.span,
+        };
+        let body = d.body.as_ref().unwrap_or(&empty);
+        let props = self.split(body, "a phong material", KEYS, &[], &[]);
+        let mut ok = true;
+        let color_input = |cx: &mut Self, key: &str, default: f64, textures: &mut Vec<usize>| {
+            let Some(p) = props.get(key) else {
+                return Some(ir::ColorInput::Constant(DVec3::splat(default).as_vec3()));
+            };
+            let e = cx.one(p, &format!("{key} rgb(0.8, 0.8, 0.8)"))?;
+            if let Some(t) = cx.texture_ref(e) {
+                textures.push(t);
+                return Some(ir::ColorInput::Texture(t as u32));
+            }
+            let c = cx.albedo(e, key)?;
+            Some(ir::ColorInput::Constant(c.as_vec3()))
+        };
+        let diffuse = color_input(self, "diffuse", 0.5, &mut textures);
+        let specular = color_input(self, "specular", 0.0, &mut textures);
+        let shininess = match props.get("shininess") {
+            None => Some(ir::ScalarInput::Constant(32.0)),
+            Some(p) => self.one(p, "shininess 64").and_then(|e| {
+                if let Some(t) = self.texture_ref(e) {
+                    textures.push(t);
+                    return Some(ir::ScalarInput::Texture(t as u32));
+                }
+                self.num_in(e, 0.0, 1.0e6, "shininess")
+                    .map(|x| ir::ScalarInput::Constant(x as f32))
+            }),
+        };
+        let ambient = match props.get("ambient") {
+            None => Some(DVec3::ZERO),
+            Some(p) => self.one(p, "ambient 0").and_then(|e| self.color(e)),
+        };
+        let strength = match props.get("normal_strength") {
+            None => Some(1.0),
+            Some(p) => self
+                .one(p, "normal_strength 1")
+                .and_then(|e| self.num_in(e, 0.0, 16.0, "normal_strength")),
+        };
+        let green = match props.get("normal_green") {
+            None => Some(ir::GreenConvention::OpenGl),
+            Some(p) => self.one(p, "normal_green opengl").and_then(|e| {
+                self.word(e, &["opengl", "directx"], "normal map convention")
+                    .map(|w| match w {
+                        "opengl" => ir::GreenConvention::OpenGl,
+                        _ => ir::GreenConvention::DirectX,
+                    })
+            }),
+        };
+        let normal_map = match props.get("normal_map") {
+            None => Some(None),
+            Some(p) => self.one(p, "normal_map TEXTURE").and_then(|e| {
+                let t = self.resolve(Namespace::Texture, e)?;
+                textures.push(t);
+                self.warn_srgb_normal_map(t, e);
+                Some(Some(t))
+            }),
+        };
+        ok &= diffuse.is_some() && specular.is_some() && shininess.is_some();
+        ok &= ambient.is_some() && strength.is_some() && green.is_some() && normal_map.is_some();
+        if !ok {
+            return (None, textures);
+        }
+        let m = ir::Material {
+            name: d.name.name.clone(),
+            diffuse: diffuse.expect("checked above"),
+            specular: specular.expect("checked above"),
+            shininess: shininess.expect("checked above"),
+            ambient: ambient.expect("checked above").as_vec3(),
+            normal_map: normal_map.expect("checked above").map(|t| ir::NormalMap {
+                texture: t as u32,
+                strength: strength.expect("checked above") as f32,
+                green: green.expect("checked above"),
+            }),
+            span: d.name.span,
+        };
+        (Some(m), textures)
+    }
+
+    /// The texture a bare name refers to, if it names one (constants are tried otherwise).
+    fn texture_ref(&mut self, e: &Expr) -> Option<usize> {
+        let name = e.as_name()?;
+        if self.lets.contains_key(name) {
+            return None;
+        }
+        let found = self.has(Namespace::Texture, name);
+        if found {
+            return self.resolve(Namespace::Texture, e);
+        }
+        None
+    }
+
+    /// A reflectance: a colour with every channel in [0, 1].
+    fn albedo(&mut self, e: &Expr, key: &str) -> Option<DVec3> {
+        if let Some(name) = e.as_name() {
+            if !self.lets.contains_key(name)
+                && !self.poisoned.contains(name)
+                && !matches!(name, "true" | "false")
+            {
+                // Neither a texture nor a constant: say both were looked for.
+                let mut candidates: Vec<String> = self.lets.keys().cloned().collect();
+                candidates.extend(self.texture_names());
+                let refs: Vec<&str> = candidates.iter().map(String::as_str).collect();
+                self.error(
+                    Diagnostic::error(
+                        "scnc::check::unknown_name",
+                        format!("unknown texture or constant `{name}`"),
+                    )
+                    .at(e.span, "not declared")
+                    .help(suggest::help_for(
+                        name,
+                        &refs,
+                        "textures and constants",
+                    )),
+                );
+                return None;
+            }
+        }
+        let c = self.color(e)?;
+        if c.max_element() > 1.0 {
+            self.error(
+                Diagnostic::error(
+                    "scnc::check::albedo_out_of_range",
+                    format!(
+                        "{key} albedo must be at most 1 per channel, found {}",
+                        c.max_element()
+                    ),
+                )
+                .at(e.span, "reflects more light than it receives")
+                .help(
+                    "albedo is a reflectance in [0, 1]; to emit light use a `light` or `ambient`",
+                ),
+            );
+            return None;
+        }
+        Some(c)
+    }
+}

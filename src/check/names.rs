@@ -1,0 +1,225 @@
+//! Stage 2, check: declaration tables, reference resolution with did-you-mean, and the final
+//! pass that reports unused declarations, drops them and compacts the IR's indices.
+
+use std::collections::HashMap;
+
+use super::Checker;
+use crate::diag::{suggest, Diagnostic};
+use crate::ir;
+use crate::source::Span;
+use crate::syntax::Expr;
+
+/// The separate name spaces of declarations (a mesh and a material may share a name).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Namespace {
+    Texture = 0,
+    Material = 1,
+    Mesh = 2,
+    Light = 3,
+    Camera = 4,
+    Group = 5,
+}
+
+impl Namespace {
+    pub fn what(self) -> &'static str {
+        match self {
+            Namespace::Texture => "texture",
+            Namespace::Material => "material",
+            Namespace::Mesh => "mesh",
+            Namespace::Light => "light",
+            Namespace::Camera => "camera",
+            Namespace::Group => "group",
+        }
+    }
+
+    pub fn plural(self) -> &'static str {
+        match self {
+            Namespace::Texture => "textures",
+            Namespace::Material => "materials",
+            Namespace::Mesh => "meshes",
+            Namespace::Light => "lights",
+            Namespace::Camera => "cameras",
+            Namespace::Group => "groups",
+        }
+    }
+
+    fn unknown_code(self) -> &'static str {
+        match self {
+            Namespace::Texture => "scnc::check::unknown_texture",
+            Namespace::Material => "scnc::check::unknown_material",
+            Namespace::Mesh => "scnc::check::unknown_mesh",
+            Namespace::Light => "scnc::check::unknown_light",
+            Namespace::Camera => "scnc::check::unknown_camera",
+            Namespace::Group => "scnc::check::unknown_group",
+        }
+    }
+}
+
+/// Names declared in one namespace, in declaration order.
+#[derive(Debug, Default)]
+pub struct Table {
+    index: HashMap<String, usize>,
+    pub names: Vec<String>,
+    pub spans: Vec<Span>,
+}
+
+impl Table {
+    /// Adds a name; returns the first declaration's span if it was already declared (the
+    /// duplicate is not added).
+    pub fn declare(&mut self, name: &str, span: Span) -> Option<Span> {
+        if let Some(&i) = self.index.get(name) {
+            return Some(self.spans[i]);
+        }
+        self.index.insert(name.to_string(), self.names.len());
+        self.names.push(name.to_string());
+        self.spans.push(span);
+        None
+    }
+
+    pub fn get(&self, name: &str) -> Option<usize> {
+        self.index.get(name).copied()
+    }
+}
+
+impl Checker<'_> {
+    /// Resolves a reference written as a bare name.
+    pub fn resolve(&mut self, ns: Namespace, e: &Expr) -> Option<usize> {
+        let Some(name) = e.as_name() else {
+            self.error(
+                Diagnostic::error(
+                    "scnc::check::wrong_type",
+                    format!("expected the name of a {}", ns.what()),
+                )
+                .at(e.span, "not a name"),
+            );
+            return None;
+        };
+        self.resolve_name(ns, name, e.span)
+    }
+
+    pub fn resolve_name(&mut self, ns: Namespace, name: &str, span: Span) -> Option<usize> {
+        let table = self.table(ns);
+        if let Some(i) = table.get(name) {
+            return Some(i);
+        }
+        let candidates: Vec<&str> = table.names.iter().map(String::as_str).collect();
+        let help = suggest::help_for(name, &candidates, ns.plural());
+        self.error(
+            Diagnostic::error(ns.unknown_code(), format!("unknown {} `{name}`", ns.what()))
+                .at(span, format!("no {} of this name", ns.what()))
+                .help(help),
+        );
+        None
+    }
+
+    pub fn has(&mut self, ns: Namespace, name: &str) -> bool {
+        self.table(ns).get(name).is_some()
+    }
+
+    fn warn_unused(&mut self, ns: Namespace, i: usize) {
+        let span = self.table(ns).spans[i];
+        let name = self.table(ns).names[i].clone();
+        self.error(
+            Diagnostic::warning(
+                "scnc::check::unused",
+                format!("{} `{name}` is never used", ns.what()),
+            )
+            .at(span, "declared here, used nowhere")
+            .help("it is left out of the scene; remove it or use it"),
+        );
+    }
+
+    /// Drops unused declarations (with a warning each), remaps indices, builds the IR.
+    pub(super) fn finish(&mut self, render: Option<ir::RenderSettings>) -> Option<ir::SceneDesc> {
+        // Materials: used if an object uses them.
+        let mut material_map = vec![None; self.materials.len()];
+        let mut used_textures = vec![false; self.textures.len()];
+        for i in 0..self.materials.len() {
+            if self.used_materials[i] {
+                for &t in &self.material_textures[i] {
+                    used_textures[t] = true;
+                }
+            } else {
+                self.warn_unused(Namespace::Material, i);
+            }
+        }
+        let mut texture_map = vec![None; self.textures.len()];
+        let mut textures = Vec::new();
+        for (i, used) in used_textures.iter().enumerate() {
+            if !used {
+                self.warn_unused(Namespace::Texture, i);
+            } else if let Some(t) = self.textures[i].take() {
+                texture_map[i] = Some(textures.len() as u32);
+                textures.push(t);
+            }
+        }
+        let mut materials = Vec::new();
+        for (i, slot) in material_map.iter_mut().enumerate() {
+            if !self.used_materials[i] {
+                continue;
+            }
+            if let Some(mut m) = self.materials[i].take() {
+                remap_color(&mut m.diffuse, &texture_map);
+                remap_color(&mut m.specular, &texture_map);
+                if let ir::ScalarInput::Texture(t) = &mut m.shininess {
+                    *t = texture_map[*t as usize].unwrap_or(0);
+                }
+                if let Some(n) = &mut m.normal_map {
+                    n.texture = texture_map[n.texture as usize].unwrap_or(0);
+                }
+                *slot = Some(materials.len() as u32);
+                materials.push(m);
+            }
+        }
+        let user_meshes = self.table(Namespace::Mesh).names.len();
+        let mut mesh_map = vec![None; self.meshes.len()];
+        let mut meshes = Vec::new();
+        for (i, slot) in mesh_map.iter_mut().enumerate() {
+            let used = self.used_meshes.get(i).copied().unwrap_or(true);
+            if !used && i < user_meshes {
+                self.warn_unused(Namespace::Mesh, i);
+                continue;
+            }
+            if let Some(m) = self.meshes[i].take() {
+                *slot = Some(meshes.len() as u32);
+                meshes.push(m);
+            }
+        }
+        let mut objects = std::mem::take(&mut self.objects);
+        for o in &mut objects {
+            o.mesh = mesh_map[o.mesh as usize].unwrap_or(0);
+            o.material = material_map[o.material as usize].unwrap_or(0);
+        }
+        let mut lights = std::mem::take(&mut self.lights);
+        for l in &mut lights {
+            if let ir::Light::Area(a) = l {
+                a.mesh = mesh_map[a.mesh as usize].unwrap_or(0);
+            }
+        }
+        if self.cameras.is_empty() && self.table(Namespace::Camera).names.is_empty() {
+            self.error(
+                Diagnostic::error("scnc::check::no_camera", "the scene has no camera").help(
+                    "add one, e.g. `camera main { eye (0, 1, -5)  target (0, 1, 0)  fov 40deg }`",
+                ),
+            );
+        }
+        let render = render?;
+        let active_camera = self.active_camera;
+        Some(ir::SceneDesc {
+            cameras: std::mem::take(&mut self.cameras),
+            active_camera,
+            meshes,
+            textures,
+            materials,
+            objects,
+            lights,
+            render,
+        })
+    }
+}
+
+fn remap_color(c: &mut ir::ColorInput, map: &[Option<u32>]) {
+    if let ir::ColorInput::Texture(t) = c {
+        *t = map[*t as usize].unwrap_or(0);
+    }
+}

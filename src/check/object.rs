@@ -1,0 +1,81 @@
+//! Stage 2, check: `object` and `group` statements → flattened `ir::Object`s in world space.
+//!
+//! Syntax: `object MESH { material NAME  transform { ... } }` places the mesh MESH (one mesh may
+//! be placed many times; it is never copied). `group NAME { transform { ... }  object ... group
+//! ... }` nests: an object's world matrix is `parent_group · ... · own transform`. Recursion depth
+//! is bounded by the parser's nesting cap.
+
+use glam::Mat4;
+
+use super::names::Namespace;
+use super::Checker;
+use crate::diag::Diagnostic;
+use crate::ir;
+use crate::syntax::{GroupStmt, ObjectStmt, Stmt};
+
+impl Checker<'_> {
+    pub(super) fn placement(&mut self, stmt: &Stmt) {
+        match stmt {
+            Stmt::Object(o) => self.object(o, Mat4::IDENTITY),
+            Stmt::Group(g) => self.group(g, Mat4::IDENTITY),
+            _ => {}
+        }
+    }
+
+    fn object(&mut self, o: &ObjectStmt, parent: Mat4) {
+        let props = self.split(&o.body, "an object", &["material"], &[], &["transform"]);
+        let local = self.transforms(&props.transforms, "an object");
+        let mesh = self.resolve_name(Namespace::Mesh, &o.mesh.name, o.mesh.span);
+        if let Some(m) = mesh {
+            self.used_meshes[m] = true;
+        }
+        let material = match props.get("material") {
+            Some(p) => self
+                .one(p, "material NAME")
+                .and_then(|e| self.resolve(Namespace::Material, e)),
+            None => {
+                self.error(
+                    Diagnostic::error(
+                        "scnc::check::missing_key",
+                        format!("object `{}` has no material", o.mesh.name),
+                    )
+                    .at(o.mesh.span, "no material")
+                    .help("add `material NAME` inside the braces"),
+                );
+                None
+            }
+        };
+        if let Some(m) = material {
+            self.used_materials[m] = true;
+        }
+        if let (Some(mesh), Some(material), Some(local)) = (mesh, material, local) {
+            self.objects.push(ir::Object {
+                mesh: mesh as u32,
+                material: material as u32,
+                world_from_object: parent * local,
+                span: o.span,
+            });
+        }
+    }
+
+    fn group(&mut self, g: &GroupStmt, parent: Mat4) {
+        let _ = self.declare(Namespace::Group, &g.name.name, g.name.span);
+        let props = self.split(
+            &g.body,
+            "a group",
+            &[],
+            &[],
+            &["transform", "object", "group"],
+        );
+        let local = self
+            .transforms(&props.transforms, "a group")
+            .unwrap_or(Mat4::IDENTITY);
+        let world = parent * local;
+        for o in props.objects {
+            self.object(o, world);
+        }
+        for child in props.groups {
+            self.group(child, world);
+        }
+    }
+}

@@ -1,0 +1,382 @@
+//! Stage 2, check: a block's flat item list → properties (`key value*`), and typed getters.
+//!
+//! The grammar does not know which keys a block has, so a block is split here: an item that is
+//! a known key of this block starts a property, and the following items up to the next known key
+//! are its values. An unknown word in key position is reported once (did-you-mean, or the list of
+//! valid keys) and skipped with its values, so the rest of the block is still checked. A call
+//! whose name is a key (`image("sky.hdr")` in `environment`) is a property with the call's
+//! arguments as values.
+
+use glam::{DVec2, DVec3};
+
+use super::value::Value;
+use super::Checker;
+use crate::diag::{suggest, Diagnostic};
+use crate::source::Span;
+use crate::syntax::{Block, Expr, ExprKind, GroupStmt, Item, ObjectStmt};
+
+/// One `key value*` property.
+#[derive(Debug)]
+pub struct Prop<'a> {
+    pub key: &'a str,
+    pub key_span: Span,
+    pub values: Vec<&'a Expr>,
+}
+
+impl Prop<'_> {
+    /// The span from the key to its last value.
+    pub fn span(&self) -> Span {
+        self.values
+            .last()
+            .map_or(self.key_span, |v| self.key_span.join(v.span))
+    }
+}
+
+/// A block split into properties and nested blocks.
+#[derive(Debug, Default)]
+pub struct Props<'a> {
+    pub props: Vec<Prop<'a>>,
+    pub transforms: Vec<&'a Block>,
+    pub objects: Vec<&'a ObjectStmt>,
+    pub groups: Vec<&'a GroupStmt>,
+}
+
+impl<'a> Props<'a> {
+    /// The single property `key`, if present (duplicates were already reported).
+    pub fn get(&self, key: &str) -> Option<&Prop<'a>> {
+        self.props.iter().find(|p| p.key == key)
+    }
+}
+
+impl Checker<'_> {
+    /// Splits `block` (of kind `what`, e.g. "camera") by `keys`. `repeatable` keys may appear
+    /// more than once; `nested` lists which nested blocks are allowed (`transform`, `object`,
+    /// `group`).
+    pub fn split<'a>(
+        &mut self,
+        block: &'a Block,
+        what: &str,
+        keys: &[&'static str],
+        repeatable: &[&str],
+        nested: &[&str],
+    ) -> Props<'a> {
+        let mut out = Props::default();
+        let mut skipping = false;
+        for item in &block.items {
+            let nested_kind = match item {
+                Item::Value(_) => None,
+                Item::Transform(_) => Some("transform"),
+                Item::Object(_) => Some("object"),
+                Item::Group(_) => Some("group"),
+            };
+            if let Some(kind) = nested_kind {
+                skipping = false;
+                let span = match item {
+                    Item::Transform(b) => b.span,
+                    Item::Object(o) => o.span,
+                    Item::Group(g) => g.span,
+                    Item::Value(e) => e.span,
+                };
+                if !nested.contains(&kind) {
+                    self.error(
+                        Diagnostic::error(
+                            "scnc::check::misplaced_block",
+                            format!("`{kind}` is not allowed inside {what}"),
+                        )
+                        .at(span, "not allowed here"),
+                    );
+                    continue;
+                }
+                match item {
+                    Item::Transform(b) => out.transforms.push(b),
+                    Item::Object(o) => out.objects.push(o),
+                    Item::Group(g) => out.groups.push(g),
+                    Item::Value(_) => {}
+                }
+                continue;
+            }
+            let Item::Value(e) = item else { continue };
+            if let Some(key) = static_key(e, keys) {
+                skipping = false;
+                let key_span = match &e.kind {
+                    ExprKind::Call { func, .. } => func.span,
+                    _ => e.span,
+                };
+                if !repeatable.contains(&key) {
+                    if let Some(first) = out.props.iter().find(|p| p.key == key) {
+                        self.error(
+                            Diagnostic::error(
+                                "scnc::check::duplicate_key",
+                                format!("`{key}` is given twice in {what}"),
+                            )
+                            .at(key_span, "given again here")
+                            .also(first.key_span, "first given here")
+                            .help("remove one of them"),
+                        );
+                        skipping = true;
+                        continue;
+                    }
+                }
+                let values = match &e.kind {
+                    ExprKind::Call { args, .. } => args.iter().collect(),
+                    _ => Vec::new(),
+                };
+                out.props.push(Prop {
+                    key,
+                    key_span,
+                    values,
+                });
+                continue;
+            }
+            if skipping {
+                continue;
+            }
+            if let Some(last) = out.props.last_mut() {
+                last.values.push(e);
+                continue;
+            }
+            self.unknown_key(e, what, keys);
+            skipping = true;
+        }
+        out
+    }
+
+    /// Reports an item in key position that is not a key.
+    fn unknown_key(&mut self, e: &Expr, what: &str, keys: &[&'static str]) {
+        let d = match &e.kind {
+            ExprKind::Name(n) => Diagnostic::error(
+                "scnc::check::unknown_key",
+                format!("unknown key `{n}` in {what}"),
+            )
+            .at(e.span, "not a key here")
+            .help(suggest::help_for(n, keys, "keys")),
+            _ => Diagnostic::error(
+                "scnc::check::expected_key",
+                format!("expected a key in {what}, found a value"),
+            )
+            .at(e.span, "value without a key")
+            .help(format!("valid keys: {}", suggest::list(keys))),
+        };
+        self.error(d);
+    }
+
+    /// Exactly `n` values, or an error at the property.
+    pub fn arity<'a>(&mut self, p: &Prop<'a>, n: usize, form: &str) -> Option<Vec<&'a Expr>> {
+        if p.values.len() == n {
+            return Some(p.values.clone());
+        }
+        let found = p.values.len();
+        let msg = if found == 0 {
+            format!("`{}` needs a value", p.key)
+        } else {
+            format!("`{}` takes {n} value(s), found {found}", p.key)
+        };
+        self.error(
+            Diagnostic::error("scnc::check::wrong_arity", msg)
+                .at(p.span(), "here")
+                .help(format!("write `{form}`")),
+        );
+        None
+    }
+
+    /// The single value of `p`.
+    pub fn one<'a>(&mut self, p: &Prop<'a>, form: &str) -> Option<&'a Expr> {
+        self.arity(p, 1, form).map(|v| v[0])
+    }
+
+    pub fn num(&mut self, e: &Expr, expected: &str) -> Option<f64> {
+        match self.eval(e)? {
+            Value::Num(x) => Some(x),
+            other => {
+                self.type_error(e, expected, &other);
+                None
+            }
+        }
+    }
+
+    /// A number in `[lo, hi]`.
+    pub fn num_in(&mut self, e: &Expr, lo: f64, hi: f64, what: &str) -> Option<f64> {
+        let x = self.num(e, "a number")?;
+        if x < lo || x > hi {
+            self.out_of_range(
+                e.span,
+                &format!("{what} must be in [{lo}, {hi}], found {x}"),
+            );
+            return None;
+        }
+        Some(x)
+    }
+
+    /// A whole number in `lo..=hi`.
+    pub fn int_in(&mut self, e: &Expr, lo: u64, hi: u64, what: &str) -> Option<u64> {
+        let x = self.num(e, "a whole number")?;
+        if x.fract() != 0.0 {
+            self.error(
+                Diagnostic::error(
+                    "scnc::check::not_integer",
+                    format!("{what} must be a whole number, found {x}"),
+                )
+                .at(e.span, "not a whole number"),
+            );
+            return None;
+        }
+        if x < lo as f64 || x > hi as f64 {
+            self.out_of_range(e.span, &format!("{what} must be in {lo}..={hi}, found {x}"));
+            return None;
+        }
+        Some(x as u64)
+    }
+
+    pub fn out_of_range(&mut self, span: Span, msg: &str) {
+        self.error(
+            Diagnostic::error("scnc::check::out_of_range", msg.to_string())
+                .at(span, "out of range"),
+        );
+    }
+
+    pub fn angle(&mut self, e: &Expr) -> Option<f64> {
+        match self.eval(e)? {
+            Value::Angle(a) => Some(a),
+            Value::Num(x) => {
+                self.error(
+                    Diagnostic::error(
+                        "scnc::check::angle_without_unit",
+                        format!("angle `{x}` has no unit"),
+                    )
+                    .at(e.span, "expected an angle")
+                    .help(format!("write {x}deg or {:.2}rad", x.to_radians())),
+                );
+                None
+            }
+            other => {
+                self.type_error(e, "an angle such as 30deg", &other);
+                None
+            }
+        }
+    }
+
+    pub fn vec3(&mut self, e: &Expr) -> Option<DVec3> {
+        match self.eval(e)? {
+            Value::Vec3(v) => Some(v),
+            other => {
+                self.type_error(e, "a 3-vector such as (0, 1, 0)", &other);
+                None
+            }
+        }
+    }
+
+    /// A 2-vector, or one number for both components.
+    pub fn vec2_or_num(&mut self, e: &Expr) -> Option<DVec2> {
+        match self.eval(e)? {
+            Value::Vec2(v) => Some(v),
+            Value::Num(x) => Some(DVec2::splat(x)),
+            other => {
+                self.type_error(e, "a 2-vector such as (2, 1) or a number", &other);
+                None
+            }
+        }
+    }
+
+    /// A 3-vector, or one number for all three components.
+    pub fn vec3_or_num(&mut self, e: &Expr) -> Option<DVec3> {
+        match self.eval(e)? {
+            Value::Vec3(v) => Some(v),
+            Value::Num(x) => Some(DVec3::splat(x)),
+            other => {
+                self.type_error(e, "a 3-vector such as (1, 2, 1) or a number", &other);
+                None
+            }
+        }
+    }
+
+    /// A linear colour: a colour value, or a number meaning grey. Must be non-negative.
+    pub fn color(&mut self, e: &Expr) -> Option<DVec3> {
+        let c = match self.eval(e)? {
+            Value::Color(c) => c,
+            Value::Num(x) => DVec3::splat(x),
+            Value::Vec3(v) => {
+                self.error(
+                    Diagnostic::error(
+                        "scnc::check::wrong_type",
+                        "expected a colour, found a 3-vector",
+                    )
+                    .at(e.span, "a vector does not say its encoding")
+                    .help(format!(
+                        "write rgb({}, {}, {}) for linear values or srgb(...) for sRGB-encoded ones",
+                        v.x, v.y, v.z
+                    )),
+                );
+                return None;
+            }
+            other => {
+                self.type_error(e, "a colour such as rgb(1, 0.5, 0) or #ff8800", &other);
+                return None;
+            }
+        };
+        if c.min_element() < 0.0 {
+            self.error(
+                Diagnostic::error(
+                    "scnc::check::negative_color",
+                    "colours must not be negative",
+                )
+                .at(e.span, "has a negative channel"),
+            );
+            return None;
+        }
+        Some(c)
+    }
+
+    pub fn boolean(&mut self, e: &Expr) -> Option<bool> {
+        match self.eval(e)? {
+            Value::Bool(b) => Some(b),
+            other => {
+                self.type_error(e, "`true` or `false`", &other);
+                None
+            }
+        }
+    }
+
+    pub fn string(&mut self, e: &Expr) -> Option<String> {
+        match self.eval(e)? {
+            Value::Str(s) => Some(s),
+            other => {
+                self.type_error(e, "a string in double quotes", &other);
+                None
+            }
+        }
+    }
+
+    /// One of a closed set of words (`repeat`, `clamp`, ...).
+    pub fn word<'k>(&mut self, e: &Expr, choices: &[&'k str], what: &str) -> Option<&'k str> {
+        if let Some(n) = e.as_name() {
+            if let Some(c) = choices.iter().find(|c| **c == n) {
+                return Some(c);
+            }
+            self.error(
+                Diagnostic::error(
+                    "scnc::check::unknown_choice",
+                    format!("unknown {what} `{n}`"),
+                )
+                .at(e.span, format!("not a {what}"))
+                .help(suggest::help_for(n, choices, "choices")),
+            );
+            return None;
+        }
+        self.error(
+            Diagnostic::error("scnc::check::wrong_type", format!("expected a {what}"))
+                .at(e.span, "expected a word")
+                .help(format!("choose one of {}", suggest::list(choices))),
+        );
+        None
+    }
+}
+
+/// The static key an item names, if it is one of `keys`.
+fn static_key(e: &Expr, keys: &[&'static str]) -> Option<&'static str> {
+    let name = match &e.kind {
+        ExprKind::Name(n) => n.as_str(),
+        ExprKind::Call { func, .. } => func.name.as_str(),
+        _ => return None,
+    };
+    keys.iter().copied().find(|k| *k == name)
+}

@@ -1,0 +1,198 @@
+//! Stage 2, check: `render { ... }` → `ir::RenderSettings`, and the active camera.
+//!
+//! Syntax: `render { resolution 512 x 512  samples rgss 4  light_samples 1  seed 0
+//! camera main  output "cornell.png"  exposure 0  tonemap filmic }`. Defaults: 640 x 480,
+//! `samples rgss 4`, light_samples 1, seed 0, exposure 0, tonemap filmic, no outputs (the CLI
+//! decides), the first camera. Resolution 1..=16384 per side; samples a perfect square up to
+//! 65536 with pattern `rgss` (rotated grid) or `grid`; light_samples 1..=1024; `output` may be
+//! repeated, the format follows the extension (.png .exr .hdr .pfm).
+
+use super::names::Namespace;
+use super::Checker;
+use crate::diag::{suggest, Diagnostic};
+use crate::ir;
+use crate::source::Span;
+use crate::syntax::Block;
+
+const KEYS: &[&str] = &[
+    "resolution",
+    "samples",
+    "light_samples",
+    "seed",
+    "camera",
+    "output",
+    "exposure",
+    "tonemap",
+];
+const EXTENSIONS: &[&str] = &["png", "exr", "hdr", "pfm"];
+
+impl Checker<'_> {
+    pub(super) fn render(&mut self, block: Option<(&Block, Span)>) -> Option<ir::RenderSettings> {
+        let mut s = ir::RenderSettings {
+            width: 640,
+            height: 480,
+            samples_per_pixel: 4,
+            pattern: ir::SamplePattern::RotatedGrid,
+            light_samples: 1,
+            seed: 0,
+            exposure: 0.0,
+            tonemap: ir::ToneMap::Filmic,
+            outputs: Vec::new(),
+        };
+        let Some((block, _)) = block else {
+            return Some(s);
+        };
+        let props = self.split(block, "render settings", KEYS, &["output"], &[]);
+        let mut ok = true;
+        for p in &props.props {
+            ok &= match p.key {
+                "resolution" => self.resolution(p, &mut s).is_some(),
+                "samples" => self.samples(p, &mut s).is_some(),
+                "light_samples" => self
+                    .one(p, "light_samples 1")
+                    .and_then(|e| self.int_in(e, 1, 1024, "light_samples"))
+                    .map(|n| s.light_samples = n as u32)
+                    .is_some(),
+                "seed" => self
+                    .one(p, "seed 0")
+                    .and_then(|e| self.int_in(e, 0, 1 << 53, "seed"))
+                    .map(|n| s.seed = n)
+                    .is_some(),
+                "camera" => self
+                    .one(p, "camera NAME")
+                    .and_then(|e| self.resolve(Namespace::Camera, e))
+                    .map(|i| {
+                        let name = self.tables[Namespace::Camera as usize].names[i].clone();
+                        self.active_camera = self
+                            .cameras
+                            .iter()
+                            .position(|c| c.name == name)
+                            .unwrap_or(0);
+                    })
+                    .is_some(),
+                "output" => self.output(p, &mut s).is_some(),
+                "exposure" => self
+                    .one(p, "exposure 0")
+                    .and_then(|e| self.num_in(e, -64.0, 64.0, "exposure"))
+                    .map(|x| s.exposure = x as f32)
+                    .is_some(),
+                _ => self
+                    .one(p, "tonemap filmic")
+                    .and_then(|e| self.word(e, &["clamp", "reinhard", "filmic"], "tone mapping"))
+                    .map(|w| {
+                        s.tonemap = match w {
+                            "clamp" => ir::ToneMap::Clamp,
+                            "reinhard" => ir::ToneMap::Reinhard,
+                            _ => ir::ToneMap::Filmic,
+                        }
+                    })
+                    .is_some(),
+            };
+        }
+        ok.then_some(s)
+    }
+
+    fn resolution(&mut self, p: &super::props::Prop, s: &mut ir::RenderSettings) -> Option<()> {
+        let form = "resolution 640 x 480";
+        if let [one] = p.values.as_slice() {
+            // `640x480` reads as 640 with unit `x480`: evaluating it explains that.
+            self.eval(one)?;
+        }
+        let v = self.arity(p, 3, form)?;
+        if v[1].as_name() != Some("x") {
+            self.error(
+                Diagnostic::error(
+                    "scnc::check::bad_resolution",
+                    "expected `x` between width and height",
+                )
+                .at(v[1].span, "expected `x`")
+                .help(format!("write `{form}`")),
+            );
+            return None;
+        }
+        let w = self.int_in(v[0], 1, 16384, "width");
+        let h = self.int_in(v[2], 1, 16384, "height");
+        s.width = w? as u32;
+        s.height = h? as u32;
+        Some(())
+    }
+
+    fn samples(&mut self, p: &super::props::Prop, s: &mut ir::RenderSettings) -> Option<()> {
+        let (pattern, count) = match p.values.as_slice() {
+            [n] => (ir::SamplePattern::RotatedGrid, *n),
+            [pat, n] => {
+                let w = self.word(pat, &["rgss", "grid"], "sample pattern")?;
+                let pattern = if w == "rgss" {
+                    ir::SamplePattern::RotatedGrid
+                } else {
+                    ir::SamplePattern::Grid
+                };
+                (pattern, *n)
+            }
+            _ => {
+                self.arity(p, 2, "samples rgss 4")?;
+                return None;
+            }
+        };
+        let n = self.int_in(count, 1, 65536, "samples")?;
+        let side = (n as f64).sqrt().round() as u64;
+        if side * side != n {
+            let (lo, hi) = ((side.saturating_sub(1)).max(1), side + 1);
+            let near = [lo * lo, side * side, hi * hi];
+            let below = near.iter().copied().filter(|&q| q < n).max().unwrap_or(1);
+            let above = near.iter().copied().filter(|&q| q > n).min().unwrap_or(4);
+            self.error(
+                Diagnostic::error(
+                    "scnc::check::samples_not_square",
+                    format!("samples must be a perfect square (1, 4, 9, 16, ...), found {n}"),
+                )
+                .at(count.span, "not a square")
+                .help(format!(
+                    "the patterns are N x N grids: try {below} or {above}"
+                )),
+            );
+            return None;
+        }
+        s.pattern = pattern;
+        s.samples_per_pixel = n as u32;
+        Some(())
+    }
+
+    fn output(&mut self, p: &super::props::Prop, s: &mut ir::RenderSettings) -> Option<()> {
+        let e = self.one(p, "output \"image.png\"")?;
+        let file = self.asset_path(e)?;
+        let ext = file
+            .path
+            .extension()
+            .and_then(|x| x.to_str())
+            .map(str::to_ascii_lowercase)
+            .unwrap_or_default();
+        let format = match ext.as_str() {
+            "png" => ir::OutputFormat::Png,
+            "exr" => ir::OutputFormat::Exr,
+            "hdr" => ir::OutputFormat::Hdr,
+            "pfm" => ir::OutputFormat::Pfm,
+            _ => {
+                let help = match suggest::did_you_mean(&ext, EXTENSIONS.iter().copied()) {
+                    Some(best) => format!("did you mean `.{best}`?"),
+                    None => "use .png (8-bit sRGB) or .exr, .hdr, .pfm (linear float)".to_string(),
+                };
+                self.error(
+                    Diagnostic::error(
+                        "scnc::check::unknown_output_format",
+                        if ext.is_empty() {
+                            "the output file has no extension".to_string()
+                        } else {
+                            format!("unknown output format `.{ext}`")
+                        },
+                    )
+                    .at(e.span, "format follows the extension")
+                    .help(help),
+                );
+                return None;
+            }
+        };
+        s.outputs.push(ir::Output { file, format });
+        Some(())
+    }
+}

@@ -1,0 +1,191 @@
+//! Stage 2, check: `texture NAME = ...` → `ir::Texture`.
+//!
+//! Syntax: `texture wood = image("wood.png") { wrap repeat  filter trilinear }` (colour,
+//! sRGB-decoded), `texture bumps = image("bumps.png") { encoding data }` (data, read raw),
+//! `texture board = checker { even #ffffff  odd #202020  scale 8 }`,
+//! `texture grey = constant { color 0.5 }`. Defaults: wrap repeat, filter trilinear, encoding
+//! srgb; checker even 0.8, odd 0.2, scale 4 (squares per UV unit).
+
+use glam::DVec3;
+
+use super::names::Namespace;
+use super::Checker;
+use crate::diag::{suggest, Diagnostic};
+use crate::ir;
+use crate::syntax::{Block, Decl, Expr};
+
+const KINDS: &[&str] = &["image", "checker", "constant"];
+
+impl Checker<'_> {
+    pub(super) fn texture(&mut self, d: &Decl) -> Option<ir::Texture> {
+        let empty = Block {
+            items: Vec::new(),
+            span: d.span,
+        };
+        let body = d.body.as_ref().unwrap_or(&empty);
+        let source = match (d.ctor.name.name.as_str(), &d.ctor.args) {
+            ("image", Some(args)) => self.image_texture(args, d, body)?,
+            ("checker", None) => {
+                let props = self.split(
+                    body,
+                    "a checker texture",
+                    &["even", "odd", "scale"],
+                    &[],
+                    &[],
+                );
+                let col = |cx: &mut Self, key: &str, default: f64| match props.get(key) {
+                    None => Some(DVec3::splat(default)),
+                    Some(p) => cx
+                        .one(p, &format!("{key} #ffffff"))
+                        .and_then(|e| cx.color(e)),
+                };
+                let even = col(self, "even", 0.8);
+                let odd = col(self, "odd", 0.2);
+                let scale = match props.get("scale") {
+                    None => Some(4.0),
+                    Some(p) => self
+                        .one(p, "scale 8")
+                        .and_then(|e| self.positive(e, "scale")),
+                };
+                ir::TextureSource::Checker {
+                    even: ir::ColorInput::Constant(even?.as_vec3()),
+                    odd: ir::ColorInput::Constant(odd?.as_vec3()),
+                    scale: scale? as f32,
+                }
+            }
+            ("constant", None) => {
+                let props = self.split(body, "a constant texture", &["color"], &[], &[]);
+                let c = match props.get("color") {
+                    None => DVec3::splat(0.5),
+                    Some(p) => {
+                        let e = self.one(p, "color rgb(0.5, 0.5, 0.5)")?;
+                        self.color(e)?
+                    }
+                };
+                ir::TextureSource::Constant(c.as_vec3())
+            }
+            (name, _) => {
+                let help = if KINDS.contains(&name) {
+                    "write `image(\"file.png\")`, `checker { ... }` or `constant { ... }`"
+                        .to_string()
+                } else {
+                    suggest::help_for(name, KINDS, "texture kinds")
+                };
+                self.error(
+                    Diagnostic::error(
+                        "scnc::check::unknown_texture_kind",
+                        format!("unknown texture kind `{name}`"),
+                    )
+                    .at(d.ctor.span, "not a texture kind")
+                    .help(help),
+                );
+                return None;
+            }
+        };
+        Some(ir::Texture {
+            name: d.name.name.clone(),
+            source,
+            span: d.name.span,
+        })
+    }
+
+    fn image_texture(
+        &mut self,
+        args: &[Expr],
+        d: &Decl,
+        body: &Block,
+    ) -> Option<ir::TextureSource> {
+        let props = self.split(
+            body,
+            "an image texture",
+            &["wrap", "filter", "encoding"],
+            &[],
+            &[],
+        );
+        let file = match args {
+            [one] => self.asset_path(one),
+            _ => {
+                self.error(
+                    Diagnostic::error("scnc::check::wrong_arity", "`image` takes one file name")
+                        .at(d.ctor.span, "here")
+                        .help("write `image(\"file.png\")`"),
+                );
+                None
+            }
+        };
+        let wrap = match props.get("wrap") {
+            None => Some(ir::WrapMode::Repeat),
+            Some(p) => self.one(p, "wrap repeat").and_then(|e| {
+                self.word(e, &["repeat", "clamp", "mirror"], "wrap mode")
+                    .map(|w| match w {
+                        "repeat" => ir::WrapMode::Repeat,
+                        "clamp" => ir::WrapMode::Clamp,
+                        _ => ir::WrapMode::Mirror,
+                    })
+            }),
+        };
+        let filter = match props.get("filter") {
+            None => Some(ir::Filter::Trilinear),
+            Some(p) => self.one(p, "filter trilinear").and_then(|e| {
+                self.word(e, &["nearest", "bilinear", "trilinear"], "filter")
+                    .map(|w| match w {
+                        "nearest" => ir::Filter::Nearest,
+                        "bilinear" => ir::Filter::Bilinear,
+                        _ => ir::Filter::Trilinear,
+                    })
+            }),
+        };
+        let encoding = match props.get("encoding") {
+            None => Some(ir::TextureEncoding::Srgb),
+            Some(p) => self.one(p, "encoding data").and_then(|e| {
+                self.word(e, &["srgb", "data"], "encoding")
+                    .map(|w| match w {
+                        "srgb" => ir::TextureEncoding::Srgb,
+                        _ => ir::TextureEncoding::Linear,
+                    })
+            }),
+        };
+        Some(ir::TextureSource::Image {
+            file: file?,
+            encoding: encoding?,
+            wrap: wrap?,
+            filter: filter?,
+        })
+    }
+
+    pub(super) fn texture_names(&self) -> Vec<String> {
+        self.tables[Namespace::Texture as usize].names.clone()
+    }
+
+    /// A normal map read through the sRGB curve is almost always a mistake.
+    pub(super) fn warn_srgb_normal_map(&mut self, t: usize, e: &Expr) {
+        if let Some(Some(ir::Texture {
+            source:
+                ir::TextureSource::Image {
+                    encoding: ir::TextureEncoding::Srgb,
+                    ..
+                },
+            ..
+        })) = self.textures.get(t)
+        {
+            self.error(
+                Diagnostic::warning(
+                    "scnc::check::srgb_normal_map",
+                    "this normal map is decoded as an sRGB colour image",
+                )
+                .at(e.span, "normal map")
+                .help("add `encoding data` to the texture so its values are read raw"),
+            );
+        }
+    }
+
+    /// A number > 0.
+    pub fn positive(&mut self, e: &Expr, what: &str) -> Option<f64> {
+        let x = self.num(e, "a number")?;
+        if x <= 0.0 {
+            self.out_of_range(e.span, &format!("{what} must be greater than 0, found {x}"));
+            return None;
+        }
+        Some(x)
+    }
+}

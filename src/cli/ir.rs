@@ -1,0 +1,33 @@
+//! `scnc ir FILE`: compile and print the IR as JSON on stdout (diagnostics as for `check`;
+//! with `--diagnostic-format json` the diagnostics document is printed first).
+
+use std::process::ExitCode;
+
+use clap::Args;
+
+use super::report::{compile_and_report, DiagArgs, SceneArg};
+
+#[derive(Debug, Clone, Args)]
+pub struct IrArgs {
+    #[command(flatten)]
+    pub scene: SceneArg,
+    #[command(flatten)]
+    pub diag: DiagArgs,
+}
+
+pub fn run(args: &IrArgs) -> ExitCode {
+    let compiled = compile_and_report(&args.scene.file, &args.diag);
+    match &compiled.scene {
+        Some(scene) => match serde_json::to_string_pretty(scene) {
+            Ok(json) => {
+                println!("{json}");
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: cannot serialise the IR: {e}");
+                ExitCode::FAILURE
+            }
+        },
+        None => ExitCode::FAILURE,
+    }
+}

@@ -1,0 +1,326 @@
+//! The front-end driver: a `.scn` file (and its includes) → `ir::SceneDesc` + diagnostics.
+//!
+//! Reads every file through the [`Loader`] (so `scnc watch` sees includes), rejects binary and
+//! non-UTF-8 input, parses each file, expands `include "file.scn"` in place (paths relative to
+//! the including file; each file at most once; cycles reported with the include chain), checks
+//! that every file starts with `scnc 1`, then runs `check::check` over all statements.
+
+use std::path::{Component, Path, PathBuf};
+
+use crate::assets::Loader;
+use crate::check;
+use crate::diag::Diagnostic;
+use crate::ir;
+use crate::source::{FileId, SourceMap, Span};
+use crate::syntax::{self, ExprKind, Stmt};
+
+/// The only language version.
+pub const VERSION: f64 = 1.0;
+/// Deepest chain of nested includes.
+pub const MAX_INCLUDE_DEPTH: usize = 32;
+
+/// Everything one compile produced. `scene` is `None` when any diagnostic is an error.
+#[derive(Debug)]
+pub struct Compiled {
+    pub sources: SourceMap,
+    pub scene: Option<ir::SceneDesc>,
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl Compiled {
+    pub fn has_errors(&self) -> bool {
+        self.diagnostics.iter().any(Diagnostic::is_error)
+    }
+}
+
+/// Compiles the scene file at `path`, reading it and its includes through `loader`.
+pub fn compile_file(path: &Path, loader: &dyn Loader) -> Compiled {
+    let mut d = Driver::new(loader);
+    match loader.read(path) {
+        Ok(bytes) => {
+            let name = path.display().to_string();
+            d.add_root(path, &name, &bytes);
+        }
+        Err(e) => d.diags.push(
+            Diagnostic::error(
+                "scnc::io::read",
+                format!("cannot read {}: {e}", path.display()),
+            )
+            .help("check the path"),
+        ),
+    }
+    d.finish()
+}
+
+/// Compiles `text` as if it were the file `name` (includes resolve relative to `name`'s
+/// directory through `loader`).
+pub fn compile_source(name: &str, text: &str, loader: &dyn Loader) -> Compiled {
+    let mut d = Driver::new(loader);
+    d.add_root(Path::new(name), name, text.as_bytes());
+    d.finish()
+}
+
+struct Driver<'l> {
+    loader: &'l dyn Loader,
+    sources: SourceMap,
+    diags: Vec<Diagnostic>,
+    statements: Vec<Stmt>,
+    /// Files on the include stack: (normalised path, span of the include that entered it).
+    stack: Vec<(PathBuf, Option<Span>)>,
+}
+
+impl<'l> Driver<'l> {
+    fn new(loader: &'l dyn Loader) -> Driver<'l> {
+        Driver {
+            loader,
+            sources: SourceMap::new(),
+            diags: Vec::new(),
+            statements: Vec::new(),
+            stack: Vec::new(),
+        }
+    }
+
+    fn add_root(&mut self, path: &Path, name: &str, bytes: &[u8]) {
+        self.add_file(normalise(path), name, bytes, None);
+    }
+
+    /// Decodes, parses and expands one file. `from` is the include literal that named it.
+    fn add_file(&mut self, path: PathBuf, name: &str, bytes: &[u8], from: Option<Span>) {
+        let text = match decode(bytes) {
+            Ok(t) => t,
+            Err(why) => {
+                let mut d = Diagnostic::error(
+                    "scnc::source::not_text",
+                    format!("{name} is not a text file: {why}"),
+                )
+                .help("scene files are UTF-8 text; check that you named the .scn file");
+                if let Some(span) = from {
+                    d = d.at(span, "included here");
+                }
+                self.diags.push(d);
+                return;
+            }
+        };
+        let id = self.sources.add(path.clone(), name, text);
+        let text = self.sources.get(id).text.clone();
+        if text.trim().is_empty() {
+            let span = Span::new(id, 0, 0);
+            self.diags.push(
+                Diagnostic::error("scnc::syntax::empty", "empty scene: expected `scnc 1`")
+                    .at(span, "file is empty")
+                    .help("start the file with the version header `scnc 1`"),
+            );
+            return;
+        }
+        let (file, diags) = syntax::parse(id, &text);
+        self.diags.extend(diags);
+        self.check_version(id, &text, &file.statements);
+        self.stack.push((path, from));
+        for stmt in file.statements {
+            if let Stmt::Include { path, .. } = &stmt {
+                self.include(id, path);
+            }
+            self.statements.push(stmt);
+        }
+        self.stack.pop();
+    }
+
+    fn check_version(&mut self, id: FileId, text: &str, stmts: &[Stmt]) {
+        let first_offset = text.len() - text.trim_start().len();
+        match stmts.first() {
+            Some(Stmt::Version { value, .. }) => match value.kind {
+                ExprKind::Number {
+                    value: v,
+                    suffix: None,
+                } if v == VERSION => {}
+                _ => self.diags.push(
+                    Diagnostic::error(
+                        "scnc::syntax::unsupported_version",
+                        format!("unsupported version `{}`", self.sources.snippet(value.span)),
+                    )
+                    .at(value.span, "this version")
+                    .help("this compiler reads `scnc 1`"),
+                ),
+            },
+            first => {
+                // Only blame the header if the file's first statement parsed (or nothing did).
+                let starts_ok = first.map_or(true, |s| s.span().start as usize == first_offset);
+                if starts_ok {
+                    let end = text[first_offset..]
+                        .find(char::is_whitespace)
+                        .map_or(text.len(), |n| first_offset + n);
+                    self.diags.push(
+                        Diagnostic::error(
+                            "scnc::syntax::missing_version",
+                            "the file does not start with the version header `scnc 1`",
+                        )
+                        .at(
+                            Span::new(id, first_offset, end),
+                            "expected `scnc 1` before this",
+                        )
+                        .help("add `scnc 1` as the first line"),
+                    );
+                }
+            }
+        }
+        for s in stmts.iter().skip(1) {
+            if let Stmt::Version { span, .. } = s {
+                self.diags.push(
+                    Diagnostic::error(
+                        "scnc::syntax::misplaced_version",
+                        "`scnc` header after the start of the file",
+                    )
+                    .at(*span, "only allowed as the first statement"),
+                );
+            }
+        }
+    }
+
+    fn include(&mut self, from_file: FileId, path_expr: &syntax::Expr) {
+        let span = path_expr.span;
+        let ExprKind::Str(written) = &path_expr.kind else {
+            self.diags.push(
+                Diagnostic::error("scnc::include::not_a_string", "`include` takes a file name")
+                    .at(span, "expected a string")
+                    .help("write `include \"common.scn\"`"),
+            );
+            return;
+        };
+        let dir = self
+            .sources
+            .get(from_file)
+            .path
+            .parent()
+            .map(Path::to_path_buf)
+            .unwrap_or_default();
+        let path = normalise(&dir.join(written));
+        if let Some(pos) = self.stack.iter().position(|(p, _)| *p == path) {
+            let mut d = Diagnostic::error(
+                "scnc::include::cycle",
+                format!("include cycle: `{written}` includes itself"),
+            )
+            .at(span, "this include closes the cycle");
+            for (_, via) in self.stack[pos + 1..].iter().rev() {
+                if let Some(via) = via {
+                    d = d.also(*via, "included from here");
+                }
+            }
+            self.diags
+                .push(d.help("remove one of the includes in the chain"));
+            return;
+        }
+        if self.sources.find(&path).is_some() {
+            // Already included elsewhere: each file is read once.
+            return;
+        }
+        if self.stack.len() >= MAX_INCLUDE_DEPTH {
+            self.diags.push(
+                Diagnostic::error(
+                    "scnc::include::too_deep",
+                    format!("includes nested deeper than {MAX_INCLUDE_DEPTH}"),
+                )
+                .at(span, "here"),
+            );
+            return;
+        }
+        match self.loader.read(&path) {
+            Ok(bytes) => {
+                let name = path.display().to_string();
+                self.add_file(path, &name, &bytes, Some(span));
+            }
+            Err(e) => self.diags.push(
+                Diagnostic::error(
+                    "scnc::include::not_found",
+                    format!("cannot read included file `{written}`"),
+                )
+                .at(
+                    span,
+                    match e.kind() {
+                        std::io::ErrorKind::NotFound => {
+                            format!("{} does not exist", path.display())
+                        }
+                        _ => format!("{}: {e}", path.display()),
+                    },
+                )
+                .help("include paths are relative to the file that contains the include"),
+            ),
+        }
+    }
+
+    fn finish(self) -> Compiled {
+        let Driver {
+            sources,
+            mut diags,
+            statements,
+            ..
+        } = self;
+        let parse_failed = diags.iter().any(Diagnostic::is_error);
+        let scene = if sources.files().next().is_some() {
+            let (scene, check_diags) = check::check(&statements, &sources);
+            // When parsing failed, statements are missing: suppress checker errors that only
+            // say something is missing, unknown or unused, which would be noise.
+            diags.extend(
+                check_diags
+                    .into_iter()
+                    .filter(|d| !parse_failed || !is_cascade(d.code)),
+            );
+            scene
+        } else {
+            None
+        };
+        // Reading order: by file, then position; diagnostics without a place last.
+        diags.sort_by_key(|d| {
+            d.primary
+                .as_ref()
+                .map_or((u32::MAX, u32::MAX), |l| (l.span.file.0, l.span.start))
+        });
+        let failed = diags.iter().any(Diagnostic::is_error);
+        Compiled {
+            sources,
+            scene: scene.filter(|_| !failed),
+            diagnostics: diags,
+        }
+    }
+}
+
+/// Checker codes that are only consequences of statements lost to syntax errors.
+fn is_cascade(code: &str) -> bool {
+    matches!(
+        code,
+        "scnc::check::no_camera"
+            | "scnc::check::unused"
+            | "scnc::check::unknown_material"
+            | "scnc::check::unknown_mesh"
+            | "scnc::check::unknown_texture"
+            | "scnc::check::unknown_camera"
+            | "scnc::check::unknown_name"
+    )
+}
+
+/// UTF-8 text without NUL bytes, or why not.
+fn decode(bytes: &[u8]) -> Result<String, String> {
+    if bytes.contains(&0) {
+        return Err("it contains NUL bytes (binary data)".into());
+    }
+    match std::str::from_utf8(bytes) {
+        Ok(s) => Ok(s.strip_prefix('\u{feff}').unwrap_or(s).to_string()),
+        Err(e) => Err(format!("invalid UTF-8 at byte {}", e.valid_up_to())),
+    }
+}
+
+/// Removes `.` and resolves `..` lexically, so one file reached two ways is one path.
+fn normalise(path: &Path) -> PathBuf {
+    let mut out = PathBuf::new();
+    for c in path.components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir => {
+                if !out.pop() {
+                    out.push("..");
+                }
+            }
+            other => out.push(other.as_os_str()),
+        }
+    }
+    out
+}

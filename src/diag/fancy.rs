@@ -1,0 +1,119 @@
+//! Fancy terminal rendering of diagnostics through miette (colours, Unicode frames).
+//!
+//! A [`Diagnostic`] becomes a miette report over the primary label's file; labels in other
+//! files (an include chain) become related reports over their own files, so every label is
+//! shown in the file it belongs to.
+
+use std::fmt;
+use std::sync::Arc;
+
+use miette::{GraphicalReportHandler, GraphicalTheme, LabeledSpan, NamedSource};
+
+use super::{Diagnostic, Severity};
+use crate::source::{FileId, SourceMap};
+
+#[derive(Debug)]
+struct Report {
+    severity: Severity,
+    code: &'static str,
+    message: String,
+    help: Option<String>,
+    source: Option<NamedSource<Arc<str>>>,
+    labels: Vec<LabeledSpan>,
+    related: Vec<Report>,
+}
+
+impl fmt::Display for Report {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for Report {}
+
+impl miette::Diagnostic for Report {
+    fn code<'a>(&'a self) -> Option<Box<dyn fmt::Display + 'a>> {
+        (!self.code.is_empty()).then(|| Box::new(self.code) as Box<dyn fmt::Display>)
+    }
+
+    fn severity(&self) -> Option<miette::Severity> {
+        Some(match self.severity {
+            Severity::Error => miette::Severity::Error,
+            Severity::Warning => miette::Severity::Warning,
+        })
+    }
+
+    fn help<'a>(&'a self) -> Option<Box<dyn fmt::Display + 'a>> {
+        self.help
+            .as_ref()
+            .map(|h| Box::new(h) as Box<dyn fmt::Display>)
+    }
+
+    fn source_code(&self) -> Option<&dyn miette::SourceCode> {
+        self.source.as_ref().map(|s| s as &dyn miette::SourceCode)
+    }
+
+    fn labels(&self) -> Option<Box<dyn Iterator<Item = LabeledSpan> + '_>> {
+        (!self.labels.is_empty()).then(|| Box::new(self.labels.iter().cloned()) as Box<_>)
+    }
+
+    fn related<'a>(&'a self) -> Option<Box<dyn Iterator<Item = &'a dyn miette::Diagnostic> + 'a>> {
+        (!self.related.is_empty())
+            .then(|| Box::new(self.related.iter().map(|r| r as &dyn miette::Diagnostic)) as Box<_>)
+    }
+}
+
+fn to_report(d: &Diagnostic, sources: &SourceMap) -> Report {
+    let main_file: Option<FileId> = d.primary.as_ref().map(|l| l.span.file);
+    let mut labels = Vec::new();
+    let mut related = Vec::new();
+    if let Some(p) = &d.primary {
+        labels.push(LabeledSpan::new_primary_with_span(
+            Some(p.message.clone()),
+            p.span.source_span(),
+        ));
+    }
+    for l in &d.secondary {
+        let span = LabeledSpan::new_with_span(Some(l.message.clone()), l.span.source_span());
+        if Some(l.span.file) == main_file {
+            labels.push(span);
+        } else {
+            related.push(Report {
+                severity: Severity::Warning,
+                code: "",
+                message: l.message.clone(),
+                help: None,
+                source: Some(sources.named_source(l.span.file)),
+                labels: vec![span],
+                related: Vec::new(),
+            });
+        }
+    }
+    Report {
+        severity: d.severity,
+        code: d.code,
+        message: d.message.clone(),
+        help: d.help.clone(),
+        source: main_file.map(|f| sources.named_source(f)),
+        labels,
+        related,
+    }
+}
+
+/// Renders one diagnostic for a terminal; `color` chooses ANSI colours or plain Unicode.
+pub fn render_fancy(d: &Diagnostic, sources: &SourceMap, color: bool) -> String {
+    let theme = if color {
+        GraphicalTheme::unicode()
+    } else {
+        GraphicalTheme::unicode_nocolor()
+    };
+    let handler = GraphicalReportHandler::new_themed(theme);
+    let mut out = String::new();
+    if handler
+        .render_report(&mut out, &to_report(d, sources))
+        .is_err()
+    {
+        out = super::render_plain(d, sources, 100);
+    }
+    out
+}

@@ -1,0 +1,92 @@
+//! "Did you mean ...?": the closest candidate to a misspelled name, key or keyword.
+
+/// Levenshtein distance between two strings (by chars), with a small cap on work: names longer
+/// than 64 chars are never close to anything.
+pub fn edit_distance(a: &str, b: &str) -> usize {
+    let a: Vec<char> = a.chars().collect();
+    let b: Vec<char> = b.chars().collect();
+    if a.len() > 64 || b.len() > 64 {
+        return usize::MAX;
+    }
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    let mut cur = vec![0; b.len() + 1];
+    for (i, ca) in a.iter().enumerate() {
+        cur[0] = i + 1;
+        for (j, cb) in b.iter().enumerate() {
+            let cost = usize::from(ca != cb);
+            cur[j + 1] = (prev[j] + cost).min(prev[j + 1] + 1).min(cur[j] + 1);
+        }
+        std::mem::swap(&mut prev, &mut cur);
+    }
+    prev[b.len()]
+}
+
+/// The candidate closest to `name`, if it is close enough to be a plausible typo: at most one
+/// edit for short names, two for names of 5+ chars, three for 9+ (case differences are free).
+pub fn did_you_mean<'a, I>(name: &str, candidates: I) -> Option<&'a str>
+where
+    I: IntoIterator<Item = &'a str>,
+{
+    let lower = name.to_ascii_lowercase();
+    let limit = match name.chars().count() {
+        0..=4 => 1,
+        5..=8 => 2,
+        _ => 3,
+    };
+    candidates
+        .into_iter()
+        .filter(|c| *c != name)
+        .map(|c| (edit_distance(&lower, &c.to_ascii_lowercase()), c))
+        .filter(|(d, _)| *d <= limit)
+        .min_by_key(|(d, c)| (*d, *c))
+        .map(|(_, c)| c)
+}
+
+/// "did you mean `x`?" or, when nothing is close, the list of valid choices.
+pub fn help_for(name: &str, candidates: &[&str], what: &str) -> String {
+    match did_you_mean(name, candidates.iter().copied()) {
+        Some(best) => format!("did you mean `{best}`?"),
+        None if candidates.is_empty() => format!("there are no {what} to choose from"),
+        None => format!("valid {what}: {}", list(candidates)),
+    }
+}
+
+/// `a`, `b`, `c` as one string.
+pub fn list(items: &[&str]) -> String {
+    items
+        .iter()
+        .map(|i| format!("`{i}`"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn distance_counts_edits() {
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert_eq!(edit_distance("", "abc"), 3);
+        assert_eq!(edit_distance("same", "same"), 0);
+    }
+
+    #[test]
+    fn suggests_close_names_only() {
+        let keys = ["diffuse", "specular", "shininess", "ambient"];
+        assert_eq!(did_you_mean("difuse", keys), Some("diffuse"));
+        assert_eq!(did_you_mean("shinyness", keys), Some("shininess"));
+        assert_eq!(did_you_mean("Diffuse", keys), Some("diffuse"));
+        assert_eq!(did_you_mean("colour", keys), None);
+        assert_eq!(
+            did_you_mean("materail", ["material", "mesh"]),
+            Some("material")
+        );
+    }
+
+    #[test]
+    fn help_lists_keys_when_nothing_is_close() {
+        let h = help_for("zzz", &["eye", "target"], "keys");
+        assert_eq!(h, "valid keys: `eye`, `target`");
+    }
+}
