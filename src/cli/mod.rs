@@ -1,4 +1,4 @@
-//! The command line: runs the pipeline once (`check`, `ir`, later `render`) or in a loop
+//! The command line: runs the pipeline once (`check`, `ir`, `render`) or in a loop
 //! (`watch`). Only this module prints.
 //!
 //! Each subcommand lives in its own file with its own `Args` struct and `run` function; adding
@@ -6,7 +6,9 @@
 
 mod check;
 mod ir;
+mod render;
 pub mod report;
+mod stats;
 
 use std::process::ExitCode;
 
@@ -14,6 +16,7 @@ use clap::{Parser, Subcommand};
 
 pub use check::CheckArgs;
 pub use ir::IrArgs;
+pub use render::{AccelArg, RenderArgs};
 pub use report::{DiagArgs, DiagnosticFormat};
 
 /// scnc: a declarative scene-language compiler and ray tracer.
@@ -28,6 +31,8 @@ pub struct Cli {
 pub enum Command {
     /// Check a scene: report every error and warning (exit 0 clean, 1 on errors).
     Check(CheckArgs),
+    /// Render a scene to an image (PNG, EXR, HDR or PFM by extension).
+    Render(RenderArgs),
     /// Print a scene's validated intermediate representation as JSON.
     Ir(IrArgs),
 }
@@ -41,5 +46,6 @@ pub fn run(cli: Cli) -> ExitCode {
     match cli.command {
         Command::Check(args) => check::run(&args),
         Command::Ir(args) => ir::run(&args),
+        Command::Render(args) => render::run(&args),
     }
 }

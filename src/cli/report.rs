@@ -10,7 +10,8 @@ use clap::{Args, ValueEnum};
 
 use crate::assets::FsLoader;
 use crate::compile::{compile_file, Compiled};
-use crate::diag::{render_fancy, render_json, render_plain, summary};
+use crate::diag::{render_fancy, render_json, render_plain, summary, Diagnostic};
+use crate::source::SourceMap;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
 pub enum DiagnosticFormat {
@@ -45,25 +46,29 @@ pub fn compile_and_report(path: &Path, diag: &DiagArgs) -> Compiled {
     compiled
 }
 
-/// Prints diagnostics: human to stderr (fancy on a terminal), JSON to stdout.
+/// Prints a compile's diagnostics: human to stderr (fancy on a terminal), JSON to stdout.
 pub fn print_diagnostics(compiled: &Compiled, format: DiagnosticFormat) {
+    print_diagnostic_list(&compiled.diagnostics, &compiled.sources, format);
+}
+
+/// Prints diagnostics of any stage whose spans point into `sources`. Nothing for an empty list.
+pub fn print_diagnostic_list(diags: &[Diagnostic], sources: &SourceMap, format: DiagnosticFormat) {
+    if diags.is_empty() {
+        return;
+    }
     match format {
-        DiagnosticFormat::Json => {
-            println!("{}", render_json(&compiled.diagnostics, &compiled.sources));
-        }
+        DiagnosticFormat::Json => println!("{}", render_json(diags, sources)),
         DiagnosticFormat::Human => {
             let tty = std::io::stderr().is_terminal();
-            for d in &compiled.diagnostics {
+            for d in diags {
                 let text = if tty {
-                    render_fancy(d, &compiled.sources, true)
+                    render_fancy(d, sources, true)
                 } else {
-                    render_plain(d, &compiled.sources, 100)
+                    render_plain(d, sources, 100)
                 };
                 eprintln!("{text}");
             }
-            if !compiled.diagnostics.is_empty() {
-                eprintln!("{}", summary(&compiled.diagnostics));
-            }
+            eprintln!("{}", summary(diags));
         }
     }
 }

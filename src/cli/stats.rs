@@ -1,0 +1,74 @@
+//! `--stats`: the time of each phase, rays by kind, throughput, BVH size and peak memory.
+
+use std::fmt::Write;
+use std::time::Duration;
+
+use crate::render::RenderStats;
+use crate::scene::Scene;
+
+/// Wall time of each pipeline phase of one `scnc render`.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct PhaseStats {
+    /// Parse and check (includes read through the loader).
+    pub compile: Duration,
+    pub asset_load: Duration,
+    pub accel_build: Duration,
+    pub render: Duration,
+    pub write: Duration,
+}
+
+impl PhaseStats {
+    /// The report printed after the render.
+    pub fn report(&self, scene: &Scene, render: &RenderStats) -> String {
+        let ms = |d: Duration| d.as_secs_f64() * 1e3;
+        let accel = scene.accel_stats();
+        let mut s = String::new();
+        let _ = writeln!(s, "phase          time");
+        for (name, d) in [
+            ("parse+check", self.compile),
+            ("asset load", self.asset_load),
+            ("bvh build", self.accel_build),
+            ("render", self.render),
+            ("write", self.write),
+        ] {
+            let _ = writeln!(s, "  {name:<12} {:>9.2} ms", ms(d));
+        }
+        let _ = writeln!(
+            s,
+            "image          {}x{}, {} spp, {} threads",
+            scene.settings.width, scene.settings.height, render.samples_per_pixel, render.threads
+        );
+        let _ = writeln!(
+            s,
+            "rays           {} camera, {} shadow, {} total, {:.2} Mrays/s",
+            render.camera_rays,
+            render.shadow_rays,
+            render.rays(),
+            render.mrays_per_sec()
+        );
+        let _ = writeln!(
+            s,
+            "geometry       {} triangles; bvh {} nodes, {} leaves, {:.1} MiB",
+            scene.triangle_count(),
+            accel.nodes,
+            accel.leaves,
+            accel.bytes as f64 / (1024.0 * 1024.0)
+        );
+        let _ = write!(
+            s,
+            "peak memory    {}",
+            peak_memory_bytes()
+                .map(|b| format!("{:.1} MiB", b as f64 / (1024.0 * 1024.0)))
+                .unwrap_or_else(|| "unknown on this platform".into())
+        );
+        s
+    }
+}
+
+/// The process's peak resident set size (Linux `VmHWM`), if the platform tells.
+pub fn peak_memory_bytes() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
+}
