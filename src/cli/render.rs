@@ -97,7 +97,7 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         None => None,
         Some(Ok(i)) => Some(i),
         Some(Err(d)) => {
-            print_diagnostic_list(&[d], &compiled.sources, args.diag.diagnostic_format);
+            print_diagnostic_list(&[*d], &compiled.sources, args.diag.diagnostic_format);
             return ExitCode::FAILURE;
         }
     };
@@ -186,7 +186,7 @@ pub fn run(args: &RenderArgs) -> ExitCode {
 }
 
 /// `--camera NAME` → index, or a diagnostic listing the cameras there are.
-fn camera_index(desc: &SceneDesc, name: &str) -> Result<usize, Diagnostic> {
+fn camera_index(desc: &SceneDesc, name: &str) -> Result<usize, Box<Diagnostic>> {
     desc.camera_by_name(name).ok_or_else(|| {
         let names: Vec<&str> = desc.cameras.iter().map(|c| c.name.as_str()).collect();
         let mut d = Diagnostic::error(
@@ -197,7 +197,7 @@ fn camera_index(desc: &SceneDesc, name: &str) -> Result<usize, Diagnostic> {
             Some(s) => d.help(format!("did you mean `{s}`? cameras: {}", names.join(", "))),
             None => d.help(format!("cameras: {}", names.join(", "))),
         };
-        d
+        Box::new(d)
     })
 }
 
