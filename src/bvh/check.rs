@@ -1,0 +1,139 @@
+//! The BVH invariant checker: run after every build in debug builds and callable from tests.
+//!
+//! For every level: each node is reached exactly once from the root, its bounds contain its
+//! children's (interior) or its primitives' (leaf) bounds, leaves hold 1..=MAX_LEAF primitives,
+//! every primitive slot is referenced by exactly one leaf, the depth is within the traversal
+//! stack, and the leaf order is a permutation without repeats.
+
+use glam::Vec3;
+
+use super::mesh_bvh::{triangle_vertices, MeshBvh};
+use super::node::{Node, MAX_DEPTH, MAX_LEAF};
+use super::two_level::TwoLevel;
+use super::MeshRef;
+use crate::geom::Aabb;
+
+/// Checks one flattened hierarchy whose leaves refer to `slots` primitive slots; `prim_bounds(k)`
+/// gives the bounds of the primitive in slot `k`.
+fn check_nodes(
+    what: &str,
+    nodes: &[Node],
+    slots: usize,
+    prim_bounds: impl Fn(usize) -> Aabb,
+) -> Result<(), String> {
+    if nodes.is_empty() {
+        return if slots == 0 {
+            Ok(())
+        } else {
+            Err(format!("{what}: no nodes but {slots} primitives"))
+        };
+    }
+    let mut reached = vec![false; nodes.len()];
+    let mut slot_seen = vec![false; slots];
+    let mut stack = vec![(0usize, 1usize)];
+    while let Some((i, depth)) = stack.pop() {
+        let n = nodes
+            .get(i)
+            .ok_or_else(|| format!("{what}: link to node {i} past the end"))?;
+        if std::mem::replace(&mut reached[i], true) {
+            return Err(format!("{what}: node {i} reached twice"));
+        }
+        if depth > MAX_DEPTH {
+            return Err(format!("{what}: depth {depth} exceeds {MAX_DEPTH}"));
+        }
+        let b = n.bounds();
+        if n.is_leaf() {
+            let (first, count) = (n.index as usize, n.count() as usize);
+            if count > MAX_LEAF as usize || first + count > slots {
+                return Err(format!("{what}: leaf {i} holds {first}+{count} of {slots}"));
+            }
+            for (k, seen) in slot_seen.iter_mut().enumerate().skip(first).take(count) {
+                if std::mem::replace(seen, true) {
+                    return Err(format!("{what}: primitive slot {k} in two leaves"));
+                }
+                if !b.contains(&prim_bounds(k)) {
+                    return Err(format!("{what}: leaf {i} does not contain primitive {k}"));
+                }
+            }
+        } else {
+            let (l, r) = (i + 1, n.index as usize);
+            if r <= l {
+                return Err(format!("{what}: interior node {i} has right child {r}"));
+            }
+            for c in [l, r] {
+                let child = nodes
+                    .get(c)
+                    .ok_or_else(|| format!("{what}: node {i} links past the end"))?;
+                if !b.contains(&child.bounds()) {
+                    return Err(format!("{what}: node {i} does not contain child {c}"));
+                }
+                stack.push((c, depth + 1));
+            }
+        }
+    }
+    if let Some(i) = reached.iter().position(|r| !r) {
+        return Err(format!("{what}: node {i} unreachable"));
+    }
+    if let Some(k) = slot_seen.iter().position(|s| !s) {
+        return Err(format!("{what}: primitive slot {k} in no leaf"));
+    }
+    Ok(())
+}
+
+fn check_permutation(what: &str, order: &[u32], n: usize) -> Result<(), String> {
+    let mut seen = vec![false; n];
+    for &p in order {
+        let s = seen
+            .get_mut(p as usize)
+            .ok_or_else(|| format!("{what}: primitive {p} out of range"))?;
+        if std::mem::replace(s, true) {
+            return Err(format!("{what}: primitive {p} referenced twice"));
+        }
+    }
+    Ok(())
+}
+
+pub fn check_mesh(bvh: &MeshBvh, mesh: &MeshRef<'_>, what: &str) -> Result<(), String> {
+    check_permutation(what, &bvh.prims, mesh.triangles.len())?;
+    if bvh.prims.len() != bvh.tris.len() {
+        return Err(format!("{what}: vertex and index arrays differ in length"));
+    }
+    // Every triangle with valid vertices must be in the tree, and only those.
+    let valid = mesh
+        .triangles
+        .iter()
+        .filter(|t| triangle_vertices(mesh, t).is_some())
+        .count();
+    if valid != bvh.prims.len() {
+        return Err(format!(
+            "{what}: {} of {valid} valid triangles",
+            bvh.prims.len()
+        ));
+    }
+    for (k, &p) in bvh.prims.iter().enumerate() {
+        let t = &mesh.triangles[p as usize];
+        if triangle_vertices(mesh, t) != Some(bvh.tris[k]) {
+            return Err(format!("{what}: slot {k} does not hold triangle {p}"));
+        }
+    }
+    check_nodes(what, &bvh.nodes, bvh.tris.len(), |k| {
+        Aabb::from_points(&bvh.tris[k] as &[Vec3])
+    })
+}
+
+pub fn check_two_level(t: &TwoLevel, meshes: &[MeshRef<'_>]) -> Result<(), String> {
+    for p in &t.placed {
+        let mesh = meshes
+            .get(p.mesh as usize)
+            .ok_or_else(|| format!("instance {} names a missing mesh", p.index))?;
+        let bvh = &t.meshes[p.mesh as usize];
+        check_mesh(bvh, mesh, &format!("mesh {}", p.mesh))?;
+    }
+    check_permutation("top level", &t.top_order, t.placed.len())?;
+    if t.top_order.len() != t.placed.len() {
+        return Err("top level: not every instance is in the tree".to_string());
+    }
+    check_nodes("top level", &t.top, t.top_order.len(), |k| {
+        t.placed[t.top_order[k] as usize].world_bounds
+    })
+}
