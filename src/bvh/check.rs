@@ -1,78 +1,83 @@
 //! The BVH invariant checker: run after every build in debug builds and callable from tests.
 //!
-//! For every level: each node is reached exactly once from the root, its bounds contain its
-//! children's (interior) or its primitives' (leaf) bounds, leaves hold 1..=MAX_LEAF primitives,
+//! For every level: each node is reached exactly once from the root and has at least two
+//! children, each child box lies in its parent's and contains its subtree's (interior) or its
+//! primitives' (leaf) bounds, leaves hold 1..=MAX_LEAF primitives,
 //! every primitive slot is referenced by exactly one leaf, the depth is within the traversal
 //! stack, and the leaf order is a permutation without repeats.
 
 use glam::Vec3;
 
 use super::mesh_bvh::{triangle_vertices, MeshBvh};
-use super::node::{Node, MAX_DEPTH, MAX_LEAF};
+use super::node::{MAX_DEPTH, MAX_LEAF};
 use super::two_level::TwoLevel;
+use super::wide::{Wide, STACK_MAX, WIDTH};
 use super::MeshRef;
 use crate::geom::Aabb;
 
-/// Checks one flattened hierarchy whose leaves refer to `slots` primitive slots; `prim_bounds(k)`
+/// Checks one wide hierarchy whose leaves refer to `slots` primitive slots; `prim_bounds(k)`
 /// gives the bounds of the primitive in slot `k`.
 fn check_nodes(
     what: &str,
-    nodes: &[Node],
+    w: &Wide,
     slots: usize,
     prim_bounds: impl Fn(usize) -> Aabb,
 ) -> Result<(), String> {
-    if nodes.is_empty() {
-        return if slots == 0 {
-            Ok(())
-        } else {
-            Err(format!("{what}: no nodes but {slots} primitives"))
-        };
-    }
-    let mut reached = vec![false; nodes.len()];
     let mut slot_seen = vec![false; slots];
-    let mut stack = vec![(0usize, 1usize)];
-    while let Some((i, depth)) = stack.pop() {
-        let n = nodes
-            .get(i)
-            .ok_or_else(|| format!("{what}: link to node {i} past the end"))?;
-        if std::mem::replace(&mut reached[i], true) {
-            return Err(format!("{what}: node {i} reached twice"));
+    let mut leaf = |first: usize, count: usize, b: &Aabb| -> Result<(), String> {
+        if count == 0 || count > MAX_LEAF as usize || first + count > slots {
+            return Err(format!("{what}: leaf holds {first}+{count} of {slots}"));
         }
-        if depth > MAX_DEPTH {
-            return Err(format!("{what}: depth {depth} exceeds {MAX_DEPTH}"));
-        }
-        let b = n.bounds();
-        if n.is_leaf() {
-            let (first, count) = (n.index as usize, n.count() as usize);
-            if count > MAX_LEAF as usize || first + count > slots {
-                return Err(format!("{what}: leaf {i} holds {first}+{count} of {slots}"));
+        for (k, seen) in slot_seen.iter_mut().enumerate().skip(first).take(count) {
+            if std::mem::replace(seen, true) {
+                return Err(format!("{what}: primitive slot {k} in two leaves"));
             }
-            for (k, seen) in slot_seen.iter_mut().enumerate().skip(first).take(count) {
-                if std::mem::replace(seen, true) {
-                    return Err(format!("{what}: primitive slot {k} in two leaves"));
-                }
-                if !b.contains(&prim_bounds(k)) {
-                    return Err(format!("{what}: leaf {i} does not contain primitive {k}"));
-                }
-            }
-        } else {
-            let (l, r) = (i + 1, n.index as usize);
-            if r <= l {
-                return Err(format!("{what}: interior node {i} has right child {r}"));
-            }
-            for c in [l, r] {
-                let child = nodes
-                    .get(c)
-                    .ok_or_else(|| format!("{what}: node {i} links past the end"))?;
-                if !b.contains(&child.bounds()) {
-                    return Err(format!("{what}: node {i} does not contain child {c}"));
-                }
-                stack.push((c, depth + 1));
+            if !b.contains(&prim_bounds(k)) {
+                return Err(format!("{what}: a leaf does not contain primitive {k}"));
             }
         }
-    }
-    if let Some(i) = reached.iter().position(|r| !r) {
-        return Err(format!("{what}: node {i} unreachable"));
+        Ok(())
+    };
+    match (w.nodes.is_empty(), w.root_count, w.root_bounds) {
+        (true, 0, None) => {}
+        (true, n, Some(b)) if n > 0 => leaf(w.root_first as usize, n as usize, &b)?,
+        (false, 0, Some(_)) => {
+            let mut reached = vec![false; w.nodes.len()];
+            let mut stack = vec![(0usize, 1usize, w.root_bounds)];
+            while let Some((i, depth, parent)) = stack.pop() {
+                let n = w
+                    .nodes
+                    .get(i)
+                    .ok_or_else(|| format!("{what}: link to node {i} past the end"))?;
+                if std::mem::replace(&mut reached[i], true) {
+                    return Err(format!("{what}: node {i} reached twice"));
+                }
+                if depth > MAX_DEPTH {
+                    return Err(format!("{what}: depth {depth} exceeds {MAX_DEPTH}"));
+                }
+                let used = (0..WIDTH).filter(|&k| n.used(k)).count();
+                if used < 2 {
+                    return Err(format!("{what}: node {i} has {used} children"));
+                }
+                for k in (0..WIDTH).filter(|&k| n.used(k)) {
+                    let b = n.child_bounds(k);
+                    if !parent.is_some_and(|p| p.contains(&b)) {
+                        return Err(format!("{what}: node {i} child {k} outside its parent"));
+                    }
+                    match n.count[k] {
+                        0 => stack.push((n.child[k] as usize, depth + 1, Some(b))),
+                        c => leaf(n.child[k] as usize, c as usize, &b)?,
+                    }
+                }
+            }
+            if let Some(i) = reached.iter().position(|r| !r) {
+                return Err(format!("{what}: node {i} unreachable"));
+            }
+            if w.stack_need > STACK_MAX {
+                return Err(format!("{what}: needs a stack of {}", w.stack_need));
+            }
+        }
+        _ => return Err(format!("{what}: inconsistent root")),
     }
     if let Some(k) = slot_seen.iter().position(|s| !s) {
         return Err(format!("{what}: primitive slot {k} in no leaf"));
@@ -116,7 +121,7 @@ pub fn check_mesh(bvh: &MeshBvh, mesh: &MeshRef<'_>, what: &str) -> Result<(), S
             return Err(format!("{what}: slot {k} does not hold triangle {p}"));
         }
     }
-    check_nodes(what, &bvh.nodes, bvh.tris.len(), |k| {
+    check_nodes(what, &bvh.tree, bvh.tris.len(), |k| {
         Aabb::from_points(&bvh.tris[k] as &[Vec3])
     })
 }

@@ -5,8 +5,7 @@
 use glam::{Vec3, Vec3A};
 
 use super::build::{build, Built, PrimBox};
-use super::node::{Node, RayBox};
-use super::traverse::traverse;
+use super::wide::{collapse, traverse4, Wide, WideNode, WideRay};
 use super::MeshRef;
 use crate::geom::triangle::{moller_trumbore, watertight, TriangleHit, WatertightRay};
 use crate::geom::{Aabb, Ray};
@@ -58,7 +57,7 @@ pub struct MeshHit {
 
 #[derive(Debug, Default)]
 pub struct MeshBvh {
-    pub(super) nodes: Vec<Node>,
+    pub(super) tree: Wide,
     /// Vertices of the leaf-ordered triangles.
     pub(super) tris: Vec<[Vec3; 3]>,
     /// `prims[k]`: index in the mesh of `tris[k]`.
@@ -104,22 +103,22 @@ impl MeshBvh {
             })
             .collect();
         MeshBvh {
-            nodes,
+            tree: collapse(&nodes),
             tris,
             prims: order,
         }
     }
 
     pub fn is_empty(&self) -> bool {
-        self.nodes.is_empty()
+        self.tris.is_empty()
     }
 
     pub fn bounds(&self) -> Aabb {
-        self.nodes.first().map_or(Aabb::EMPTY, Node::bounds)
+        self.tree.root_bounds.unwrap_or(Aabb::EMPTY)
     }
 
     pub fn bytes(&self) -> usize {
-        self.nodes.len() * std::mem::size_of::<Node>()
+        self.tree.nodes.len() * std::mem::size_of::<WideNode>()
             + self.tris.len() * std::mem::size_of::<[Vec3; 3]>()
             + self.prims.len() * 4
     }
@@ -127,10 +126,10 @@ impl MeshBvh {
     /// Closest hit with `t < *t_max` (in units of `ray.dir`); shrinks `*t_max` when found.
     #[inline]
     pub fn closest<T: TriTest>(&self, ray: &Ray, t_max: &mut f32) -> Option<MeshHit> {
-        let rb = RayBox::new(ray);
+        let wr = WideRay::new(ray);
         let pre = T::prepare(ray);
         let mut best = None;
-        traverse(&self.nodes, &rb, t_max, |first, count, t_max| {
+        traverse4(&self.tree, &wr, t_max, |first, count, t_max| {
             let range = first as usize..(first + count) as usize;
             for (k, tri) in self.tris[range.clone()].iter().enumerate() {
                 if let Some(h) = T::test(&pre, *t_max, tri) {
@@ -150,10 +149,10 @@ impl MeshBvh {
     /// Whether anything is hit with `t < t_max`; stops at the first hit found.
     #[inline]
     pub fn any<T: TriTest>(&self, ray: &Ray, t_max: f32) -> bool {
-        let rb = RayBox::new(ray);
+        let wr = WideRay::new(ray);
         let pre = T::prepare(ray);
         let mut t = t_max;
-        traverse(&self.nodes, &rb, &mut t, |first, count, t_max| {
+        traverse4(&self.tree, &wr, &mut t, |first, count, t_max| {
             let range = first as usize..(first + count) as usize;
             self.tris[range]
                 .iter()

@@ -12,8 +12,8 @@ mod build;
 mod check;
 mod mesh_bvh;
 mod node;
-mod traverse;
 mod two_level;
+mod wide;
 
 pub use brute_force::BruteForce;
 pub use node::{MAX_DEPTH, MAX_LEAF};

@@ -231,7 +231,7 @@ fn build_is_the_same_whatever_the_thread_count() {
             .expect("a thread pool");
         pool.install(
             || match Accel::build(&meshes, &[identity(0)], AccelKind::Bvh) {
-                Accel::Bvh(b) => (b.meshes[0].nodes.clone(), b.meshes[0].prims.clone()),
+                Accel::Bvh(b) => (b.meshes[0].tree.nodes.clone(), b.meshes[0].prims.clone()),
                 Accel::None(_) => unreachable!("asked for a BVH"),
             },
         )

@@ -9,8 +9,7 @@ use rayon::prelude::*;
 
 use super::build::{build, PrimBox};
 use super::mesh_bvh::{MeshBvh, MollerTrumbore, TriTest, Watertight};
-use super::node::{Node, RayBox};
-use super::traverse::traverse;
+use super::wide::{collapse, traverse4, Wide, WideNode, WideRay};
 use super::{AccelStats, Hit, Instance, MeshRef, TriangleTest};
 use crate::geom::{Aabb, Ray};
 
@@ -31,7 +30,7 @@ pub(super) struct Placed {
 pub struct TwoLevel {
     pub(super) meshes: Vec<MeshBvh>,
     pub(super) placed: Vec<Placed>,
-    pub(super) top: Vec<Node>,
+    pub(super) top: Wide,
     /// Leaf order of the top level: indices into `placed`.
     pub(super) top_order: Vec<u32>,
     test: TriangleTest,
@@ -93,7 +92,7 @@ impl TwoLevel {
         TwoLevel {
             meshes: bvhs,
             placed,
-            top: top.nodes,
+            top: collapse(&top.nodes),
             top_order: top.order,
             test,
         }
@@ -113,10 +112,10 @@ impl TwoLevel {
     }
 
     fn closest_with<T: TriTest>(&self, ray: &Ray) -> Option<Hit> {
-        let rb = RayBox::new(ray);
+        let wr = WideRay::new(ray);
         let mut t_max = ray.t_max;
         let mut best = None;
-        traverse(&self.top, &rb, &mut t_max, |first, count, t_max| {
+        traverse4(&self.top, &wr, &mut t_max, |first, count, t_max| {
             for &k in &self.top_order[first as usize..(first + count) as usize] {
                 let p = &self.placed[k as usize];
                 let obj = Self::object_ray(p, ray);
@@ -136,9 +135,9 @@ impl TwoLevel {
     }
 
     fn any_with<T: TriTest>(&self, ray: &Ray) -> bool {
-        let rb = RayBox::new(ray);
+        let wr = WideRay::new(ray);
         let mut t_max = ray.t_max;
-        traverse(&self.top, &rb, &mut t_max, |first, count, t_max| {
+        traverse4(&self.top, &wr, &mut t_max, |first, count, t_max| {
             self.top_order[first as usize..(first + count) as usize]
                 .iter()
                 .any(|&k| {
@@ -170,18 +169,25 @@ impl TwoLevel {
     }
 
     pub fn stats(&self) -> AccelStats {
-        let leaves = |nodes: &[Node]| nodes.iter().filter(|n| n.is_leaf()).count();
+        let leaves = |w: &Wide| {
+            let inner: usize = w
+                .nodes
+                .iter()
+                .map(|n| n.count.iter().filter(|&&c| c > 0).count())
+                .sum();
+            inner + usize::from(w.root_count > 0)
+        };
         let mut s = AccelStats {
-            nodes: self.top.len(),
+            nodes: self.top.nodes.len(),
             leaves: leaves(&self.top),
             triangles: 0,
-            bytes: self.top.len() * std::mem::size_of::<Node>()
+            bytes: self.top.nodes.len() * std::mem::size_of::<WideNode>()
                 + self.top_order.len() * 4
                 + self.placed.len() * std::mem::size_of::<Placed>(),
         };
         for m in &self.meshes {
-            s.nodes += m.nodes.len();
-            s.leaves += leaves(&m.nodes);
+            s.nodes += m.tree.nodes.len();
+            s.leaves += leaves(&m.tree);
             s.triangles += m.tris.len();
             s.bytes += m.bytes();
         }

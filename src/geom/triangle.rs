@@ -7,7 +7,7 @@
 //! share an edge decide a ray on that edge consistently and it cannot slip between them. Tests
 //! prove the two agree away from edges, and that the watertight test closes every crack.
 
-use glam::Vec3;
+use glam::{Mat3A, Vec3, Vec3A};
 
 use super::Ray;
 
@@ -50,16 +50,16 @@ pub fn moller_trumbore(ray: &Ray, p0: Vec3, p1: Vec3, p2: Vec3) -> Option<Triang
 }
 
 /// Per-ray constants of the watertight test: the axis permutation that makes `dir`'s largest
-/// component the z axis, and the shear that maps `dir` onto +z. Computed once per ray (or once
-/// per instance, for the object-space ray) and reused for every triangle.
+/// component the z axis, and the shear that maps `dir` onto +z, as one matrix (`kx`, `ky`, `kz`
+/// as in the paper): rows `e_kx − Sx·e_kz`, `e_ky − Sy·e_kz`, `Sz·e_kz`. Each row has two zeros,
+/// so `M·a` rounds exactly as the paper's `a[kx] − Sx·a[kz]` (adding a product with 0 is exact)
+/// while needing no run-time indexing. Computed once per ray (or per instance, for the
+/// object-space ray) and reused for every triangle.
 #[derive(Debug, Clone, Copy)]
 pub struct WatertightRay {
-    pub origin: Vec3,
+    pub origin: Vec3A,
     pub t_max: f32,
-    kx: usize,
-    ky: usize,
-    kz: usize,
-    shear: Vec3,
+    shear: Mat3A,
 }
 
 impl WatertightRay {
@@ -79,13 +79,17 @@ impl WatertightRay {
             std::mem::swap(&mut kx, &mut ky);
         }
         let dz = ray.dir[kz];
+        let (sx, sy, sz) = (ray.dir[kx] / dz, ray.dir[ky] / dz, 1.0 / dz);
+        let mut rows = [Vec3A::ZERO; 3];
+        rows[0][kx] = 1.0;
+        rows[0][kz] = -sx;
+        rows[1][ky] = 1.0;
+        rows[1][kz] = -sy;
+        rows[2][kz] = sz;
         WatertightRay {
-            origin: ray.origin,
+            origin: ray.origin.into(),
             t_max: ray.t_max,
-            kx,
-            ky,
-            kz,
-            shear: Vec3::new(ray.dir[kx] / dz, ray.dir[ky] / dz, 1.0 / dz),
+            shear: Mat3A::from_cols(rows[0], rows[1], rows[2]).transpose(),
         }
     }
 }
@@ -94,30 +98,24 @@ impl WatertightRay {
 /// `0 < t < t_max`, both faces, `(u, v)` the weights of `p1` and `p2`.
 #[inline]
 pub fn watertight(r: &WatertightRay, p0: Vec3, p1: Vec3, p2: Vec3) -> Option<TriangleHit> {
-    let (kx, ky, kz) = (r.kx, r.ky, r.kz);
-    let (sx, sy, sz) = (r.shear.x, r.shear.y, r.shear.z);
-    let a = p0 - r.origin;
-    let b = p1 - r.origin;
-    let c = p2 - r.origin;
-    let ax = a[kx] - sx * a[kz];
-    let ay = a[ky] - sy * a[kz];
-    let bx = b[kx] - sx * b[kz];
-    let by = b[ky] - sy * b[kz];
-    let cx = c[kx] - sx * c[kz];
-    let cy = c[ky] - sy * c[kz];
-    let mut u = cx * by - cy * bx;
-    let mut v = ax * cy - ay * cx;
-    let mut w = bx * ay - by * ax;
+    // Vertices relative to the origin, in the sheared space: (x, y) in the plane across the
+    // ray, z scaled so that the ray runs from z = 0 to z = t.
+    let a = r.shear * (Vec3A::from(p0) - r.origin);
+    let b = r.shear * (Vec3A::from(p1) - r.origin);
+    let c = r.shear * (Vec3A::from(p2) - r.origin);
+    let mut u = c.x * b.y - c.y * b.x;
+    let mut v = a.x * c.y - a.y * c.x;
+    let mut w = b.x * a.y - b.y * a.x;
     // An edge function that rounds to exactly zero is re-evaluated in double precision, which
     // is exact for products of floats: the ray is then decided by the exact sign.
     if u == 0.0 || v == 0.0 || w == 0.0 {
         let (ax, ay, bx, by, cx, cy) = (
-            f64::from(ax),
-            f64::from(ay),
-            f64::from(bx),
-            f64::from(by),
-            f64::from(cx),
-            f64::from(cy),
+            f64::from(a.x),
+            f64::from(a.y),
+            f64::from(b.x),
+            f64::from(b.y),
+            f64::from(c.x),
+            f64::from(c.y),
         );
         u = (cx * by - cy * bx) as f32;
         v = (ax * cy - ay * cx) as f32;
@@ -130,7 +128,7 @@ pub fn watertight(r: &WatertightRay, p0: Vec3, p1: Vec3, p2: Vec3) -> Option<Tri
     if det == 0.0 || !det.is_finite() {
         return None;
     }
-    let t_scaled = u * (sz * a[kz]) + v * (sz * b[kz]) + w * (sz * c[kz]);
+    let t_scaled = u * a.z + v * b.z + w * c.z;
     // Compare t = t_scaled / det with (0, t_max) without dividing: flip by the sign of det.
     let sign = det.signum();
     let ts = t_scaled * sign;
