@@ -244,14 +244,14 @@ where
                 // the others are popped in order of distance.
                 let mut hits = [(0.0f32, 0usize); WIDTH];
                 let mut n = 0;
-                for k in 0..WIDTH {
+                for (k, &tk) in t.iter().enumerate() {
                     if mask & (1 << k) != 0 {
                         let mut j = n;
-                        while j > 0 && hits[j - 1].0 < t[k] {
+                        while j > 0 && hits[j - 1].0 < tk {
                             hits[j] = hits[j - 1];
                             j -= 1;
                         }
-                        hits[j] = (t[k], k);
+                        hits[j] = (tk, k);
                         n += 1;
                     }
                 }
