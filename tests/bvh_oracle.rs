@@ -323,3 +323,28 @@ fn instances_report_their_own_index_and_share_the_mesh() {
     // One mesh, placed twice, is stored once.
     assert_eq!(bvh.stats().triangles, 1);
 }
+
+#[test]
+fn merged_identity_instances_report_the_right_instance() {
+    // Meshes 0..3 are placed once each with the identity (merged into one tree); mesh 3 is
+    // placed three times (its own tree, shared); instance order is mixed on purpose.
+    let mut rng = Rng(6);
+    let meshes = [
+        soup(&mut rng, 200, 4.0, 0.3),
+        grid(&mut rng, 8),
+        soup(&mut rng, 50, 3.0, 0.6),
+        soup(&mut rng, 40, 1.5, 0.4),
+    ];
+    let instances = [
+        random_instance(&mut rng, 3),
+        Instance::new(2, Affine3A::IDENTITY),
+        Instance::new(3, Affine3A::IDENTITY),
+        Instance::new(0, Affine3A::IDENTITY),
+        random_instance(&mut rng, 3),
+        Instance::new(1, Affine3A::IDENTITY),
+    ];
+    for (k, test) in TESTS.into_iter().enumerate() {
+        let excused = compare(&meshes, &instances, test, 600 + k as u64, 5000);
+        assert!(excused <= 10, "{test:?}: {excused} near-edge disagreements");
+    }
+}

@@ -98,27 +98,41 @@ fn check_permutation(what: &str, order: &[u32], n: usize) -> Result<(), String> 
     Ok(())
 }
 
-pub fn check_mesh(bvh: &MeshBvh, mesh: &MeshRef<'_>, what: &str) -> Result<(), String> {
-    check_permutation(what, &bvh.prims, mesh.triangles.len())?;
-    if bvh.prims.len() != bvh.tris.len() {
-        return Err(format!("{what}: vertex and index arrays differ in length"));
+/// Checks a bottom-level BVH against the meshes (parts) it was built from.
+pub fn check_mesh(bvh: &MeshBvh, parts: &[MeshRef<'_>], what: &str) -> Result<(), String> {
+    let total: usize = parts.iter().map(|m| m.triangles.len()).sum();
+    check_permutation(what, &bvh.ids, total)?;
+    if bvh.ids.len() != bvh.tris.len() || bvh.part_starts.len() != parts.len() {
+        return Err(format!("{what}: array lengths disagree"));
+    }
+    let mut valid = 0;
+    let mut start = 0;
+    for (k, mesh) in parts.iter().enumerate() {
+        if bvh.part_starts[k] as usize != start {
+            return Err(format!("{what}: part {k} starts at {}", bvh.part_starts[k]));
+        }
+        start += mesh.triangles.len();
+        valid += mesh
+            .triangles
+            .iter()
+            .filter(|t| triangle_vertices(mesh, t).is_some())
+            .count();
     }
     // Every triangle with valid vertices must be in the tree, and only those.
-    let valid = mesh
-        .triangles
-        .iter()
-        .filter(|t| triangle_vertices(mesh, t).is_some())
-        .count();
-    if valid != bvh.prims.len() {
+    if valid != bvh.ids.len() {
         return Err(format!(
             "{what}: {} of {valid} valid triangles",
-            bvh.prims.len()
+            bvh.ids.len()
         ));
     }
-    for (k, &p) in bvh.prims.iter().enumerate() {
-        let t = &mesh.triangles[p as usize];
+    for (k, &id) in bvh.ids.iter().enumerate() {
+        let (part, prim) = bvh.locate(id);
+        let mesh = &parts[part as usize];
+        let t = &mesh.triangles[prim as usize];
         if triangle_vertices(mesh, t) != Some(bvh.tris[k]) {
-            return Err(format!("{what}: slot {k} does not hold triangle {p}"));
+            return Err(format!(
+                "{what}: slot {k} does not hold triangle {prim} of part {part}"
+            ));
         }
     }
     check_nodes(what, &bvh.tree, bvh.tris.len(), |k| {
@@ -128,11 +142,19 @@ pub fn check_mesh(bvh: &MeshBvh, mesh: &MeshRef<'_>, what: &str) -> Result<(), S
 
 pub fn check_two_level(t: &TwoLevel, meshes: &[MeshRef<'_>]) -> Result<(), String> {
     for p in &t.placed {
-        let mesh = meshes
-            .get(p.mesh as usize)
-            .ok_or_else(|| format!("instance {} names a missing mesh", p.index))?;
-        let bvh = &t.meshes[p.mesh as usize];
-        check_mesh(bvh, mesh, &format!("mesh {}", p.mesh))?;
+        let bvh = &t.meshes[p.group as usize];
+        let parts: Vec<MeshRef<'_>> = if p.merged {
+            t.merged_meshes
+                .iter()
+                .map(|&i| meshes.get(i as usize).copied())
+                .collect::<Option<_>>()
+                .ok_or("merged group names a missing mesh")?
+        } else {
+            vec![*meshes
+                .get(p.group as usize)
+                .ok_or_else(|| format!("instance {} names a missing mesh", p.index))?]
+        };
+        check_mesh(bvh, &parts, &format!("group {}", p.group))?;
     }
     check_permutation("top level", &t.top_order, t.placed.len())?;
     if t.top_order.len() != t.placed.len() {

@@ -47,9 +47,10 @@ impl TriTest for Watertight {
     }
 }
 
-/// A closest hit inside one mesh.
+/// A closest hit inside one bottom-level BVH: triangle `prim` of its mesh number `part`.
 #[derive(Debug, Clone, Copy)]
 pub struct MeshHit {
+    pub part: u32,
     pub prim: u32,
     pub u: f32,
     pub v: f32,
@@ -60,8 +61,10 @@ pub struct MeshBvh {
     pub(super) tree: Wide,
     /// Vertices of the leaf-ordered triangles.
     pub(super) tris: Vec<[Vec3; 3]>,
-    /// `prims[k]`: index in the mesh of `tris[k]`.
-    pub(super) prims: Vec<u32>,
+    /// `ids[k]`: which triangle `tris[k]` is, numbered across the parts in order.
+    pub(super) ids: Vec<u32>,
+    /// Where each part's numbering starts (one entry per part, ascending).
+    pub(super) part_starts: Vec<u32>,
 }
 
 /// The vertices of triangle `t`, or `None` if an index is out of range or a vertex not finite.
@@ -76,37 +79,50 @@ pub fn triangle_vertices(mesh: &MeshRef<'_>, t: &[u32; 3]) -> Option<[Vec3; 3]> 
 }
 
 impl MeshBvh {
-    pub fn build(mesh: &MeshRef<'_>) -> MeshBvh {
-        let mut boxes = Vec::with_capacity(mesh.triangles.len());
-        let mut refs = Vec::with_capacity(mesh.triangles.len());
-        for (i, t) in mesh.triangles.iter().enumerate() {
-            let Some([a, b, c]) = triangle_vertices(mesh, t) else {
+    /// One BVH over the triangles of `parts` (usually one mesh; several meshes when identity
+    /// instances are merged, each placed once, so nothing is duplicated).
+    pub fn build(parts: &[MeshRef<'_>]) -> MeshBvh {
+        let total: usize = parts.iter().map(|m| m.triangles.len()).sum();
+        let mut boxes = Vec::with_capacity(total);
+        let mut refs = Vec::with_capacity(total);
+        let mut verts = Vec::with_capacity(total);
+        let mut part_starts = Vec::with_capacity(parts.len());
+        for mesh in parts {
+            part_starts.push(boxes.len() as u32);
+            for t in mesh.triangles {
+                let Some(tri) = triangle_vertices(mesh, t) else {
+                    boxes.push(PrimBox {
+                        min: Vec3A::ZERO,
+                        max: Vec3A::ZERO,
+                    });
+                    verts.push([Vec3::ZERO; 3]);
+                    continue;
+                };
+                let [a, b, c] = tri.map(Vec3A::from);
+                refs.push(boxes.len() as u32);
                 boxes.push(PrimBox {
-                    min: Vec3A::ZERO,
-                    max: Vec3A::ZERO,
+                    min: a.min(b).min(c),
+                    max: a.max(b).max(c),
                 });
-                continue;
-            };
-            let (a, b, c) = (Vec3A::from(a), Vec3A::from(b), Vec3A::from(c));
-            boxes.push(PrimBox {
-                min: a.min(b).min(c),
-                max: a.max(b).max(c),
-            });
-            refs.push(i as u32);
+                verts.push(tri);
+            }
         }
         let Built { nodes, order } = build(&boxes, refs);
-        let tris = order
-            .iter()
-            .map(|&p| {
-                triangle_vertices(mesh, &mesh.triangles[p as usize])
-                    .expect("only triangles with valid vertices were given to the builder")
-            })
-            .collect();
         MeshBvh {
             tree: collapse(&nodes),
-            tris,
-            prims: order,
+            tris: order.iter().map(|&i| verts[i as usize]).collect(),
+            ids: order,
+            part_starts,
         }
+    }
+
+    /// The part and the triangle within it of global id `id`.
+    pub(super) fn locate(&self, id: u32) -> (u32, u32) {
+        let part = self
+            .part_starts
+            .partition_point(|&s| s <= id)
+            .saturating_sub(1);
+        (part as u32, id - self.part_starts[part])
     }
 
     pub fn is_empty(&self) -> bool {
@@ -120,7 +136,8 @@ impl MeshBvh {
     pub fn bytes(&self) -> usize {
         self.tree.nodes.len() * std::mem::size_of::<WideNode>()
             + self.tris.len() * std::mem::size_of::<[Vec3; 3]>()
-            + self.prims.len() * 4
+            + self.ids.len() * 4
+            + self.part_starts.len() * 4
     }
 
     /// Closest hit with `t < *t_max` (in units of `ray.dir`); shrinks `*t_max` when found.
@@ -134,16 +151,15 @@ impl MeshBvh {
             for (k, tri) in self.tris[range.clone()].iter().enumerate() {
                 if let Some(h) = T::test(&pre, *t_max, tri) {
                     *t_max = h.t;
-                    best = Some(MeshHit {
-                        prim: self.prims[range.start + k],
-                        u: h.u,
-                        v: h.v,
-                    });
+                    best = Some((self.ids[range.start + k], h.u, h.v));
                 }
             }
             false
         });
-        best
+        best.map(|(id, u, v)| {
+            let (part, prim) = self.locate(id);
+            MeshHit { part, prim, u, v }
+        })
     }
 
     /// Whether anything is hit with `t < t_max`; stops at the first hit found.

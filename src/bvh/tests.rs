@@ -231,7 +231,12 @@ fn build_is_the_same_whatever_the_thread_count() {
             .expect("a thread pool");
         pool.install(
             || match Accel::build(&meshes, &[identity(0)], AccelKind::Bvh) {
-                Accel::Bvh(b) => (b.meshes[0].tree.nodes.clone(), b.meshes[0].prims.clone()),
+                Accel::Bvh(b) => {
+                    // One identity instance: its mesh is the merged group, the last BVH.
+                    let m = b.meshes.last().expect("the merged group always exists");
+                    assert_eq!(m.ids.len(), 40_000);
+                    (m.tree.nodes.clone(), m.ids.clone())
+                }
                 Accel::None(_) => unreachable!("asked for a BVH"),
             },
         )

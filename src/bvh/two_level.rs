@@ -17,9 +17,12 @@ use crate::geom::{Aabb, Ray};
 /// finite and invertible).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Placed {
-    pub mesh: u32,
-    /// Index in the caller's instance list, reported in hits.
+    /// Which bottom-level BVH: a mesh index, or `meshes.len()` for the merged group.
+    pub group: u32,
+    /// Index in the caller's instance list, reported in hits (unused for the merged group,
+    /// whose hits name their instance through `merged_instances`).
     pub index: u32,
+    pub merged: bool,
     pub object_from_world: Affine3A,
     /// Skip the ray transform (the common single-instance case).
     pub identity: bool,
@@ -28,7 +31,13 @@ pub(super) struct Placed {
 
 #[derive(Debug)]
 pub struct TwoLevel {
+    /// Bottom-level BVHs: one per mesh that some non-merged instance places (empty for the
+    /// others), then the merged group.
     pub(super) meshes: Vec<MeshBvh>,
+    /// The instance of each part of the merged group.
+    pub(super) merged_instances: Vec<u32>,
+    /// The mesh of each part of the merged group (for the invariant checker).
+    pub(super) merged_meshes: Vec<u32>,
     pub(super) placed: Vec<Placed>,
     pub(super) top: Wide,
     /// Leaf order of the top level: indices into `placed`.
@@ -41,46 +50,77 @@ fn finite_affine(m: &Affine3A) -> bool {
 }
 
 impl TwoLevel {
+    /// Identity instances of meshes placed only once are merged into one bottom-level BVH (no
+    /// triangle is stored twice, and a ray then traverses one tree instead of several that
+    /// overlap); every other mesh gets its own BVH, shared by all its instances.
     pub fn build(meshes: &[MeshRef<'_>], instances: &[Instance], test: TriangleTest) -> TwoLevel {
-        let mut used = vec![false; meshes.len()];
-        for inst in instances {
-            if let Some(u) = used.get_mut(inst.mesh as usize) {
-                *u = true;
-            }
+        let valid = |inst: &Instance| {
+            (inst.mesh as usize) < meshes.len()
+                && finite_affine(&inst.world_from_object)
+                && finite_affine(&inst.object_from_world)
+        };
+        let mut placements = vec![0u32; meshes.len()];
+        for inst in instances.iter().filter(|i| valid(i)) {
+            placements[inst.mesh as usize] += 1;
         }
-        // Only meshes some instance places are built; each one once, however often placed.
-        let bvhs: Vec<MeshBvh> = meshes
-            .par_iter()
-            .zip(used.par_iter())
-            .map(|(m, &u)| {
-                if u {
-                    MeshBvh::build(m)
-                } else {
-                    MeshBvh::default()
-                }
-            })
+        let is_identity = |inst: &Instance| {
+            inst.world_from_object == Affine3A::IDENTITY
+                && inst.object_from_world == Affine3A::IDENTITY
+        };
+        let merge = |inst: &Instance| {
+            valid(inst) && is_identity(inst) && placements[inst.mesh as usize] == 1
+        };
+        let merged_instances: Vec<u32> = (0..instances.len() as u32)
+            .filter(|&i| merge(&instances[i as usize]))
             .collect();
-        let placed: Vec<Placed> = instances
+        let mut own = vec![false; meshes.len()];
+        for inst in instances.iter().filter(|i| valid(i) && !merge(i)) {
+            own[inst.mesh as usize] = true;
+        }
+        // Only meshes some instance places are built; each once, however often placed.
+        let mut jobs: Vec<Vec<MeshRef<'_>>> = meshes
+            .iter()
+            .zip(&own)
+            .map(|(m, &o)| if o { vec![*m] } else { Vec::new() })
+            .collect();
+        jobs.push(
+            merged_instances
+                .iter()
+                .map(|&i| meshes[instances[i as usize].mesh as usize])
+                .collect(),
+        );
+        let bvhs: Vec<MeshBvh> = jobs.par_iter().map(|parts| MeshBvh::build(parts)).collect();
+        let merged_group = meshes.len() as u32;
+        let mut placed: Vec<Placed> = instances
             .iter()
             .enumerate()
+            .filter(|(_, inst)| valid(inst) && !merge(inst))
             .filter_map(|(i, inst)| {
-                let bvh = bvhs.get(inst.mesh as usize)?;
-                let ok = !bvh.is_empty()
-                    && finite_affine(&inst.world_from_object)
-                    && finite_affine(&inst.object_from_world);
+                let bvh = &bvhs[inst.mesh as usize];
                 let world_bounds = bvh.bounds().transformed(&inst.world_from_object);
-                (ok && world_bounds.min.is_finite() && world_bounds.max.is_finite()).then(|| {
-                    Placed {
-                        mesh: inst.mesh,
-                        index: i as u32,
-                        object_from_world: inst.object_from_world,
-                        identity: inst.world_from_object == Affine3A::IDENTITY
-                            && inst.object_from_world == Affine3A::IDENTITY,
-                        world_bounds,
-                    }
+                let ok =
+                    !bvh.is_empty() && world_bounds.min.is_finite() && world_bounds.max.is_finite();
+                ok.then(|| Placed {
+                    group: inst.mesh,
+                    index: i as u32,
+                    merged: false,
+                    object_from_world: inst.object_from_world,
+                    identity: is_identity(inst),
+                    world_bounds,
                 })
             })
             .collect();
+        let merged = &bvhs[merged_group as usize];
+        if !merged.is_empty() {
+            placed.push(Placed {
+                group: merged_group,
+                index: u32::MAX,
+                merged: true,
+                object_from_world: Affine3A::IDENTITY,
+                identity: true,
+                world_bounds: merged.bounds(),
+            });
+        }
         let boxes: Vec<PrimBox> = placed
             .iter()
             .map(|p| PrimBox {
@@ -91,6 +131,11 @@ impl TwoLevel {
         let top = build(&boxes, (0..placed.len() as u32).collect());
         TwoLevel {
             meshes: bvhs,
+            merged_meshes: merged_instances
+                .iter()
+                .map(|&i| instances[i as usize].mesh)
+                .collect(),
+            merged_instances,
             placed,
             top: collapse(&top.nodes),
             top_order: top.order,
@@ -119,12 +164,17 @@ impl TwoLevel {
             for &k in &self.top_order[first as usize..(first + count) as usize] {
                 let p = &self.placed[k as usize];
                 let obj = Self::object_ray(p, ray);
-                if let Some(h) = self.meshes[p.mesh as usize].closest::<T>(&obj, t_max) {
+                if let Some(h) = self.meshes[p.group as usize].closest::<T>(&obj, t_max) {
+                    let instance = if p.merged {
+                        self.merged_instances[h.part as usize]
+                    } else {
+                        p.index
+                    };
                     best = Some(Hit {
                         t: *t_max,
                         u: h.u,
                         v: h.v,
-                        instance: p.index,
+                        instance,
                         prim: h.prim,
                     });
                 }
@@ -143,7 +193,7 @@ impl TwoLevel {
                 .any(|&k| {
                     let p = &self.placed[k as usize];
                     let obj = Self::object_ray(p, ray);
-                    self.meshes[p.mesh as usize].any::<T>(&obj, *t_max)
+                    self.meshes[p.group as usize].any::<T>(&obj, *t_max)
                 })
         })
     }
@@ -183,7 +233,8 @@ impl TwoLevel {
             triangles: 0,
             bytes: self.top.nodes.len() * std::mem::size_of::<WideNode>()
                 + self.top_order.len() * 4
-                + self.placed.len() * std::mem::size_of::<Placed>(),
+                + self.placed.len() * std::mem::size_of::<Placed>()
+                + self.merged_instances.len() * 8,
         };
         for m in &self.meshes {
             s.nodes += m.tree.nodes.len();
