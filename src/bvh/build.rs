@@ -41,7 +41,7 @@ const PARALLEL_MIN: usize = 8 * 1024;
 /// Below this depth SAH decides; beyond it only median splits (so depth stays ≤ MAX_DEPTH).
 const SAH_MAX_DEPTH: usize = MAX_DEPTH - 34;
 /// Cost of one traversal step relative to one primitive test.
-const TRAVERSAL_COST: f32 = 2.0;
+const TRAVERSAL_COST: f32 = 1.0;
 
 /// Builds a BVH over `boxes[r]` for every `r` in `refs`.
 pub fn build(boxes: &[PrimBox], mut refs: Vec<u32>) -> Built {

@@ -129,14 +129,14 @@ pub fn check_mesh(bvh: &MeshBvh, parts: &[MeshRef<'_>], what: &str) -> Result<()
         let (part, prim) = bvh.locate(id);
         let mesh = &parts[part as usize];
         let t = &mesh.triangles[prim as usize];
-        if triangle_vertices(mesh, t) != Some(bvh.tris[k]) {
+        if triangle_vertices(mesh, t) != Some(bvh.tris[k].map(Vec3::from)) {
             return Err(format!(
                 "{what}: slot {k} does not hold triangle {prim} of part {part}"
             ));
         }
     }
     check_nodes(what, &bvh.tree, bvh.tris.len(), |k| {
-        Aabb::from_points(&bvh.tris[k] as &[Vec3])
+        Aabb::from_points(&bvh.tris[k].map(Vec3::from))
     })
 }
 

@@ -1,13 +1,13 @@
 //! The bottom level: one BVH per mesh, in the mesh's object space, with the triangles' vertices
-//! copied in leaf order (36 bytes each, read sequentially by a leaf) beside their original
-//! indices. Triangles with a non-finite vertex or an out-of-range index are left out at build.
+//! copied in leaf order (48 bytes each, aligned, read sequentially by a leaf) beside their
+//! original indices. Triangles with a non-finite vertex or an out-of-range index are left out at build.
 
 use glam::{Vec3, Vec3A};
 
 use super::build::{build, Built, PrimBox};
 use super::wide::{collapse, traverse4, Wide, WideNode, WideRay};
 use super::MeshRef;
-use crate::geom::triangle::{moller_trumbore, watertight, TriangleHit, WatertightRay};
+use crate::geom::triangle::{moller_trumbore, watertight_a, TriangleHit, WatertightRay};
 use crate::geom::{Aabb, Ray};
 
 /// The two ray–triangle tests, chosen once per query so each traversal loop is monomorphic
@@ -15,7 +15,7 @@ use crate::geom::{Aabb, Ray};
 pub trait TriTest {
     type Prepared: Copy;
     fn prepare(ray: &Ray) -> Self::Prepared;
-    fn test(pre: &Self::Prepared, t_max: f32, tri: &[Vec3; 3]) -> Option<TriangleHit>;
+    fn test(pre: &Self::Prepared, t_max: f32, tri: &Tri) -> Option<TriangleHit>;
 }
 
 pub struct MollerTrumbore;
@@ -28,8 +28,13 @@ impl TriTest for MollerTrumbore {
         *ray
     }
     #[inline(always)]
-    fn test(ray: &Ray, t_max: f32, [p0, p1, p2]: &[Vec3; 3]) -> Option<TriangleHit> {
-        moller_trumbore(&Ray { t_max, ..*ray }, *p0, *p1, *p2)
+    fn test(ray: &Ray, t_max: f32, [p0, p1, p2]: &Tri) -> Option<TriangleHit> {
+        moller_trumbore(
+            &Ray { t_max, ..*ray },
+            (*p0).into(),
+            (*p1).into(),
+            (*p2).into(),
+        )
     }
 }
 
@@ -40,12 +45,15 @@ impl TriTest for Watertight {
         WatertightRay::new(ray)
     }
     #[inline(always)]
-    fn test(ray: &WatertightRay, t_max: f32, [p0, p1, p2]: &[Vec3; 3]) -> Option<TriangleHit> {
+    fn test(ray: &WatertightRay, t_max: f32, [p0, p1, p2]: &Tri) -> Option<TriangleHit> {
         let mut r = *ray;
         r.t_max = t_max;
-        watertight(&r, *p0, *p1, *p2)
+        watertight_a(&r, *p0, *p1, *p2)
     }
 }
+
+/// A triangle's vertices as stored in leaf order: 16-byte aligned for single-load SIMD use.
+pub type Tri = [Vec3A; 3];
 
 /// A closest hit inside one bottom-level BVH: triangle `prim` of its mesh number `part`.
 #[derive(Debug, Clone, Copy)]
@@ -60,7 +68,7 @@ pub struct MeshHit {
 pub struct MeshBvh {
     pub(super) tree: Wide,
     /// Vertices of the leaf-ordered triangles.
-    pub(super) tris: Vec<[Vec3; 3]>,
+    pub(super) tris: Vec<Tri>,
     /// `ids[k]`: which triangle `tris[k]` is, numbered across the parts in order.
     pub(super) ids: Vec<u32>,
     /// Where each part's numbering starts (one entry per part, ascending).
@@ -95,16 +103,16 @@ impl MeshBvh {
                         min: Vec3A::ZERO,
                         max: Vec3A::ZERO,
                     });
-                    verts.push([Vec3::ZERO; 3]);
+                    verts.push([Vec3A::ZERO; 3]);
                     continue;
                 };
                 let [a, b, c] = tri.map(Vec3A::from);
                 refs.push(boxes.len() as u32);
+                verts.push([a, b, c]);
                 boxes.push(PrimBox {
                     min: a.min(b).min(c),
                     max: a.max(b).max(c),
                 });
-                verts.push(tri);
             }
         }
         let Built { nodes, order } = build(&boxes, refs);
@@ -135,7 +143,7 @@ impl MeshBvh {
 
     pub fn bytes(&self) -> usize {
         self.tree.nodes.len() * std::mem::size_of::<WideNode>()
-            + self.tris.len() * std::mem::size_of::<[Vec3; 3]>()
+            + self.tris.len() * std::mem::size_of::<Tri>()
             + self.ids.len() * 4
             + self.part_starts.len() * 4
     }

@@ -98,11 +98,17 @@ impl WatertightRay {
 /// `0 < t < t_max`, both faces, `(u, v)` the weights of `p1` and `p2`.
 #[inline]
 pub fn watertight(r: &WatertightRay, p0: Vec3, p1: Vec3, p2: Vec3) -> Option<TriangleHit> {
+    watertight_a(r, p0.into(), p1.into(), p2.into())
+}
+
+/// [`watertight`] on 16-byte-aligned vertices (as the BVH stores them).
+#[inline]
+pub fn watertight_a(r: &WatertightRay, p0: Vec3A, p1: Vec3A, p2: Vec3A) -> Option<TriangleHit> {
     // Vertices relative to the origin, in the sheared space: (x, y) in the plane across the
     // ray, z scaled so that the ray runs from z = 0 to z = t.
-    let a = r.shear * (Vec3A::from(p0) - r.origin);
-    let b = r.shear * (Vec3A::from(p1) - r.origin);
-    let c = r.shear * (Vec3A::from(p2) - r.origin);
+    let a = r.shear * (p0 - r.origin);
+    let b = r.shear * (p1 - r.origin);
+    let c = r.shear * (p2 - r.origin);
     let mut u = c.x * b.y - c.y * b.x;
     let mut v = a.x * c.y - a.y * c.x;
     let mut w = b.x * a.y - b.y * a.x;
