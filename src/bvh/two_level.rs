@@ -156,27 +156,36 @@ impl TwoLevel {
         }
     }
 
+    #[inline(always)]
+    fn closest_in<T: TriTest>(&self, p: &Placed, ray: &Ray, t_max: &mut f32) -> Option<Hit> {
+        let obj = Self::object_ray(p, ray);
+        let h = self.meshes[p.group as usize].closest::<T>(&obj, t_max)?;
+        let instance = if p.merged {
+            self.merged_instances[h.part as usize]
+        } else {
+            p.index
+        };
+        Some(Hit {
+            t: *t_max,
+            u: h.u,
+            v: h.v,
+            instance,
+            prim: h.prim,
+        })
+    }
+
     fn closest_with<T: TriTest>(&self, ray: &Ray) -> Option<Hit> {
-        let wr = WideRay::new(ray);
         let mut t_max = ray.t_max;
+        // One group (the common case: every mesh placed once, unmoved): no top level at all.
+        if let [p] = self.placed.as_slice() {
+            return self.closest_in::<T>(p, ray, &mut t_max);
+        }
+        let wr = WideRay::new(ray);
         let mut best = None;
         traverse4(&self.top, &wr, &mut t_max, |first, count, t_max| {
             for &k in &self.top_order[first as usize..(first + count) as usize] {
-                let p = &self.placed[k as usize];
-                let obj = Self::object_ray(p, ray);
-                if let Some(h) = self.meshes[p.group as usize].closest::<T>(&obj, t_max) {
-                    let instance = if p.merged {
-                        self.merged_instances[h.part as usize]
-                    } else {
-                        p.index
-                    };
-                    best = Some(Hit {
-                        t: *t_max,
-                        u: h.u,
-                        v: h.v,
-                        instance,
-                        prim: h.prim,
-                    });
+                if let Some(h) = self.closest_in::<T>(&self.placed[k as usize], ray, t_max) {
+                    best = Some(h);
                 }
             }
             false
@@ -185,16 +194,18 @@ impl TwoLevel {
     }
 
     fn any_with<T: TriTest>(&self, ray: &Ray) -> bool {
+        let any_in = |p: &Placed, t_max: f32| {
+            self.meshes[p.group as usize].any::<T>(&Self::object_ray(p, ray), t_max)
+        };
+        if let [p] = self.placed.as_slice() {
+            return any_in(p, ray.t_max);
+        }
         let wr = WideRay::new(ray);
         let mut t_max = ray.t_max;
         traverse4(&self.top, &wr, &mut t_max, |first, count, t_max| {
             self.top_order[first as usize..(first + count) as usize]
                 .iter()
-                .any(|&k| {
-                    let p = &self.placed[k as usize];
-                    let obj = Self::object_ray(p, ray);
-                    self.meshes[p.group as usize].any::<T>(&obj, *t_max)
-                })
+                .any(|&k| any_in(&self.placed[k as usize], *t_max))
         })
     }
 
