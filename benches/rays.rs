@@ -4,11 +4,12 @@
 //!
 //! ```text
 //! cargo bench --bench rays -- [SCENES_DIR] [--scenes dense-L5,dense-L6] [--reps 3]
-//!                             [--embree results.csv] [--tests both|watertight|mt]
+//!                             [--embree a.csv:b.csv] [--tests both|watertight|mt]
 //! ```
 //! `SCENES_DIR` (or `$SCNC_BENCH_SCENES`) holds the directories made by `bench/scenes/gen.py`;
 //! without it the benchmark says so and exits 0. `--embree` (or `$SCNC_BENCH_EMBREE`) names a CSV
-//! of Embree figures: either the `CSV,` lines `rays` prints, or the merged `results.csv`.
+//! of Embree figures: either the `CSV,` lines `rays` prints, or the merged `results.csv`; several
+//! files joined like `PATH` (`a.csv:b.csv`) are merged, keeping Embree's best figure of each.
 //!
 //! Ray generation follows `rays.c` exactly (double precision, stored as f32); timing covers
 //! tracing only, on one thread, as thread CPU time read from `/proc/thread-self/schedstat`.
@@ -327,7 +328,14 @@ fn main() {
         println!("rays: no benchmark scenes (give a directory made by bench/scenes/gen.py as an argument or in SCNC_BENCH_SCENES); skipping.");
         return;
     };
-    let embree = args.embree.as_deref().map(load_embree).unwrap_or_default();
+    // `--embree a.csv,b.csv`: several runs, merged.
+    let mut embree = HashMap::new();
+    for path in args.embree.iter().flat_map(|p| std::env::split_paths(p).collect::<Vec<_>>()) {
+        for (k, v) in load_embree(&path) {
+            let e = embree.entry(k.clone()).or_insert(v);
+            *e = if k.1.starts_with("build") { (e.0.min(v.0), v.1) } else { (e.0.max(v.0), v.1) };
+        }
+    }
     println!("| scene | test | ray kind | rays | hits (Embree) | scnc Mrays/CPU-s | Embree Mrays/CPU-s | ratio |");
     println!("|---|---|---|---:|---:|---:|---:|---:|");
     let mut builds = Vec::new();
