@@ -3,6 +3,7 @@
 //! original indices. Triangles with a non-finite vertex or an out-of-range index are left out at build.
 
 use glam::{Vec3, Vec3A};
+use rayon::prelude::*;
 
 use super::build::{build, Built, PrimBox};
 use super::wide::{collapse, traverse4, Wide, WideNode, WideRay};
@@ -89,11 +90,14 @@ pub fn triangle_vertices(mesh: &MeshRef<'_>, t: &[u32; 3]) -> Option<[Vec3; 3]> 
 impl MeshBvh {
     /// One BVH over the triangles of `parts` (usually one mesh; several meshes when identity
     /// instances are merged, each placed once, so nothing is duplicated).
+    ///
+    /// Temporaries are dropped as soon as the next step no longer needs them, so that the peak
+    /// during the build (boxes and binary nodes, about 60 bytes per triangle) stays below the
+    /// size of the result (about 90).
     pub fn build(parts: &[MeshRef<'_>]) -> MeshBvh {
         let total: usize = parts.iter().map(|m| m.triangles.len()).sum();
         let mut boxes = Vec::with_capacity(total);
         let mut refs = Vec::with_capacity(total);
-        let mut verts = Vec::with_capacity(total);
         let mut part_starts = Vec::with_capacity(parts.len());
         for mesh in parts {
             part_starts.push(boxes.len() as u32);
@@ -103,12 +107,10 @@ impl MeshBvh {
                         min: Vec3A::ZERO,
                         max: Vec3A::ZERO,
                     });
-                    verts.push([Vec3A::ZERO; 3]);
                     continue;
                 };
                 let [a, b, c] = tri.map(Vec3A::from);
                 refs.push(boxes.len() as u32);
-                verts.push([a, b, c]);
                 boxes.push(PrimBox {
                     min: a.min(b).min(c),
                     max: a.max(b).max(c),
@@ -116,12 +118,27 @@ impl MeshBvh {
             }
         }
         let Built { nodes, order } = build(&boxes, refs);
-        MeshBvh {
-            tree: collapse(&nodes),
-            tris: order.iter().map(|&i| verts[i as usize]).collect(),
+        drop(boxes);
+        let tree = collapse(&nodes);
+        drop(nodes);
+        let mut bvh = MeshBvh {
+            tree,
+            tris: Vec::new(),
             ids: order,
             part_starts,
-        }
+        };
+        bvh.tris = bvh
+            .ids
+            .par_iter()
+            .map(|&id| {
+                let (part, prim) = bvh.locate(id);
+                let mesh = &parts[part as usize];
+                triangle_vertices(mesh, &mesh.triangles[prim as usize])
+                    .expect("only triangles with valid vertices were given to the builder")
+                    .map(Vec3A::from)
+            })
+            .collect();
+        bvh
     }
 
     /// The part and the triangle within it of global id `id`.
