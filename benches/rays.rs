@@ -330,10 +330,18 @@ fn main() {
     };
     // `--embree a.csv,b.csv`: several runs, merged.
     let mut embree = HashMap::new();
-    for path in args.embree.iter().flat_map(|p| std::env::split_paths(p).collect::<Vec<_>>()) {
+    for path in args
+        .embree
+        .iter()
+        .flat_map(|p| std::env::split_paths(p).collect::<Vec<_>>())
+    {
         for (k, v) in load_embree(&path) {
             let e = embree.entry(k.clone()).or_insert(v);
-            *e = if k.1.starts_with("build") { (e.0.min(v.0), v.1) } else { (e.0.max(v.0), v.1) };
+            *e = if k.1.starts_with("build") {
+                (e.0.min(v.0), v.1)
+            } else {
+                (e.0.max(v.0), v.1)
+            };
         }
     }
     println!("| scene | test | ray kind | rays | hits (Embree) | scnc Mrays/CPU-s | Embree Mrays/CPU-s | ratio |");
