@@ -280,3 +280,64 @@ where
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn node_with(boxes: &[Aabb]) -> WideNode {
+        let mut n = EMPTY_NODE;
+        for (lane, b) in boxes.iter().enumerate() {
+            let row = [b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z];
+            for (r, v) in row.into_iter().enumerate() {
+                n.bounds[r][lane] = v;
+            }
+            n.child[lane] = lane as u32;
+            n.count[lane] = 1;
+        }
+        n
+    }
+
+    #[test]
+    fn wide_node_is_two_cache_lines() {
+        assert_eq!(std::mem::size_of::<WideNode>(), 128);
+        assert_eq!(std::mem::align_of::<WideNode>(), 64);
+    }
+
+    #[test]
+    fn slab_test_handles_flat_boxes_axis_parallel_rays_and_empty_lanes() {
+        let flat = Aabb {
+            min: Vec3::new(0.0, 0.0, 1.0),
+            max: Vec3::new(1.0, 1.0, 1.0),
+        };
+        let behind = Aabb {
+            min: Vec3::new(0.0, 0.0, 5.0),
+            max: Vec3::new(1.0, 1.0, 6.0),
+        };
+        let n = node_with(&[flat, behind]);
+        // Lanes 2 and 3 are empty and must never be entered, whatever the direction signs.
+        for dir in [
+            -Vec3::Z,
+            Vec3::Z,
+            Vec3::new(0.0, 0.0, -0.0) - Vec3::Z,
+            Vec3::X,
+        ] {
+            let (_, mask) =
+                WideRay::new(&Ray::new(Vec3::new(0.5, 0.5, 2.0), dir)).hit4(&n, f32::INFINITY);
+            assert_eq!(mask & 0b1100, 0, "{dir}");
+        }
+        let down = WideRay::new(&Ray::new(Vec3::new(0.5, 0.5, 2.0), -Vec3::Z));
+        let (t, mask) = down.hit4(&n, f32::INFINITY);
+        assert_eq!(
+            mask, 0b01,
+            "the flat box below is hit, the one above is not"
+        );
+        assert_eq!(t.x, 1.0);
+        assert_eq!(down.hit4(&n, 0.5).1, 0, "t_max cuts the flat box off");
+        // Origin on the x = 0 face, moving along z only: 0 · ∞ must not make a NaN.
+        let grazing = WideRay::new(&Ray::new(Vec3::new(0.0, 0.5, 0.0), Vec3::Z));
+        assert_eq!(grazing.hit4(&n, f32::INFINITY).1, 0b11);
+        let outside = WideRay::new(&Ray::new(Vec3::new(-0.1, 0.5, 0.0), Vec3::Z));
+        assert_eq!(outside.hit4(&n, f32::INFINITY).1, 0);
+    }
+}
