@@ -3,11 +3,21 @@
 //!
 //! [`Accel`] is the one entry point the renderer uses. [`AccelKind::None`] tests every triangle
 //! of every instance (the brute-force oracle that accelerated results are tested against);
-//! [`AccelKind::Bvh`] is the fast path.
+//! [`AccelKind::Bvh`] is the fast path: a two-level BVH (one binned-SAH BVH per mesh in object
+//! space, a top-level BVH over instances), flattened depth-first, traversed nearest child first
+//! with a fixed stack. See `docs/bvh.md` for the design and measured figures.
 
 mod brute_force;
+mod build;
+mod check;
+mod mesh_bvh;
+mod node;
+mod two_level;
+mod wide;
 
 pub use brute_force::BruteForce;
+pub use node::{MAX_DEPTH, MAX_LEAF};
+pub use two_level::TwoLevel;
 
 use glam::{Affine3A, Vec3};
 
@@ -56,7 +66,19 @@ pub enum AccelKind {
     Bvh,
 }
 
-/// Counts reported by `--stats`.
+/// Which ray–triangle test the BVH runs (the brute-force oracle always runs Möller–Trumbore).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum TriangleTest {
+    /// The reference formulation; may let a ray slip through a shared edge by rounding.
+    MollerTrumbore,
+    /// Woop, Benthin & Wald 2013: no ray passes between triangles that share an edge.
+    #[default]
+    Watertight,
+}
+
+/// Counts reported by `--stats`. For the BVH, `triangles` counts each mesh once (instances
+/// share it) and `bytes` is everything the structure holds: nodes, leaf-ordered vertices,
+/// triangle indices and instances.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct AccelStats {
     pub nodes: usize,
@@ -69,31 +91,65 @@ pub struct AccelStats {
 #[derive(Debug)]
 pub enum Accel {
     None(BruteForce),
+    Bvh(TwoLevel),
 }
 
 impl Accel {
+    /// Builds the structure of `kind` with the default (watertight) triangle test. Meshes no
+    /// instance places cost nothing; triangles with non-finite vertices or out-of-range indices
+    /// and instances naming a missing mesh are skipped, never a panic.
     pub fn build(meshes: &[MeshRef<'_>], instances: &[Instance], kind: AccelKind) -> Accel {
+        Accel::build_with(meshes, instances, kind, TriangleTest::default())
+    }
+
+    /// [`Accel::build`] with a chosen triangle test for the BVH (benchmarks compare both).
+    pub fn build_with(
+        meshes: &[MeshRef<'_>],
+        instances: &[Instance],
+        kind: AccelKind,
+        test: TriangleTest,
+    ) -> Accel {
         match kind {
-            // The BVH lands separately; until then both kinds trace by brute force.
-            AccelKind::None | AccelKind::Bvh => Accel::None(BruteForce::build(meshes, instances)),
+            AccelKind::None => Accel::None(BruteForce::build(meshes, instances)),
+            AccelKind::Bvh => {
+                let bvh = TwoLevel::build(meshes, instances, test);
+                debug_assert_eq!(check::check_two_level(&bvh, meshes), Ok(()));
+                Accel::Bvh(bvh)
+            }
         }
     }
 
     pub fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
         match self {
             Accel::None(b) => b.closest_hit(ray),
+            Accel::Bvh(b) => b.closest_hit(ray),
         }
     }
 
+    /// Whether anything is hit with `0 < t < ray.t_max`; stops at the first hit found.
     pub fn any_hit(&self, ray: &Ray) -> bool {
         match self {
             Accel::None(b) => b.any_hit(ray),
+            Accel::Bvh(b) => b.any_hit(ray),
         }
     }
 
     pub fn stats(&self) -> AccelStats {
         match self {
             Accel::None(b) => b.stats(),
+            Accel::Bvh(b) => b.stats(),
+        }
+    }
+
+    /// Checks the structure's invariants against the input it was built from (the meshes must
+    /// be the ones given to `build`). The brute-force structure has none to check.
+    pub fn check_invariants(&self, meshes: &[MeshRef<'_>]) -> Result<(), String> {
+        match self {
+            Accel::None(_) => Ok(()),
+            Accel::Bvh(b) => check::check_two_level(b, meshes),
         }
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,270 @@
+//! Binned-SAH BVH construction over axis-aligned primitive boxes (triangles of one mesh, or
+//! instances), output as a flat depth-first [`Node`] array plus the primitive order of the leaves.
+//!
+//! Binning: 16–32 bins over the centroid bounds per axis; the split of least
+//! `area_left · n_left + area_right · n_right` wins; a node becomes a leaf when that costs more
+//! than intersecting its primitives (and it has at most [`MAX_LEAF`]). When SAH cannot split
+//! (all centroids equal, non-finite areas, or below a depth bound) an object-median split on the
+//! widest centroid axis takes over, so construction always terminates with bounded depth.
+//!
+//! Large subtrees are built in parallel with `rayon::join`; every decision depends only on the
+//! input, so the tree is the same whatever the number of threads.
+
+use glam::Vec3A;
+
+use super::node::{Node, MAX_DEPTH, MAX_LEAF};
+use crate::geom::Aabb;
+
+/// Bounds of one primitive (finite; callers drop primitives with non-finite bounds).
+#[derive(Debug, Clone, Copy)]
+pub struct PrimBox {
+    pub min: Vec3A,
+    pub max: Vec3A,
+}
+
+impl PrimBox {
+    fn doubled_centroid(&self) -> Vec3A {
+        self.min + self.max
+    }
+}
+
+/// A built hierarchy: `nodes[0]` is the root (if any); leaves refer to `order[first..first+count]`,
+/// which holds the caller's primitive indices.
+#[derive(Debug, Default)]
+pub struct Built {
+    pub nodes: Vec<Node>,
+    pub order: Vec<u32>,
+}
+
+/// Subtrees with more primitives than this are built with `rayon::join`.
+const PARALLEL_MIN: usize = 8 * 1024;
+/// Below this depth SAH decides; beyond it only median splits (so depth stays ≤ MAX_DEPTH).
+const SAH_MAX_DEPTH: usize = MAX_DEPTH - 34;
+/// Cost of one traversal step relative to one primitive test.
+const TRAVERSAL_COST: f32 = 1.0;
+
+/// Builds a BVH over `boxes[r]` for every `r` in `refs`.
+pub fn build(boxes: &[PrimBox], mut refs: Vec<u32>) -> Built {
+    if refs.is_empty() {
+        return Built::default();
+    }
+    let mut nodes = Vec::with_capacity(refs.len() / 2 + 1);
+    build_node(boxes, &mut refs, 0, 0, &mut nodes);
+    Built { nodes, order: refs }
+}
+
+fn half_area(min: Vec3A, max: Vec3A) -> f32 {
+    let e = max - min;
+    e.x * e.y + e.y * e.z + e.z * e.x
+}
+
+fn to_aabb(min: Vec3A, max: Vec3A) -> Aabb {
+    Aabb {
+        min: min.into(),
+        max: max.into(),
+    }
+}
+
+/// Bounds of the primitives and of their (doubled) centroids.
+fn bounds_of(boxes: &[PrimBox], refs: &[u32]) -> (Vec3A, Vec3A, Vec3A, Vec3A) {
+    let inf = Vec3A::splat(f32::INFINITY);
+    let (mut lo, mut hi, mut clo, mut chi) = (inf, -inf, inf, -inf);
+    for &r in refs {
+        let b = &boxes[r as usize];
+        lo = lo.min(b.min);
+        hi = hi.max(b.max);
+        let c = b.doubled_centroid();
+        clo = clo.min(c);
+        chi = chi.max(c);
+    }
+    (lo, hi, clo, chi)
+}
+
+struct Split {
+    axis: usize,
+    /// Primitives whose bin is below this go left.
+    bin: usize,
+    cost: f32,
+}
+
+#[derive(Clone, Copy)]
+struct Bin {
+    min: Vec3A,
+    max: Vec3A,
+    count: u32,
+}
+
+const EMPTY_BIN: Bin = Bin {
+    min: Vec3A::splat(f32::INFINITY),
+    max: Vec3A::splat(f32::NEG_INFINITY),
+    count: 0,
+};
+const MAX_BINS: usize = 32;
+
+/// Maps a doubled centroid to its bin on `axis`.
+#[inline]
+fn bin_of(c: Vec3A, axis: usize, clo: Vec3A, scale: Vec3A, bins: usize) -> usize {
+    // A NaN or negative product saturates to 0 in the cast; the min keeps the top in range.
+    (((c[axis] - clo[axis]) * scale[axis]) as usize).min(bins - 1)
+}
+
+fn find_sah_split(boxes: &[PrimBox], refs: &[u32], clo: Vec3A, chi: Vec3A) -> Option<Split> {
+    let bins = if refs.len() < 256 { 16 } else { MAX_BINS };
+    let extent = chi - clo;
+    let scale = Vec3A::splat(bins as f32 * (1.0 - 1e-6)) / extent;
+    let mut table = [[EMPTY_BIN; MAX_BINS]; 3];
+    for &r in refs {
+        let b = &boxes[r as usize];
+        let c = b.doubled_centroid();
+        for (axis, row) in table.iter_mut().enumerate() {
+            let bin = &mut row[bin_of(c, axis, clo, scale, bins)];
+            bin.min = bin.min.min(b.min);
+            bin.max = bin.max.max(b.max);
+            bin.count += 1;
+        }
+    }
+    let mut best: Option<Split> = None;
+    for (axis, row) in table.iter().enumerate() {
+        if !(extent[axis] > 0.0 && scale[axis].is_finite()) {
+            continue;
+        }
+        // right_cost[i]: cost of bins i.. on the right.
+        let mut right_cost = [0.0f32; MAX_BINS];
+        let (mut lo, mut hi, mut n) = (EMPTY_BIN.min, EMPTY_BIN.max, 0u32);
+        for i in (1..bins).rev() {
+            lo = lo.min(row[i].min);
+            hi = hi.max(row[i].max);
+            n += row[i].count;
+            right_cost[i] = if n == 0 {
+                f32::INFINITY
+            } else {
+                half_area(lo, hi) * n as f32
+            };
+        }
+        let (mut lo, mut hi, mut n) = (EMPTY_BIN.min, EMPTY_BIN.max, 0u32);
+        for i in 1..bins {
+            lo = lo.min(row[i - 1].min);
+            hi = hi.max(row[i - 1].max);
+            n += row[i - 1].count;
+            if n == 0 {
+                continue;
+            }
+            let cost = half_area(lo, hi) * n as f32 + right_cost[i];
+            if cost < best.as_ref().map_or(f32::INFINITY, |s| s.cost) {
+                best = Some(Split { axis, bin: i, cost });
+            }
+        }
+    }
+    best
+}
+
+/// Reorders `refs` so that the first half has the smaller centroids on the widest axis.
+fn median_split(boxes: &[PrimBox], refs: &mut [u32], clo: Vec3A, chi: Vec3A) -> (usize, usize) {
+    let e = chi - clo;
+    let axis = if e.x >= e.y && e.x >= e.z {
+        0
+    } else if e.y >= e.z {
+        1
+    } else {
+        2
+    };
+    let mid = refs.len() / 2;
+    let key = |r: &u32| boxes[*r as usize].doubled_centroid()[axis];
+    refs.select_nth_unstable_by(mid, |a, b| key(a).total_cmp(&key(b)).then(a.cmp(b)));
+    (mid, axis)
+}
+
+fn partition(refs: &mut [u32], mut goes_left: impl FnMut(u32) -> bool) -> usize {
+    let mut mid = 0;
+    for i in 0..refs.len() {
+        if goes_left(refs[i]) {
+            refs.swap(i, mid);
+            mid += 1;
+        }
+    }
+    mid
+}
+
+/// Builds the subtree over `refs` (which sit at `base` in the final order) into `out`.
+fn build_node(boxes: &[PrimBox], refs: &mut [u32], base: u32, depth: usize, out: &mut Vec<Node>) {
+    let n = refs.len();
+    let (lo, hi, clo, chi) = bounds_of(boxes, refs);
+    let bounds = to_aabb(lo, hi);
+    if n == 1 {
+        out.push(Node::leaf(&bounds, base, 1));
+        return;
+    }
+    let sah = if depth < SAH_MAX_DEPTH {
+        find_sah_split(boxes, refs, clo, chi)
+    } else {
+        None
+    };
+    let leaf_cost = n as f32;
+    let split_cost = sah
+        .as_ref()
+        .map(|s| TRAVERSAL_COST + s.cost / half_area(lo, hi));
+    let sah_says_leaf = match split_cost {
+        Some(c) => c.is_finite() && leaf_cost <= c,
+        None => true,
+    };
+    if n <= MAX_LEAF as usize && sah_says_leaf {
+        out.push(Node::leaf(&bounds, base, n as u32));
+        return;
+    }
+    let (mid, axis) = match sah {
+        Some(s) => {
+            let bins = if n < 256 { 16 } else { MAX_BINS };
+            let scale = Vec3A::splat(bins as f32 * (1.0 - 1e-6)) / (chi - clo);
+            let mid = partition(refs, |r| {
+                bin_of(
+                    boxes[r as usize].doubled_centroid(),
+                    s.axis,
+                    clo,
+                    scale,
+                    bins,
+                ) < s.bin
+            });
+            if mid == 0 || mid == n {
+                median_split(boxes, refs, clo, chi)
+            } else {
+                (mid, s.axis)
+            }
+        }
+        None => median_split(boxes, refs, clo, chi),
+    };
+    let (left, right) = refs.split_at_mut(mid);
+    let right_base = base + mid as u32;
+    if n >= PARALLEL_MIN {
+        let (l, r) = rayon::join(
+            || subtree(boxes, left, base, depth + 1),
+            || subtree(boxes, right, right_base, depth + 1),
+        );
+        let at = out.len() as u32;
+        out.push(Node::interior(&bounds, at + 1 + l.len() as u32, axis));
+        append_shifted(out, &l, at + 1);
+        append_shifted(out, &r, at + 1 + l.len() as u32);
+    } else {
+        let at = out.len();
+        out.push(Node::interior(&bounds, 0, axis));
+        build_node(boxes, left, base, depth + 1, out);
+        out[at].index = out.len() as u32;
+        build_node(boxes, right, right_base, depth + 1, out);
+    }
+}
+
+fn subtree(boxes: &[PrimBox], refs: &mut [u32], base: u32, depth: usize) -> Vec<Node> {
+    let mut v = Vec::with_capacity(refs.len() / 2 + 1);
+    build_node(boxes, refs, base, depth, &mut v);
+    v
+}
+
+/// Appends a subtree built on its own, moving its child links by `shift`.
+fn append_shifted(out: &mut Vec<Node>, sub: &[Node], shift: u32) {
+    out.extend(sub.iter().map(|n| {
+        let mut n = *n;
+        if !n.is_leaf() {
+            n.index += shift;
+        }
+        n
+    }));
+}

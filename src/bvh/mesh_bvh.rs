@@ -1,0 +1,203 @@
+//! The bottom level: one BVH per mesh, in the mesh's object space, with the triangles' vertices
+//! copied in leaf order (48 bytes each, aligned, read sequentially by a leaf) beside their
+//! original indices. Triangles with a non-finite vertex or an out-of-range index are left out at build.
+
+use glam::{Vec3, Vec3A};
+use rayon::prelude::*;
+
+use super::build::{build, Built, PrimBox};
+use super::wide::{collapse, traverse4, Wide, WideNode, WideRay};
+use super::MeshRef;
+use crate::geom::triangle::{moller_trumbore, watertight_a, TriangleHit, WatertightRay};
+use crate::geom::{Aabb, Ray};
+
+/// The two ray–triangle tests, chosen once per query so each traversal loop is monomorphic
+/// (a private trait for static dispatch; the public choice is the `TriangleTest` enum).
+pub trait TriTest {
+    type Prepared: Copy;
+    fn prepare(ray: &Ray) -> Self::Prepared;
+    fn test(pre: &Self::Prepared, t_max: f32, tri: &Tri) -> Option<TriangleHit>;
+}
+
+pub struct MollerTrumbore;
+pub struct Watertight;
+
+impl TriTest for MollerTrumbore {
+    type Prepared = Ray;
+    #[inline(always)]
+    fn prepare(ray: &Ray) -> Ray {
+        *ray
+    }
+    #[inline(always)]
+    fn test(ray: &Ray, t_max: f32, [p0, p1, p2]: &Tri) -> Option<TriangleHit> {
+        moller_trumbore(
+            &Ray { t_max, ..*ray },
+            (*p0).into(),
+            (*p1).into(),
+            (*p2).into(),
+        )
+    }
+}
+
+impl TriTest for Watertight {
+    type Prepared = WatertightRay;
+    #[inline(always)]
+    fn prepare(ray: &Ray) -> WatertightRay {
+        WatertightRay::new(ray)
+    }
+    #[inline(always)]
+    fn test(ray: &WatertightRay, t_max: f32, [p0, p1, p2]: &Tri) -> Option<TriangleHit> {
+        let mut r = *ray;
+        r.t_max = t_max;
+        watertight_a(&r, *p0, *p1, *p2)
+    }
+}
+
+/// A triangle's vertices as stored in leaf order: 16-byte aligned for single-load SIMD use.
+pub type Tri = [Vec3A; 3];
+
+/// A closest hit inside one bottom-level BVH: triangle `prim` of its mesh number `part`.
+#[derive(Debug, Clone, Copy)]
+pub struct MeshHit {
+    pub part: u32,
+    pub prim: u32,
+    pub u: f32,
+    pub v: f32,
+}
+
+#[derive(Debug, Default)]
+pub struct MeshBvh {
+    pub(super) tree: Wide,
+    /// Vertices of the leaf-ordered triangles.
+    pub(super) tris: Vec<Tri>,
+    /// `ids[k]`: which triangle `tris[k]` is, numbered across the parts in order.
+    pub(super) ids: Vec<u32>,
+    /// Where each part's numbering starts (one entry per part, ascending).
+    pub(super) part_starts: Vec<u32>,
+}
+
+/// The vertices of triangle `t`, or `None` if an index is out of range or a vertex not finite.
+pub fn triangle_vertices(mesh: &MeshRef<'_>, t: &[u32; 3]) -> Option<[Vec3; 3]> {
+    let v = |k: usize| {
+        mesh.positions
+            .get(t[k] as usize)
+            .copied()
+            .filter(|p| p.is_finite())
+    };
+    Some([v(0)?, v(1)?, v(2)?])
+}
+
+impl MeshBvh {
+    /// One BVH over the triangles of `parts` (usually one mesh; several meshes when identity
+    /// instances are merged, each placed once, so nothing is duplicated).
+    ///
+    /// Temporaries are dropped as soon as the next step no longer needs them, so that the peak
+    /// during the build (boxes and binary nodes, about 60 bytes per triangle) stays below the
+    /// size of the result (about 90).
+    pub fn build(parts: &[MeshRef<'_>]) -> MeshBvh {
+        let total: usize = parts.iter().map(|m| m.triangles.len()).sum();
+        let mut boxes = Vec::with_capacity(total);
+        let mut refs = Vec::with_capacity(total);
+        let mut part_starts = Vec::with_capacity(parts.len());
+        for mesh in parts {
+            part_starts.push(boxes.len() as u32);
+            for t in mesh.triangles {
+                let Some(tri) = triangle_vertices(mesh, t) else {
+                    boxes.push(PrimBox {
+                        min: Vec3A::ZERO,
+                        max: Vec3A::ZERO,
+                    });
+                    continue;
+                };
+                let [a, b, c] = tri.map(Vec3A::from);
+                refs.push(boxes.len() as u32);
+                boxes.push(PrimBox {
+                    min: a.min(b).min(c),
+                    max: a.max(b).max(c),
+                });
+            }
+        }
+        let Built { nodes, order } = build(&boxes, refs);
+        drop(boxes);
+        let tree = collapse(&nodes);
+        drop(nodes);
+        let mut bvh = MeshBvh {
+            tree,
+            tris: Vec::new(),
+            ids: order,
+            part_starts,
+        };
+        bvh.tris = bvh
+            .ids
+            .par_iter()
+            .map(|&id| {
+                let (part, prim) = bvh.locate(id);
+                let mesh = &parts[part as usize];
+                triangle_vertices(mesh, &mesh.triangles[prim as usize])
+                    .expect("only triangles with valid vertices were given to the builder")
+                    .map(Vec3A::from)
+            })
+            .collect();
+        bvh
+    }
+
+    /// The part and the triangle within it of global id `id`.
+    pub(super) fn locate(&self, id: u32) -> (u32, u32) {
+        let part = self
+            .part_starts
+            .partition_point(|&s| s <= id)
+            .saturating_sub(1);
+        (part as u32, id - self.part_starts[part])
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.tris.is_empty()
+    }
+
+    pub fn bounds(&self) -> Aabb {
+        self.tree.root_bounds.unwrap_or(Aabb::EMPTY)
+    }
+
+    pub fn bytes(&self) -> usize {
+        self.tree.nodes.len() * std::mem::size_of::<WideNode>()
+            + self.tris.len() * std::mem::size_of::<Tri>()
+            + self.ids.len() * 4
+            + self.part_starts.len() * 4
+    }
+
+    /// Closest hit with `t < *t_max` (in units of `ray.dir`); shrinks `*t_max` when found.
+    #[inline]
+    pub fn closest<T: TriTest>(&self, ray: &Ray, t_max: &mut f32) -> Option<MeshHit> {
+        let wr = WideRay::new(ray);
+        let pre = T::prepare(ray);
+        let mut best = None;
+        traverse4(&self.tree, &wr, t_max, |first, count, t_max| {
+            let range = first as usize..(first + count) as usize;
+            for (k, tri) in self.tris[range.clone()].iter().enumerate() {
+                if let Some(h) = T::test(&pre, *t_max, tri) {
+                    *t_max = h.t;
+                    best = Some((self.ids[range.start + k], h.u, h.v));
+                }
+            }
+            false
+        });
+        best.map(|(id, u, v)| {
+            let (part, prim) = self.locate(id);
+            MeshHit { part, prim, u, v }
+        })
+    }
+
+    /// Whether anything is hit with `t < t_max`; stops at the first hit found.
+    #[inline]
+    pub fn any<T: TriTest>(&self, ray: &Ray, t_max: f32) -> bool {
+        let wr = WideRay::new(ray);
+        let pre = T::prepare(ray);
+        let mut t = t_max;
+        traverse4(&self.tree, &wr, &mut t, |first, count, t_max| {
+            let range = first as usize..(first + count) as usize;
+            self.tris[range]
+                .iter()
+                .any(|tri| T::test(&pre, *t_max, tri).is_some())
+        })
+    }
+}

@@ -1,0 +1,71 @@
+//! The binary BVH node the builder emits (32 bytes): depth-first order; an interior node's first
+//! child is the next node, its second child is at `index`. A leaf names `count` consecutive
+//! primitives starting at `index`. Stage: made by `bvh::build`, collapsed by `bvh::wide`.
+
+use glam::Vec3;
+
+use crate::geom::Aabb;
+
+/// Most primitives in one leaf (the builder never exceeds it).
+pub const MAX_LEAF: u32 = 8;
+/// Deepest path the builder produces; traversal stacks are sized from it.
+pub const MAX_DEPTH: usize = 96;
+
+/// One node of a flattened BVH: bounds, then either the second child (interior) or the first
+/// primitive (leaf), and `count << 2 | split axis` (`count == 0` marks an interior node).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
+pub struct Node {
+    pub min: [f32; 3],
+    pub index: u32,
+    pub max: [f32; 3],
+    pub meta: u32,
+}
+
+impl Node {
+    pub fn leaf(b: &Aabb, first: u32, count: u32) -> Node {
+        debug_assert!(count > 0 && count <= MAX_LEAF);
+        Node {
+            min: b.min.to_array(),
+            index: first,
+            max: b.max.to_array(),
+            meta: count << 2,
+        }
+    }
+
+    pub fn interior(b: &Aabb, right: u32, axis: usize) -> Node {
+        Node {
+            min: b.min.to_array(),
+            index: right,
+            max: b.max.to_array(),
+            meta: axis as u32 & 3,
+        }
+    }
+
+    #[inline]
+    pub fn count(&self) -> u32 {
+        self.meta >> 2
+    }
+
+    #[inline]
+    pub fn is_leaf(&self) -> bool {
+        self.count() > 0
+    }
+
+    pub fn bounds(&self) -> Aabb {
+        Aabb {
+            min: Vec3::from_array(self.min),
+            max: Vec3::from_array(self.max),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn node_is_32_bytes() {
+        assert_eq!(std::mem::size_of::<Node>(), 32);
+    }
+}

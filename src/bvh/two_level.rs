@@ -1,0 +1,258 @@
+//! The two-level BVH: a top-level BVH over instances (world bounds = the transformed bounds of
+//! their mesh's BVH) whose leaves send the ray, mapped into object space, into the one shared
+//! bottom-level BVH of the instance's mesh. Meshes are never copied per instance. The object
+//! ray's direction is transformed without renormalising, so `t` means the same point in both
+//! spaces and one `t_max` serves the whole query.
+
+use glam::{Affine3A, Vec3A};
+use rayon::prelude::*;
+
+use super::build::{build, PrimBox};
+use super::mesh_bvh::{MeshBvh, MollerTrumbore, TriTest, Watertight};
+use super::wide::{collapse, traverse4, Wide, WideNode, WideRay};
+use super::{AccelStats, Hit, Instance, MeshRef, TriangleTest};
+use crate::geom::{Aabb, Ray};
+
+/// An instance that survived validation (its mesh exists and has triangles, its transform is
+/// finite and invertible).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Placed {
+    /// Which bottom-level BVH: a mesh index, or `meshes.len()` for the merged group.
+    pub group: u32,
+    /// Index in the caller's instance list, reported in hits (unused for the merged group,
+    /// whose hits name their instance through `merged_instances`).
+    pub index: u32,
+    pub merged: bool,
+    pub object_from_world: Affine3A,
+    /// Skip the ray transform (the common single-instance case).
+    pub identity: bool,
+    pub world_bounds: Aabb,
+}
+
+#[derive(Debug)]
+pub struct TwoLevel {
+    /// Bottom-level BVHs: one per mesh that some non-merged instance places (empty for the
+    /// others), then the merged group.
+    pub(super) meshes: Vec<MeshBvh>,
+    /// The instance of each part of the merged group.
+    pub(super) merged_instances: Vec<u32>,
+    /// The mesh of each part of the merged group (for the invariant checker).
+    pub(super) merged_meshes: Vec<u32>,
+    pub(super) placed: Vec<Placed>,
+    pub(super) top: Wide,
+    /// Leaf order of the top level: indices into `placed`.
+    pub(super) top_order: Vec<u32>,
+    test: TriangleTest,
+}
+
+fn finite_affine(m: &Affine3A) -> bool {
+    m.matrix3.is_finite() && m.translation.is_finite()
+}
+
+impl TwoLevel {
+    /// Identity instances of meshes placed only once are merged into one bottom-level BVH (no
+    /// triangle is stored twice, and a ray then traverses one tree instead of several that
+    /// overlap); every other mesh gets its own BVH, shared by all its instances.
+    pub fn build(meshes: &[MeshRef<'_>], instances: &[Instance], test: TriangleTest) -> TwoLevel {
+        let valid = |inst: &Instance| {
+            (inst.mesh as usize) < meshes.len()
+                && finite_affine(&inst.world_from_object)
+                && finite_affine(&inst.object_from_world)
+        };
+        let mut placements = vec![0u32; meshes.len()];
+        for inst in instances.iter().filter(|i| valid(i)) {
+            placements[inst.mesh as usize] += 1;
+        }
+        let is_identity = |inst: &Instance| {
+            inst.world_from_object == Affine3A::IDENTITY
+                && inst.object_from_world == Affine3A::IDENTITY
+        };
+        let merge = |inst: &Instance| {
+            valid(inst) && is_identity(inst) && placements[inst.mesh as usize] == 1
+        };
+        let merged_instances: Vec<u32> = (0..instances.len() as u32)
+            .filter(|&i| merge(&instances[i as usize]))
+            .collect();
+        let mut own = vec![false; meshes.len()];
+        for inst in instances.iter().filter(|i| valid(i) && !merge(i)) {
+            own[inst.mesh as usize] = true;
+        }
+        // Only meshes some instance places are built; each once, however often placed.
+        let mut jobs: Vec<Vec<MeshRef<'_>>> = meshes
+            .iter()
+            .zip(&own)
+            .map(|(m, &o)| if o { vec![*m] } else { Vec::new() })
+            .collect();
+        jobs.push(
+            merged_instances
+                .iter()
+                .map(|&i| meshes[instances[i as usize].mesh as usize])
+                .collect(),
+        );
+        let bvhs: Vec<MeshBvh> = jobs.par_iter().map(|parts| MeshBvh::build(parts)).collect();
+        let merged_group = meshes.len() as u32;
+        let mut placed: Vec<Placed> = instances
+            .iter()
+            .enumerate()
+            .filter(|(_, inst)| valid(inst) && !merge(inst))
+            .filter_map(|(i, inst)| {
+                let bvh = &bvhs[inst.mesh as usize];
+                let world_bounds = bvh.bounds().transformed(&inst.world_from_object);
+                let ok =
+                    !bvh.is_empty() && world_bounds.min.is_finite() && world_bounds.max.is_finite();
+                ok.then(|| Placed {
+                    group: inst.mesh,
+                    index: i as u32,
+                    merged: false,
+                    object_from_world: inst.object_from_world,
+                    identity: is_identity(inst),
+                    world_bounds,
+                })
+            })
+            .collect();
+        let merged = &bvhs[merged_group as usize];
+        if !merged.is_empty() {
+            placed.push(Placed {
+                group: merged_group,
+                index: u32::MAX,
+                merged: true,
+                object_from_world: Affine3A::IDENTITY,
+                identity: true,
+                world_bounds: merged.bounds(),
+            });
+        }
+        let boxes: Vec<PrimBox> = placed
+            .iter()
+            .map(|p| PrimBox {
+                min: Vec3A::from(p.world_bounds.min),
+                max: Vec3A::from(p.world_bounds.max),
+            })
+            .collect();
+        let top = build(&boxes, (0..placed.len() as u32).collect());
+        TwoLevel {
+            meshes: bvhs,
+            merged_meshes: merged_instances
+                .iter()
+                .map(|&i| instances[i as usize].mesh)
+                .collect(),
+            merged_instances,
+            placed,
+            top: collapse(&top.nodes),
+            top_order: top.order,
+            test,
+        }
+    }
+
+    #[inline(always)]
+    fn object_ray(p: &Placed, ray: &Ray) -> Ray {
+        if p.identity {
+            *ray
+        } else {
+            Ray {
+                origin: p.object_from_world.transform_point3(ray.origin),
+                dir: p.object_from_world.transform_vector3(ray.dir),
+                t_max: ray.t_max,
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn closest_in<T: TriTest>(&self, p: &Placed, ray: &Ray, t_max: &mut f32) -> Option<Hit> {
+        let obj = Self::object_ray(p, ray);
+        let h = self.meshes[p.group as usize].closest::<T>(&obj, t_max)?;
+        let instance = if p.merged {
+            self.merged_instances[h.part as usize]
+        } else {
+            p.index
+        };
+        Some(Hit {
+            t: *t_max,
+            u: h.u,
+            v: h.v,
+            instance,
+            prim: h.prim,
+        })
+    }
+
+    fn closest_with<T: TriTest>(&self, ray: &Ray) -> Option<Hit> {
+        let mut t_max = ray.t_max;
+        // One group (the common case: every mesh placed once, unmoved): no top level at all.
+        if let [p] = self.placed.as_slice() {
+            return self.closest_in::<T>(p, ray, &mut t_max);
+        }
+        let wr = WideRay::new(ray);
+        let mut best = None;
+        traverse4(&self.top, &wr, &mut t_max, |first, count, t_max| {
+            for &k in &self.top_order[first as usize..(first + count) as usize] {
+                if let Some(h) = self.closest_in::<T>(&self.placed[k as usize], ray, t_max) {
+                    best = Some(h);
+                }
+            }
+            false
+        });
+        best
+    }
+
+    fn any_with<T: TriTest>(&self, ray: &Ray) -> bool {
+        let any_in = |p: &Placed, t_max: f32| {
+            self.meshes[p.group as usize].any::<T>(&Self::object_ray(p, ray), t_max)
+        };
+        if let [p] = self.placed.as_slice() {
+            return any_in(p, ray.t_max);
+        }
+        let wr = WideRay::new(ray);
+        let mut t_max = ray.t_max;
+        traverse4(&self.top, &wr, &mut t_max, |first, count, t_max| {
+            self.top_order[first as usize..(first + count) as usize]
+                .iter()
+                .any(|&k| any_in(&self.placed[k as usize], *t_max))
+        })
+    }
+
+    pub fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
+        if !(ray.origin.is_finite() && ray.dir.is_finite()) || ray.t_max.is_nan() {
+            return None;
+        }
+        match self.test {
+            TriangleTest::MollerTrumbore => self.closest_with::<MollerTrumbore>(ray),
+            TriangleTest::Watertight => self.closest_with::<Watertight>(ray),
+        }
+    }
+
+    pub fn any_hit(&self, ray: &Ray) -> bool {
+        if !(ray.origin.is_finite() && ray.dir.is_finite()) || ray.t_max.is_nan() {
+            return false;
+        }
+        match self.test {
+            TriangleTest::MollerTrumbore => self.any_with::<MollerTrumbore>(ray),
+            TriangleTest::Watertight => self.any_with::<Watertight>(ray),
+        }
+    }
+
+    pub fn stats(&self) -> AccelStats {
+        let leaves = |w: &Wide| {
+            let inner: usize = w
+                .nodes
+                .iter()
+                .map(|n| n.count.iter().filter(|&&c| c > 0).count())
+                .sum();
+            inner + usize::from(w.root_count > 0)
+        };
+        let mut s = AccelStats {
+            nodes: self.top.nodes.len(),
+            leaves: leaves(&self.top),
+            triangles: 0,
+            bytes: self.top.nodes.len() * std::mem::size_of::<WideNode>()
+                + self.top_order.len() * 4
+                + self.placed.len() * std::mem::size_of::<Placed>()
+                + self.merged_instances.len() * 8,
+        };
+        for m in &self.meshes {
+            s.nodes += m.tree.nodes.len();
+            s.leaves += leaves(&m.tree);
+            s.triangles += m.tris.len();
+            s.bytes += m.bytes();
+        }
+        s
+    }
+}

@@ -1,0 +1,343 @@
+//! The 4-wide BVH that queries run on: the binary SAH tree collapsed so that each node holds
+//! up to four children's boxes side by side (structure of arrays), which one SSE slab test
+//! checks at once. 128 bytes per node (two cache lines, 64-byte aligned), depth-first order.
+//!
+//! Stage: made by `collapse` from `build`'s binary [`Node`]s; read by `traverse4`.
+
+use glam::{Vec3, Vec4};
+
+use super::node::{Node, MAX_DEPTH};
+use crate::geom::{Aabb, Ray};
+
+/// Children per node.
+pub const WIDTH: usize = 4;
+
+/// Up to four children. `bounds` rows are `[min x, min y, min z, max x, max y, max z]`, one lane
+/// per child; an unused lane has the empty box (`+∞` mins, `−∞` maxes), which no ray enters.
+/// `child[k]` is a node index when `count[k] == 0`, else the first of `count[k]` primitives.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C, align(64))]
+pub struct WideNode {
+    pub bounds: [[f32; WIDTH]; 6],
+    pub child: [u32; WIDTH],
+    pub count: [u32; WIDTH],
+}
+
+const EMPTY_NODE: WideNode = WideNode {
+    bounds: [
+        [f32::INFINITY; WIDTH],
+        [f32::INFINITY; WIDTH],
+        [f32::INFINITY; WIDTH],
+        [f32::NEG_INFINITY; WIDTH],
+        [f32::NEG_INFINITY; WIDTH],
+        [f32::NEG_INFINITY; WIDTH],
+    ],
+    child: [u32::MAX; WIDTH],
+    count: [0; WIDTH],
+};
+
+impl WideNode {
+    /// Whether lane `k` holds a child.
+    pub fn used(&self, k: usize) -> bool {
+        self.child[k] != u32::MAX
+    }
+
+    pub fn child_bounds(&self, k: usize) -> Aabb {
+        let b = &self.bounds;
+        Aabb {
+            min: Vec3::new(b[0][k], b[1][k], b[2][k]),
+            max: Vec3::new(b[3][k], b[4][k], b[5][k]),
+        }
+    }
+}
+
+/// A wide hierarchy. A tree that is a single leaf has no nodes and `root_count > 0`.
+#[derive(Debug, Default, Clone)]
+pub struct Wide {
+    pub nodes: Vec<WideNode>,
+    /// The root as a child reference: node 0 (`root_count == 0`) or a leaf.
+    pub root_first: u32,
+    pub root_count: u32,
+    pub root_bounds: Option<Aabb>,
+    /// Most traversal stack entries any ray can need: the largest sum over a root-to-leaf
+    /// path of (children − 1). Picks the smallest fixed stack that fits.
+    pub stack_need: usize,
+}
+
+/// Collapses a binary tree into a 4-wide one: each wide node takes its binary node's children
+/// and keeps opening the interior child of largest surface area until it has four.
+pub fn collapse(bin: &[Node]) -> Wide {
+    let Some(root) = bin.first() else {
+        return Wide::default();
+    };
+    let mut w = Wide {
+        root_bounds: Some(root.bounds()),
+        ..Wide::default()
+    };
+    if root.is_leaf() {
+        w.root_first = root.index;
+        w.root_count = root.count();
+        return w;
+    }
+    w.nodes.reserve(bin.len() / 3 + 1);
+    emit(bin, 0, &mut w.nodes);
+    w.stack_need = stack_need(&w.nodes, 0);
+    w
+}
+
+fn stack_need(nodes: &[WideNode], i: usize) -> usize {
+    let n = &nodes[i];
+    let used = (0..WIDTH).filter(|&k| n.used(k)).count();
+    let deepest = (0..WIDTH)
+        .filter(|&k| n.used(k) && n.count[k] == 0)
+        .map(|k| stack_need(nodes, n.child[k] as usize))
+        .max()
+        .unwrap_or(0);
+    used - 1 + deepest
+}
+
+/// Writes the wide node for binary interior node `i` (and, after it, its subtrees); returns its
+/// index.
+fn emit(bin: &[Node], i: usize, out: &mut Vec<WideNode>) -> u32 {
+    let mut kids: Vec<usize> = vec![i + 1, bin[i].index as usize];
+    while kids.len() < WIDTH {
+        let open = kids
+            .iter()
+            .enumerate()
+            .filter(|(_, &k)| !bin[k].is_leaf())
+            .max_by(|a, b| {
+                let area = |k: usize| bin[k].bounds().surface_area();
+                area(*a.1).total_cmp(&area(*b.1)).then(b.0.cmp(&a.0))
+            })
+            .map(|(pos, _)| pos);
+        let Some(pos) = open else { break };
+        let k = kids[pos];
+        kids.splice(pos..=pos, [k + 1, bin[k].index as usize]);
+    }
+    let at = out.len();
+    out.push(EMPTY_NODE);
+    for (lane, &k) in kids.iter().enumerate() {
+        let b = bin[k].bounds();
+        let row = [b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z];
+        for (r, v) in row.into_iter().enumerate() {
+            out[at].bounds[r][lane] = v;
+        }
+        let (child, count) = if bin[k].is_leaf() {
+            (bin[k].index, bin[k].count())
+        } else {
+            (emit(bin, k, out), 0)
+        };
+        out[at].child[lane] = child;
+        out[at].count[lane] = count;
+    }
+    at as u32
+}
+
+/// The ray prepared for 4-wide slab tests: per axis the origin and reciprocal direction in all
+/// lanes, and which bounds row is the near plane (`min` for a positive direction, `max` for a
+/// negative one; choosing by sign keeps an empty lane empty and needs no min/max).
+#[derive(Debug, Clone, Copy)]
+pub struct WideRay {
+    org: [Vec4; 3],
+    inv: [Vec4; 3],
+    near_row: [usize; 3],
+}
+
+/// Slack on the exit distance for three roundings (Ize 2013); see `node.rs`.
+const EXIT_SLACK: f32 = 1.0 + 3.0 * f32::EPSILON / (1.0 - 1.5 * f32::EPSILON);
+
+impl WideRay {
+    pub fn new(ray: &Ray) -> WideRay {
+        let inv = |d: f32| {
+            let i = 1.0 / d;
+            // 1/±0 (or a reciprocal that overflows) becomes a huge finite value of the same
+            // sign, so that (bound − origin)·inv is never 0·∞.
+            if i.is_finite() {
+                i
+            } else {
+                f32::MAX.copysign(d)
+            }
+        };
+        let d = ray.dir;
+        let o = ray.origin;
+        let row = |d: f32, axis: usize| if d.is_sign_negative() { axis + 3 } else { axis };
+        WideRay {
+            org: [Vec4::splat(o.x), Vec4::splat(o.y), Vec4::splat(o.z)],
+            inv: [
+                Vec4::splat(inv(d.x)),
+                Vec4::splat(inv(d.y)),
+                Vec4::splat(inv(d.z)),
+            ],
+            near_row: [row(d.x, 0), row(d.y, 1), row(d.z, 2)],
+        }
+    }
+
+    /// Entry distances of the four children and the mask (bit k) of those entered in
+    /// `(0, t_max)`.
+    #[inline(always)]
+    pub fn hit4(&self, n: &WideNode, t_max: f32) -> (Vec4, u32) {
+        let mut t_near = Vec4::ZERO;
+        let mut t_far = Vec4::splat(t_max);
+        for axis in 0..3 {
+            let near = self.near_row[axis];
+            let far = if near >= 3 { near - 3 } else { near + 3 };
+            let tn = (Vec4::from_array(n.bounds[near]) - self.org[axis]) * self.inv[axis];
+            let tf = (Vec4::from_array(n.bounds[far]) - self.org[axis]) * self.inv[axis];
+            t_near = t_near.max(tn);
+            t_far = t_far.min(tf);
+        }
+        let mask = t_near.cmple(t_far * EXIT_SLACK).bitmask();
+        (t_near, mask)
+    }
+
+    /// Whether a box entered at `t_entry` may still hold a hit closer than `t_max`.
+    #[inline(always)]
+    pub fn still_open(t_entry: f32, t_max: f32) -> bool {
+        t_entry <= t_max * EXIT_SLACK
+    }
+}
+
+/// Each wide level may push three entries, and the binary depth bounds the wide depth.
+pub const STACK_MAX: usize = 3 * MAX_DEPTH + 2;
+
+/// Visits the leaves the ray enters within `(0, *t_max)`, nearer first; `leaf(first, count,
+/// t_max)` tests a leaf's primitives, may shrink `t_max`, and returns `true` to stop. Returns
+/// whether a leaf stopped the traversal. No allocation: a fixed stack, the smallest of three
+/// sizes that fits the tree (zeroing a large stack per ray costs as much as a traversal).
+#[inline(always)]
+pub fn traverse4<F>(w: &Wide, ray: &WideRay, t_max: &mut f32, leaf: F) -> bool
+where
+    F: FnMut(u32, u32, &mut f32) -> bool,
+{
+    if w.stack_need <= 24 {
+        traverse_with::<24, F>(w, ray, t_max, leaf)
+    } else if w.stack_need <= 64 {
+        traverse_with::<64, F>(w, ray, t_max, leaf)
+    } else {
+        traverse_with::<STACK_MAX, F>(w, ray, t_max, leaf)
+    }
+}
+
+#[inline(always)]
+fn traverse_with<const N: usize, F>(w: &Wide, ray: &WideRay, t_max: &mut f32, mut leaf: F) -> bool
+where
+    F: FnMut(u32, u32, &mut f32) -> bool,
+{
+    if w.nodes.is_empty() {
+        return w.root_count > 0 && leaf(w.root_first, w.root_count, t_max);
+    }
+    debug_assert!(w.stack_need <= N);
+    let mut stack = [(0u32, 0u32, 0.0f32); N];
+    let mut sp = 0usize;
+    let (mut child, mut count) = (0u32, 0u32);
+    loop {
+        if count > 0 {
+            if leaf(child, count, t_max) {
+                return true;
+            }
+        } else {
+            let node = &w.nodes[child as usize];
+            let (t, mask) = ray.hit4(node, *t_max);
+            if mask != 0 {
+                let t = t.to_array();
+                // Entered children, sorted far to near, so the nearest is visited next and
+                // the others are popped in order of distance.
+                let mut hits = [(0.0f32, 0usize); WIDTH];
+                let mut n = 0;
+                for (k, &tk) in t.iter().enumerate() {
+                    if mask & (1 << k) != 0 {
+                        let mut j = n;
+                        while j > 0 && hits[j - 1].0 < tk {
+                            hits[j] = hits[j - 1];
+                            j -= 1;
+                        }
+                        hits[j] = (tk, k);
+                        n += 1;
+                    }
+                }
+                for &(tk, k) in &hits[..n - 1] {
+                    // `stack_need ≤ N` was checked by the caller: no overflow.
+                    stack[sp] = (node.child[k], node.count[k], tk);
+                    sp += 1;
+                }
+                let k = hits[n - 1].1;
+                child = node.child[k];
+                count = node.count[k];
+                continue;
+            }
+        }
+        loop {
+            if sp == 0 {
+                return false;
+            }
+            sp -= 1;
+            let (c, n, t_entry) = stack[sp];
+            if WideRay::still_open(t_entry, *t_max) {
+                child = c;
+                count = n;
+                break;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn node_with(boxes: &[Aabb]) -> WideNode {
+        let mut n = EMPTY_NODE;
+        for (lane, b) in boxes.iter().enumerate() {
+            let row = [b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z];
+            for (r, v) in row.into_iter().enumerate() {
+                n.bounds[r][lane] = v;
+            }
+            n.child[lane] = lane as u32;
+            n.count[lane] = 1;
+        }
+        n
+    }
+
+    #[test]
+    fn wide_node_is_two_cache_lines() {
+        assert_eq!(std::mem::size_of::<WideNode>(), 128);
+        assert_eq!(std::mem::align_of::<WideNode>(), 64);
+    }
+
+    #[test]
+    fn slab_test_handles_flat_boxes_axis_parallel_rays_and_empty_lanes() {
+        let flat = Aabb {
+            min: Vec3::new(0.0, 0.0, 1.0),
+            max: Vec3::new(1.0, 1.0, 1.0),
+        };
+        let behind = Aabb {
+            min: Vec3::new(0.0, 0.0, 5.0),
+            max: Vec3::new(1.0, 1.0, 6.0),
+        };
+        let n = node_with(&[flat, behind]);
+        // Lanes 2 and 3 are empty and must never be entered, whatever the direction signs.
+        for dir in [
+            -Vec3::Z,
+            Vec3::Z,
+            Vec3::new(0.0, 0.0, -0.0) - Vec3::Z,
+            Vec3::X,
+        ] {
+            let (_, mask) =
+                WideRay::new(&Ray::new(Vec3::new(0.5, 0.5, 2.0), dir)).hit4(&n, f32::INFINITY);
+            assert_eq!(mask & 0b1100, 0, "{dir}");
+        }
+        let down = WideRay::new(&Ray::new(Vec3::new(0.5, 0.5, 2.0), -Vec3::Z));
+        let (t, mask) = down.hit4(&n, f32::INFINITY);
+        assert_eq!(
+            mask, 0b01,
+            "the flat box below is hit, the one above is not"
+        );
+        assert_eq!(t.x, 1.0);
+        assert_eq!(down.hit4(&n, 0.5).1, 0, "t_max cuts the flat box off");
+        // Origin on the x = 0 face, moving along z only: 0 · ∞ must not make a NaN.
+        let grazing = WideRay::new(&Ray::new(Vec3::new(0.0, 0.5, 0.0), Vec3::Z));
+        assert_eq!(grazing.hit4(&n, f32::INFINITY).1, 0b11);
+        let outside = WideRay::new(&Ray::new(Vec3::new(-0.1, 0.5, 0.0), Vec3::Z));
+        assert_eq!(outside.hit4(&n, f32::INFINITY).1, 0);
+    }
+}
