@@ -37,19 +37,31 @@ pub struct SceneArg {
     pub file: PathBuf,
 }
 
+/// Where a JSON diagnostics document goes: stdout for `check` (it is the command's output),
+/// stderr for commands whose stdout is something else (`ir`, `render`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum JsonTo {
+    Stdout,
+    Stderr,
+}
+
 /// Compiles `path` from disk and prints its diagnostics (human format: to stderr).
-pub fn compile_and_report(path: &Path, diag: &DiagArgs) -> Compiled {
+pub fn compile_and_report(path: &Path, diag: &DiagArgs, json_to: JsonTo) -> Compiled {
     let loader = FsLoader::new();
     let compiled = compile_file(path, &loader);
-    print_diagnostics(&compiled, diag.diagnostic_format);
+    print_diagnostics(&compiled, diag.diagnostic_format, json_to);
     compiled
 }
 
-/// Prints diagnostics: human to stderr (fancy on a terminal), JSON to stdout.
-pub fn print_diagnostics(compiled: &Compiled, format: DiagnosticFormat) {
+/// Prints diagnostics: human to stderr (fancy on a terminal), JSON as `json_to` says.
+pub fn print_diagnostics(compiled: &Compiled, format: DiagnosticFormat, json_to: JsonTo) {
     match format {
         DiagnosticFormat::Json => {
-            println!("{}", render_json(&compiled.diagnostics, &compiled.sources));
+            let json = render_json(&compiled.diagnostics, &compiled.sources);
+            match json_to {
+                JsonTo::Stdout => println!("{json}"),
+                JsonTo::Stderr => eprintln!("{json}"),
+            }
         }
         DiagnosticFormat::Human => {
             let tty = std::io::stderr().is_terminal();
