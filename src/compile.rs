@@ -101,7 +101,10 @@ impl<'l> Driver<'l> {
                 return;
             }
         };
-        let id = self.sources.add(path.clone(), name, text);
+        // One copy of the text, straight into the source map.
+        let id = self
+            .sources
+            .add(path.clone(), name, std::sync::Arc::<str>::from(text));
         let text = self.sources.get(id).text.clone();
         if text.trim().is_empty() {
             let span = Span::new(id, 0, 0);
@@ -298,12 +301,12 @@ fn is_cascade(code: &str) -> bool {
 }
 
 /// UTF-8 text without NUL bytes, or why not.
-fn decode(bytes: &[u8]) -> Result<String, String> {
+fn decode(bytes: &[u8]) -> Result<&str, String> {
     if bytes.contains(&0) {
         return Err("it contains NUL bytes (binary data)".into());
     }
     match std::str::from_utf8(bytes) {
-        Ok(s) => Ok(s.strip_prefix('\u{feff}').unwrap_or(s).to_string()),
+        Ok(s) => Ok(s.strip_prefix('\u{feff}').unwrap_or(s)),
         Err(e) => Err(format!("invalid UTF-8 at byte {}", e.valid_up_to())),
     }
 }

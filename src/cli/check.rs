@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use clap::Args;
 
-use super::report::{compile_and_report, DiagArgs, SceneArg};
+use super::report::{compile_and_report, DiagArgs, JsonTo, SceneArg};
 
 #[derive(Debug, Clone, Args)]
 pub struct CheckArgs {
@@ -16,7 +16,7 @@ pub struct CheckArgs {
 }
 
 pub fn run(args: &CheckArgs) -> ExitCode {
-    let compiled = compile_and_report(&args.scene.file, &args.diag);
+    let compiled = compile_and_report(&args.scene.file, &args.diag, JsonTo::Stdout);
     if compiled.has_errors() {
         ExitCode::FAILURE
     } else {

@@ -17,7 +17,9 @@ use clap::{Parser, Subcommand};
 pub use check::CheckArgs;
 pub use ir::IrArgs;
 pub use render::{AccelArg, RenderArgs};
-pub use report::{DiagArgs, DiagnosticFormat};
+pub use report::{
+    compile_and_report, print_diagnostics, DiagArgs, DiagnosticFormat, JsonTo, SceneArg,
+};
 
 /// scnc: a declarative scene-language compiler and ray tracer.
 #[derive(Debug, Parser)]

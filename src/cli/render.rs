@@ -14,7 +14,7 @@ use std::time::{Duration, Instant};
 
 use clap::{Args, ValueEnum};
 
-use super::report::{compile_and_report, print_diagnostic_list, DiagArgs, SceneArg};
+use super::report::{compile_and_report, print_diagnostic_list, DiagArgs, JsonTo, SceneArg};
 use super::stats::PhaseStats;
 use crate::assets::FsLoader;
 use crate::bvh::AccelKind;
@@ -88,7 +88,7 @@ fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
 pub fn run(args: &RenderArgs) -> ExitCode {
     let mut phases = PhaseStats::default();
     let t = Instant::now();
-    let compiled = compile_and_report(&args.scene.file, &args.diag);
+    let compiled = compile_and_report(&args.scene.file, &args.diag, JsonTo::Stdout);
     phases.compile = t.elapsed();
     let Some(mut desc) = compiled.scene else {
         return ExitCode::FAILURE;
@@ -97,7 +97,12 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         None => None,
         Some(Ok(i)) => Some(i),
         Some(Err(d)) => {
-            print_diagnostic_list(&[*d], &compiled.sources, args.diag.diagnostic_format);
+            print_diagnostic_list(
+                &[*d],
+                &compiled.sources,
+                args.diag.diagnostic_format,
+                JsonTo::Stdout,
+            );
             return ExitCode::FAILURE;
         }
     };
@@ -119,7 +124,12 @@ pub fn run(args: &RenderArgs) -> ExitCode {
     let scene = match built {
         Ok(scene) => scene,
         Err(diags) => {
-            print_diagnostic_list(&diags, &compiled.sources, args.diag.diagnostic_format);
+            print_diagnostic_list(
+                &diags,
+                &compiled.sources,
+                args.diag.diagnostic_format,
+                JsonTo::Stdout,
+            );
             return ExitCode::FAILURE;
         }
     };
@@ -127,6 +137,7 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         &scene.warnings,
         &compiled.sources,
         args.diag.diagnostic_format,
+        JsonTo::Stdout,
     );
     phases.asset_load = scene.timings.asset_load;
     phases.accel_build = scene.timings.accel_build;
@@ -170,7 +181,12 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             Err(e) => {
                 failed = true;
                 let d = e.to_diagnostic(span);
-                print_diagnostic_list(&[d], &compiled.sources, args.diag.diagnostic_format);
+                print_diagnostic_list(
+                    &[d],
+                    &compiled.sources,
+                    args.diag.diagnostic_format,
+                    JsonTo::Stdout,
+                );
             }
         }
     }

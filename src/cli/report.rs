@@ -38,26 +38,47 @@ pub struct SceneArg {
     pub file: PathBuf,
 }
 
+/// Where a JSON diagnostics document goes: stdout for `check` (it is the command's output),
+/// stderr for commands whose stdout is something else (`ir`, `render`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum JsonTo {
+    Stdout,
+    Stderr,
+}
+
 /// Compiles `path` from disk and prints its diagnostics (human format: to stderr).
-pub fn compile_and_report(path: &Path, diag: &DiagArgs) -> Compiled {
+pub fn compile_and_report(path: &Path, diag: &DiagArgs, json_to: JsonTo) -> Compiled {
     let loader = FsLoader::new();
     let compiled = compile_file(path, &loader);
-    print_diagnostics(&compiled, diag.diagnostic_format);
+    print_diagnostics(&compiled, diag.diagnostic_format, json_to);
     compiled
 }
 
-/// Prints a compile's diagnostics: human to stderr (fancy on a terminal), JSON to stdout.
-pub fn print_diagnostics(compiled: &Compiled, format: DiagnosticFormat) {
-    print_diagnostic_list(&compiled.diagnostics, &compiled.sources, format);
+/// Prints a compile's diagnostics: human to stderr (fancy on a terminal), JSON as `json_to`
+/// says.
+pub fn print_diagnostics(compiled: &Compiled, format: DiagnosticFormat, json_to: JsonTo) {
+    print_diagnostic_list(&compiled.diagnostics, &compiled.sources, format, json_to);
 }
 
-/// Prints diagnostics of any stage whose spans point into `sources`. Nothing for an empty list.
-pub fn print_diagnostic_list(diags: &[Diagnostic], sources: &SourceMap, format: DiagnosticFormat) {
+/// Prints diagnostics of any stage whose spans point into `sources` (build and write errors
+/// too). Prints nothing for an empty list.
+pub fn print_diagnostic_list(
+    diags: &[Diagnostic],
+    sources: &SourceMap,
+    format: DiagnosticFormat,
+    json_to: JsonTo,
+) {
     if diags.is_empty() {
         return;
     }
     match format {
-        DiagnosticFormat::Json => println!("{}", render_json(diags, sources)),
+        DiagnosticFormat::Json => {
+            let json = render_json(diags, sources);
+            match json_to {
+                JsonTo::Stdout => println!("{json}"),
+                JsonTo::Stderr => eprintln!("{json}"),
+            }
+        }
         DiagnosticFormat::Human => {
             let tty = std::io::stderr().is_terminal();
             for d in diags {

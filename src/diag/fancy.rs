@@ -14,7 +14,7 @@ use crate::source::{FileId, SourceMap};
 
 #[derive(Debug)]
 struct Report {
-    severity: Severity,
+    severity: miette::Severity,
     code: &'static str,
     message: String,
     help: Option<String>,
@@ -37,10 +37,7 @@ impl miette::Diagnostic for Report {
     }
 
     fn severity(&self) -> Option<miette::Severity> {
-        Some(match self.severity {
-            Severity::Error => miette::Severity::Error,
-            Severity::Warning => miette::Severity::Warning,
-        })
+        Some(self.severity)
     }
 
     fn help<'a>(&'a self) -> Option<Box<dyn fmt::Display + 'a>> {
@@ -79,7 +76,8 @@ fn to_report(d: &Diagnostic, sources: &SourceMap) -> Report {
             labels.push(span);
         } else {
             related.push(Report {
-                severity: Severity::Warning,
+                // Context in another file: shown as advice, not as a second problem.
+                severity: miette::Severity::Advice,
                 code: "",
                 message: l.message.clone(),
                 help: None,
@@ -90,7 +88,10 @@ fn to_report(d: &Diagnostic, sources: &SourceMap) -> Report {
         }
     }
     Report {
-        severity: d.severity,
+        severity: match d.severity {
+            Severity::Error => miette::Severity::Error,
+            Severity::Warning => miette::Severity::Warning,
+        },
         code: d.code,
         message: d.message.clone(),
         help: d.help.clone(),

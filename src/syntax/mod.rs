@@ -28,14 +28,61 @@ pub(crate) struct SceneParser;
 pub fn parse(file: FileId, text: &str) -> (SceneFile, Vec<Diagnostic>) {
     let scanned = scan::scan(text);
     if scanned.too_deep_at.is_none() {
-        if let Ok(mut pairs) = SceneParser::parse(Rule::file, text) {
-            let conv = convert::Converter::new(file, 0);
-            let file_pair = pairs.next().expect("pest: Rule::file yields one pair");
-            let statements = conv.file(file_pair);
-            return (SceneFile { statements }, conv.errors.into_inner());
+        if let Some(ok) = parse_batched(file, text, &scanned) {
+            return ok;
+        }
+        if let Some(ok) = parse_range(file, text, 0) {
+            return ok;
         }
     }
     parse_chunks(file, text, &scanned)
+}
+
+/// Bytes of source parsed per pest call on the fast path. pest keeps the whole token queue of
+/// a parse alive until it is converted, so parsing in batches bounds that memory.
+const BATCH_BYTES: usize = 64 * 1024;
+
+/// Parses `text[base..]` as a whole sequence of statements, or `None` on a syntax error.
+fn parse_range(file: FileId, text: &str, base: usize) -> Option<(SceneFile, Vec<Diagnostic>)> {
+    let mut pairs = SceneParser::parse(Rule::file, &text[base..]).ok()?;
+    let conv = convert::Converter::new(file, base);
+    let file_pair = pairs.next().expect("pest: Rule::file yields one pair");
+    let statements = conv.file(file_pair);
+    Some((SceneFile { statements }, conv.errors.into_inner()))
+}
+
+/// Fast path for valid files: parses batches of about [`BATCH_BYTES`] cut at resync points.
+/// A resync point can fall inside a statement (a name starting a continuation line), so any
+/// failing batch sends the caller back to parsing the file whole.
+fn parse_batched(
+    file: FileId,
+    text: &str,
+    scanned: &scan::Scan,
+) -> Option<(SceneFile, Vec<Diagnostic>)> {
+    if text.len() <= BATCH_BYTES {
+        return None;
+    }
+    let mut statements = Vec::new();
+    let mut diags = Vec::new();
+    let mut start = 0;
+    let mut cuts = scanned.resync.iter().copied().peekable();
+    while start < text.len() {
+        let mut end = text.len();
+        while let Some(&c) = cuts.peek() {
+            cuts.next();
+            if c >= start + BATCH_BYTES {
+                end = c;
+                break;
+            }
+        }
+        let mut pairs = SceneParser::parse(Rule::file, &text[start..end]).ok()?;
+        let conv = convert::Converter::new(file, start);
+        let file_pair = pairs.next().expect("pest: Rule::file yields one pair");
+        statements.extend(conv.file(file_pair));
+        diags.extend(conv.errors.into_inner());
+        start = end;
+    }
+    Some((SceneFile { statements }, diags))
 }
 
 /// Error recovery: parse each chunk between resync points separately.

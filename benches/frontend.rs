@@ -1,0 +1,171 @@
+//! Front-end benchmark (a program, not a test): `cargo bench --bench frontend`.
+//!
+//! Generates in memory a scene with 50,000+ statements plus one inline mesh of 1,000,000
+//! vertices (a 1000 × 1000 grid, ~2M triangles), compiles it with `compile_source`, and reports
+//! throughput (MB of source per second) and peak heap use relative to the source size, measured
+//! by a counting global allocator. Figures go to docs/frontend-bench.md by hand.
+
+// A global allocator needs `unsafe impl`; it only forwards to the system allocator.
+#![allow(unsafe_code)]
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::fmt::Write;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Instant;
+
+use scnc::assets::MemLoader;
+use scnc::compile::compile_source;
+
+struct Counting;
+
+static CURRENT: AtomicUsize = AtomicUsize::new(0);
+static PEAK: AtomicUsize = AtomicUsize::new(0);
+
+// SAFETY: forwards every call to `System` unchanged; only updates counters.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        let p = System.alloc(layout);
+        if !p.is_null() {
+            let now = CURRENT.fetch_add(layout.size(), Ordering::Relaxed) + layout.size();
+            PEAK.fetch_max(now, Ordering::Relaxed);
+        }
+        p
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        System.dealloc(ptr, layout);
+        CURRENT.fetch_sub(layout.size(), Ordering::Relaxed);
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        let p = System.realloc(ptr, layout, new_size);
+        if !p.is_null() {
+            if new_size >= layout.size() {
+                let grow = new_size - layout.size();
+                let now = CURRENT.fetch_add(grow, Ordering::Relaxed) + grow;
+                PEAK.fetch_max(now, Ordering::Relaxed);
+            } else {
+                CURRENT.fetch_sub(layout.size() - new_size, Ordering::Relaxed);
+            }
+        }
+        p
+    }
+}
+
+#[global_allocator]
+static ALLOC: Counting = Counting;
+
+const GRID: usize = 1000;
+
+fn statements_scene(n: usize) -> String {
+    let mut s =
+        String::from("scnc 1\ncamera main { eye (0, 50, -200)  target (0, 0, 0)  fov 40deg }\n");
+    let per = n / 5;
+    for i in 0..per {
+        let _ = writeln!(s, "let k{i} = {}.5 * 2 + {i}", i % 7);
+        let _ = writeln!(
+            s,
+            "material m{i} = phong {{ diffuse rgb(0.{}, 0.5, 0.25)  specular 0.1 }}",
+            i % 9
+        );
+        let _ = writeln!(s, "mesh b{i} = box {{ size ({}.5, 1, 1) }}", 1 + i % 3);
+        let _ = writeln!(
+            s,
+            "object b{i} {{ material m{i}  transform {{ rotate y {}deg  translate (k{i}, 0, {i}) }} }}",
+            i % 360
+        );
+        let _ = writeln!(s, "group g{i} {{ object b{i} {{ material m{i} }} }}");
+    }
+    s.push_str("light sun = point { position (0, 100, 0)  intensity 1000 }\n");
+    s
+}
+
+fn mesh_scene() -> String {
+    let mut s = String::with_capacity(80 * GRID * GRID);
+    s.push_str("scnc 1\ncamera main { eye (0, 50, -200)  target (0, 0, 0)  fov 40deg }\n");
+    s.push_str("material grey = phong { diffuse 0.5 }\nmesh terrain = inline {\n  positions [");
+    for j in 0..GRID {
+        for i in 0..GRID {
+            let h = ((i * 7 + j * 13) % 100) as f32 * 0.013;
+            let _ = write!(
+                s,
+                "({:.3}, {:.3}, {:.3}) ",
+                i as f32 * 0.1,
+                h,
+                j as f32 * 0.1
+            );
+        }
+        s.push('\n');
+    }
+    s.push_str("]\n  indices [");
+    for j in 0..GRID - 1 {
+        for i in 0..GRID - 1 {
+            let a = j * GRID + i;
+            let _ = write!(
+                s,
+                "{} {} {} {} {} {} ",
+                a,
+                a + GRID,
+                a + 1,
+                a + 1,
+                a + GRID,
+                a + GRID + 1
+            );
+        }
+        s.push('\n');
+    }
+    s.push_str("]\n}\nobject terrain { material grey }\nlight sun = point { position (0, 100, 0)  intensity 1000 }\n");
+    s
+}
+
+fn measure(label: &str, text: &str) {
+    let loader = MemLoader::new();
+    // Best of three runs for time; peak heap from the first, relative to the heap before it.
+    let mut best = f64::MAX;
+    let mut peak_extra = 0;
+    for run in 0..3 {
+        let base = CURRENT.load(Ordering::Relaxed);
+        PEAK.store(base, Ordering::Relaxed);
+        let t = Instant::now();
+        let compiled = compile_source("bench.scn", text, &loader);
+        let secs = t.elapsed().as_secs_f64();
+        assert!(
+            compiled.scene.is_some(),
+            "{:#?}",
+            &compiled.diagnostics[..compiled.diagnostics.len().min(3)]
+        );
+        if run == 0 {
+            peak_extra = PEAK.load(Ordering::Relaxed) - base;
+        }
+        drop(compiled);
+        best = best.min(secs);
+    }
+    let mb = text.len() as f64 / 1e6;
+    println!(
+        "{label:<34} {mb:8.1} MB  {:7.1} ms  {:7.1} MB/s  peak heap {:7.1} MB = {:4.2} x source",
+        best * 1e3,
+        mb / best,
+        peak_extra as f64 / 1e6,
+        peak_extra as f64 / text.len() as f64
+    );
+}
+
+fn main() {
+    let statements = statements_scene(50_000);
+    let lines = statements.lines().count();
+    measure(&format!("{lines} statements"), &statements);
+    if std::env::var_os("BENCH_STATEMENTS_ONLY").is_some() {
+        return;
+    }
+    let mesh = mesh_scene();
+    measure("1,000,000-vertex inline mesh", &mesh);
+    let mut both = statements;
+    both.push_str(
+        &mesh
+            .split_once('\n')
+            .map_or("", |(_, rest)| rest)
+            .replace("camera main", "camera main2")
+            .replace("light sun", "light sun2"),
+    );
+    measure("both in one file", &both);
+}
