@@ -147,11 +147,37 @@ pub fn watertight_a(r: &WatertightRay, p0: Vec3A, p1: Vec3A, p2: Vec3A) -> Optio
     if !(t > 0.0 && t < r.t_max) {
         return None;
     }
+    // A conservative bound on the rounding error of `t` (pbrt-v4, "Conservative Ray–Bounds
+    // Intersections" and §6.8.6): a hit closer than it may be the surface the ray starts on,
+    // seen through rounding. Without it, a ray leaving a large triangle near its plane (a shadow
+    // ray from a floor) can hit that triangle again, as its edge functions round with the
+    // triangle's extent, not with the tiny distance. Only hits that passed every other test
+    // pay for it.
+    let max_zt = a.z.abs().max(b.z.abs()).max(c.z.abs());
+    let max_xt = a.x.abs().max(b.x.abs()).max(c.x.abs());
+    let max_yt = a.y.abs().max(b.y.abs()).max(c.y.abs());
+    let delta_z = gamma(3) * max_zt;
+    let delta_x = gamma(5) * (max_xt + max_zt);
+    let delta_y = gamma(5) * (max_yt + max_zt);
+    let delta_e = 2.0 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
+    let max_e = u.abs().max(v.abs()).max(w.abs());
+    let delta_t =
+        3.0 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * inv_det.abs();
+    if t <= delta_t {
+        return None;
+    }
     Some(TriangleHit {
         t,
         u: v * inv_det,
         v: w * inv_det,
     })
+}
+
+/// The bound `n·ε / (1 − n·ε)` on the relative error of `n` rounded float operations.
+#[inline(always)]
+fn gamma(n: u32) -> f32 {
+    let e = n as f32 * (f32::EPSILON * 0.5);
+    e / (1.0 - e)
 }
 
 #[cfg(test)]
