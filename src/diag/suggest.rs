@@ -1,21 +1,29 @@
 //! "Did you mean ...?": the closest candidate to a misspelled name, key or keyword.
 
-/// Levenshtein distance between two strings (by chars), with a small cap on work: names longer
-/// than 64 chars are never close to anything.
+/// Edit distance between two strings (by chars) counting an adjacent transposition as one edit
+/// (optimal string alignment), since swapped letters are the most common typo (`mian` for
+/// `main`). Names longer than 64 chars are never close to anything.
 pub fn edit_distance(a: &str, b: &str) -> usize {
     let a: Vec<char> = a.chars().collect();
     let b: Vec<char> = b.chars().collect();
     if a.len() > 64 || b.len() > 64 {
         return usize::MAX;
     }
+    // Three rolling rows: i-2, i-1, i.
+    let mut before: Vec<usize> = vec![0; b.len() + 1];
     let mut prev: Vec<usize> = (0..=b.len()).collect();
     let mut cur = vec![0; b.len() + 1];
-    for (i, ca) in a.iter().enumerate() {
+    for i in 0..a.len() {
         cur[0] = i + 1;
-        for (j, cb) in b.iter().enumerate() {
-            let cost = usize::from(ca != cb);
-            cur[j + 1] = (prev[j] + cost).min(prev[j + 1] + 1).min(cur[j] + 1);
+        for j in 0..b.len() {
+            let cost = usize::from(a[i] != b[j]);
+            let mut d = (prev[j] + cost).min(prev[j + 1] + 1).min(cur[j] + 1);
+            if i > 0 && j > 0 && a[i] == b[j - 1] && a[i - 1] == b[j] {
+                d = d.min(before[j - 1] + 1);
+            }
+            cur[j + 1] = d;
         }
+        std::mem::swap(&mut before, &mut prev);
         std::mem::swap(&mut prev, &mut cur);
     }
     prev[b.len()]
@@ -69,6 +77,8 @@ mod tests {
         assert_eq!(edit_distance("kitten", "sitting"), 3);
         assert_eq!(edit_distance("", "abc"), 3);
         assert_eq!(edit_distance("same", "same"), 0);
+        assert_eq!(edit_distance("mian", "main"), 1, "a swap of neighbours is one edit");
+        assert_eq!(edit_distance("ca", "abc"), 3, "optimal string alignment, not full Damerau");
     }
 
     #[test]
