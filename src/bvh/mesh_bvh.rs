@@ -173,13 +173,14 @@ impl MeshBvh {
             for (k, tri) in self.tris[range.clone()].iter().enumerate() {
                 if let Some(h) = T::test(&pre, *t_max, tri) {
                     *t_max = h.t;
-                    best = Some((self.ids[range.start + k], h.u, h.v));
+                    // The slot, not the id: `ids` is read once, for the final hit only.
+                    best = Some((range.start + k, h.u, h.v));
                 }
             }
             false
         });
-        best.map(|(id, u, v)| {
-            let (part, prim) = self.locate(id);
+        best.map(|(slot, u, v)| {
+            let (part, prim) = self.locate(self.ids[slot]);
             MeshHit { part, prim, u, v }
         })
     }
