@@ -28,6 +28,14 @@ impl PrimBox {
     }
 }
 
+/// A primitive to build over: its bounds and the caller's index. The builder reorders these in
+/// place, so every pass over a node's primitives reads memory sequentially.
+#[derive(Debug, Clone, Copy)]
+pub struct PrimRef {
+    pub bounds: PrimBox,
+    pub id: u32,
+}
+
 /// A built hierarchy: `nodes[0]` is the root (if any); leaves refer to `order[first..first+count]`,
 /// which holds the caller's primitive indices.
 #[derive(Debug, Default)]
@@ -43,14 +51,17 @@ const SAH_MAX_DEPTH: usize = MAX_DEPTH - 34;
 /// Cost of one traversal step relative to one primitive test.
 const TRAVERSAL_COST: f32 = 1.0;
 
-/// Builds a BVH over `boxes[r]` for every `r` in `refs`.
-pub fn build(boxes: &[PrimBox], mut refs: Vec<u32>) -> Built {
+/// Builds a BVH over `refs`; the leaf order names their ids.
+pub fn build(mut refs: Vec<PrimRef>) -> Built {
     if refs.is_empty() {
         return Built::default();
     }
     let mut nodes = Vec::with_capacity(refs.len() / 2 + 1);
-    build_node(boxes, &mut refs, 0, 0, &mut nodes);
-    Built { nodes, order: refs }
+    build_node(&mut refs, 0, 0, &mut nodes);
+    Built {
+        nodes,
+        order: refs.iter().map(|r| r.id).collect(),
+    }
 }
 
 fn half_area(min: Vec3A, max: Vec3A) -> f32 {
@@ -66,11 +77,11 @@ fn to_aabb(min: Vec3A, max: Vec3A) -> Aabb {
 }
 
 /// Bounds of the primitives and of their (doubled) centroids.
-fn bounds_of(boxes: &[PrimBox], refs: &[u32]) -> (Vec3A, Vec3A, Vec3A, Vec3A) {
+fn bounds_of(refs: &[PrimRef]) -> (Vec3A, Vec3A, Vec3A, Vec3A) {
     let inf = Vec3A::splat(f32::INFINITY);
     let (mut lo, mut hi, mut clo, mut chi) = (inf, -inf, inf, -inf);
-    for &r in refs {
-        let b = &boxes[r as usize];
+    for r in refs {
+        let b = &r.bounds;
         lo = lo.min(b.min);
         hi = hi.max(b.max);
         let c = b.doubled_centroid();
@@ -108,13 +119,13 @@ fn bin_of(c: Vec3A, axis: usize, clo: Vec3A, scale: Vec3A, bins: usize) -> usize
     (((c[axis] - clo[axis]) * scale[axis]) as usize).min(bins - 1)
 }
 
-fn find_sah_split(boxes: &[PrimBox], refs: &[u32], clo: Vec3A, chi: Vec3A) -> Option<Split> {
+fn find_sah_split(refs: &[PrimRef], clo: Vec3A, chi: Vec3A) -> Option<Split> {
     let bins = if refs.len() < 256 { 16 } else { MAX_BINS };
     let extent = chi - clo;
     let scale = Vec3A::splat(bins as f32 * (1.0 - 1e-6)) / extent;
     let mut table = [[EMPTY_BIN; MAX_BINS]; 3];
-    for &r in refs {
-        let b = &boxes[r as usize];
+    for r in refs {
+        let b = &r.bounds;
         let c = b.doubled_centroid();
         for (axis, row) in table.iter_mut().enumerate() {
             let bin = &mut row[bin_of(c, axis, clo, scale, bins)];
@@ -159,7 +170,7 @@ fn find_sah_split(boxes: &[PrimBox], refs: &[u32], clo: Vec3A, chi: Vec3A) -> Op
 }
 
 /// Reorders `refs` so that the first half has the smaller centroids on the widest axis.
-fn median_split(boxes: &[PrimBox], refs: &mut [u32], clo: Vec3A, chi: Vec3A) -> (usize, usize) {
+fn median_split(refs: &mut [PrimRef], clo: Vec3A, chi: Vec3A) -> (usize, usize) {
     let e = chi - clo;
     let axis = if e.x >= e.y && e.x >= e.z {
         0
@@ -169,15 +180,15 @@ fn median_split(boxes: &[PrimBox], refs: &mut [u32], clo: Vec3A, chi: Vec3A) -> 
         2
     };
     let mid = refs.len() / 2;
-    let key = |r: &u32| boxes[*r as usize].doubled_centroid()[axis];
-    refs.select_nth_unstable_by(mid, |a, b| key(a).total_cmp(&key(b)).then(a.cmp(b)));
+    let key = |r: &PrimRef| r.bounds.doubled_centroid()[axis];
+    refs.select_nth_unstable_by(mid, |a, b| key(a).total_cmp(&key(b)).then(a.id.cmp(&b.id)));
     (mid, axis)
 }
 
-fn partition(refs: &mut [u32], mut goes_left: impl FnMut(u32) -> bool) -> usize {
+fn partition(refs: &mut [PrimRef], mut goes_left: impl FnMut(&PrimRef) -> bool) -> usize {
     let mut mid = 0;
     for i in 0..refs.len() {
-        if goes_left(refs[i]) {
+        if goes_left(&refs[i]) {
             refs.swap(i, mid);
             mid += 1;
         }
@@ -186,16 +197,16 @@ fn partition(refs: &mut [u32], mut goes_left: impl FnMut(u32) -> bool) -> usize 
 }
 
 /// Builds the subtree over `refs` (which sit at `base` in the final order) into `out`.
-fn build_node(boxes: &[PrimBox], refs: &mut [u32], base: u32, depth: usize, out: &mut Vec<Node>) {
+fn build_node(refs: &mut [PrimRef], base: u32, depth: usize, out: &mut Vec<Node>) {
     let n = refs.len();
-    let (lo, hi, clo, chi) = bounds_of(boxes, refs);
+    let (lo, hi, clo, chi) = bounds_of(refs);
     let bounds = to_aabb(lo, hi);
     if n == 1 {
         out.push(Node::leaf(&bounds, base, 1));
         return;
     }
     let sah = if depth < SAH_MAX_DEPTH {
-        find_sah_split(boxes, refs, clo, chi)
+        find_sah_split(refs, clo, chi)
     } else {
         None
     };
@@ -216,28 +227,22 @@ fn build_node(boxes: &[PrimBox], refs: &mut [u32], base: u32, depth: usize, out:
             let bins = if n < 256 { 16 } else { MAX_BINS };
             let scale = Vec3A::splat(bins as f32 * (1.0 - 1e-6)) / (chi - clo);
             let mid = partition(refs, |r| {
-                bin_of(
-                    boxes[r as usize].doubled_centroid(),
-                    s.axis,
-                    clo,
-                    scale,
-                    bins,
-                ) < s.bin
+                bin_of(r.bounds.doubled_centroid(), s.axis, clo, scale, bins) < s.bin
             });
             if mid == 0 || mid == n {
-                median_split(boxes, refs, clo, chi)
+                median_split(refs, clo, chi)
             } else {
                 (mid, s.axis)
             }
         }
-        None => median_split(boxes, refs, clo, chi),
+        None => median_split(refs, clo, chi),
     };
     let (left, right) = refs.split_at_mut(mid);
     let right_base = base + mid as u32;
     if n >= PARALLEL_MIN {
         let (l, r) = rayon::join(
-            || subtree(boxes, left, base, depth + 1),
-            || subtree(boxes, right, right_base, depth + 1),
+            || subtree(left, base, depth + 1),
+            || subtree(right, right_base, depth + 1),
         );
         let at = out.len() as u32;
         out.push(Node::interior(&bounds, at + 1 + l.len() as u32, axis));
@@ -246,15 +251,15 @@ fn build_node(boxes: &[PrimBox], refs: &mut [u32], base: u32, depth: usize, out:
     } else {
         let at = out.len();
         out.push(Node::interior(&bounds, 0, axis));
-        build_node(boxes, left, base, depth + 1, out);
+        build_node(left, base, depth + 1, out);
         out[at].index = out.len() as u32;
-        build_node(boxes, right, right_base, depth + 1, out);
+        build_node(right, right_base, depth + 1, out);
     }
 }
 
-fn subtree(boxes: &[PrimBox], refs: &mut [u32], base: u32, depth: usize) -> Vec<Node> {
+fn subtree(refs: &mut [PrimRef], base: u32, depth: usize) -> Vec<Node> {
     let mut v = Vec::with_capacity(refs.len() / 2 + 1);
-    build_node(boxes, refs, base, depth, &mut v);
+    build_node(refs, base, depth, &mut v);
     v
 }
 

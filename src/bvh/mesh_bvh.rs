@@ -5,7 +5,7 @@
 use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
 
-use super::build::{build, Built, PrimBox};
+use super::build::{build, Built, PrimBox, PrimRef};
 use super::wide::{collapse, traverse4, Wide, WideNode, WideRay};
 use super::MeshRef;
 use crate::geom::triangle::{moller_trumbore, watertight_a, TriangleHit, WatertightRay};
@@ -92,33 +92,30 @@ impl MeshBvh {
     /// instances are merged, each placed once, so nothing is duplicated).
     ///
     /// Temporaries are dropped as soon as the next step no longer needs them, so that the peak
-    /// during the build (boxes and binary nodes, about 60 bytes per triangle) stays below the
-    /// size of the result (about 90).
+    /// during the build (primitive references and binary nodes, about 75 bytes per triangle)
+    /// stays below the size of the result (about 90).
     pub fn build(parts: &[MeshRef<'_>]) -> MeshBvh {
         let total: usize = parts.iter().map(|m| m.triangles.len()).sum();
-        let mut boxes = Vec::with_capacity(total);
         let mut refs = Vec::with_capacity(total);
         let mut part_starts = Vec::with_capacity(parts.len());
+        let mut id = 0u32;
         for mesh in parts {
-            part_starts.push(boxes.len() as u32);
+            part_starts.push(id);
             for t in mesh.triangles {
-                let Some(tri) = triangle_vertices(mesh, t) else {
-                    boxes.push(PrimBox {
-                        min: Vec3A::ZERO,
-                        max: Vec3A::ZERO,
+                if let Some(tri) = triangle_vertices(mesh, t) {
+                    let [a, b, c] = tri.map(Vec3A::from);
+                    refs.push(PrimRef {
+                        bounds: PrimBox {
+                            min: a.min(b).min(c),
+                            max: a.max(b).max(c),
+                        },
+                        id,
                     });
-                    continue;
-                };
-                let [a, b, c] = tri.map(Vec3A::from);
-                refs.push(boxes.len() as u32);
-                boxes.push(PrimBox {
-                    min: a.min(b).min(c),
-                    max: a.max(b).max(c),
-                });
+                }
+                id += 1;
             }
         }
-        let Built { nodes, order } = build(&boxes, refs);
-        drop(boxes);
+        let Built { nodes, order } = build(refs);
         let tree = collapse(&nodes);
         drop(nodes);
         let mut bvh = MeshBvh {
@@ -176,13 +173,14 @@ impl MeshBvh {
             for (k, tri) in self.tris[range.clone()].iter().enumerate() {
                 if let Some(h) = T::test(&pre, *t_max, tri) {
                     *t_max = h.t;
-                    best = Some((self.ids[range.start + k], h.u, h.v));
+                    // The slot, not the id: `ids` is read once, for the final hit only.
+                    best = Some((range.start + k, h.u, h.v));
                 }
             }
             false
         });
-        best.map(|(id, u, v)| {
-            let (part, prim) = self.locate(id);
+        best.map(|(slot, u, v)| {
+            let (part, prim) = self.locate(self.ids[slot]);
             MeshHit { part, prim, u, v }
         })
     }

@@ -4,8 +4,9 @@
 //! [`Accel`] is the one entry point the renderer uses. [`AccelKind::None`] tests every triangle
 //! of every instance (the brute-force oracle that accelerated results are tested against);
 //! [`AccelKind::Bvh`] is the fast path: a two-level BVH (one binned-SAH BVH per mesh in object
-//! space, a top-level BVH over instances), flattened depth-first, traversed nearest child first
-//! with a fixed stack. See `docs/bvh.md` for the design and measured figures.
+//! space, a top-level BVH over instances), collapsed into flat 4-wide nodes tested with one SSE
+//! slab test each, traversed nearest child first with a fixed stack, leaves tested with the
+//! watertight ray–triangle test. See `docs/bvh.md` for the design and measured figures.
 
 mod brute_force;
 mod build;
@@ -76,9 +77,9 @@ pub enum TriangleTest {
     Watertight,
 }
 
-/// Counts reported by `--stats`. For the BVH, `triangles` counts each mesh once (instances
-/// share it) and `bytes` is everything the structure holds: nodes, leaf-ordered vertices,
-/// triangle indices and instances.
+/// Counts reported by `--stats`. For the BVH, `nodes` counts 4-wide nodes and `leaves` their
+/// leaf children, `triangles` counts each mesh once (instances share it), and `bytes` is
+/// everything the structure holds: nodes, leaf-ordered vertices, triangle ids and instances.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct AccelStats {
     pub nodes: usize,

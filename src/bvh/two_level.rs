@@ -7,7 +7,7 @@
 use glam::{Affine3A, Vec3A};
 use rayon::prelude::*;
 
-use super::build::{build, PrimBox};
+use super::build::{build, PrimBox, PrimRef};
 use super::mesh_bvh::{MeshBvh, MollerTrumbore, TriTest, Watertight};
 use super::wide::{collapse, traverse4, Wide, WideNode, WideRay};
 use super::{AccelStats, Hit, Instance, MeshRef, TriangleTest};
@@ -121,14 +121,18 @@ impl TwoLevel {
                 world_bounds: merged.bounds(),
             });
         }
-        let boxes: Vec<PrimBox> = placed
+        let refs: Vec<PrimRef> = placed
             .iter()
-            .map(|p| PrimBox {
-                min: Vec3A::from(p.world_bounds.min),
-                max: Vec3A::from(p.world_bounds.max),
+            .enumerate()
+            .map(|(i, p)| PrimRef {
+                bounds: PrimBox {
+                    min: Vec3A::from(p.world_bounds.min),
+                    max: Vec3A::from(p.world_bounds.max),
+                },
+                id: i as u32,
             })
             .collect();
-        let top = build(&boxes, (0..placed.len() as u32).collect());
+        let top = build(refs);
         TwoLevel {
             meshes: bvhs,
             merged_meshes: merged_instances

@@ -99,21 +99,26 @@ fn stack_need(nodes: &[WideNode], i: usize) -> usize {
 /// Writes the wide node for binary interior node `i` (and, after it, its subtrees); returns its
 /// index.
 fn emit(bin: &[Node], i: usize, out: &mut Vec<WideNode>) -> u32 {
-    let mut kids: Vec<usize> = vec![i + 1, bin[i].index as usize];
-    while kids.len() < WIDTH {
-        let open = kids
-            .iter()
-            .enumerate()
-            .filter(|(_, &k)| !bin[k].is_leaf())
-            .max_by(|a, b| {
-                let area = |k: usize| bin[k].bounds().surface_area();
-                area(*a.1).total_cmp(&area(*b.1)).then(b.0.cmp(&a.0))
-            })
-            .map(|(pos, _)| pos);
-        let Some(pos) = open else { break };
+    let mut kids = [i + 1, bin[i].index as usize, 0, 0];
+    let mut n = 2;
+    while n < WIDTH {
+        // Open the interior child of largest area (the first such on ties).
+        let mut open: Option<(usize, f32)> = None;
+        for (pos, &k) in kids[..n].iter().enumerate() {
+            if !bin[k].is_leaf() {
+                let area = bin[k].bounds().surface_area();
+                if open.map_or(true, |(_, a)| area > a) {
+                    open = Some((pos, area));
+                }
+            }
+        }
+        let Some((pos, _)) = open else { break };
         let k = kids[pos];
-        kids.splice(pos..=pos, [k + 1, bin[k].index as usize]);
+        kids[pos] = k + 1;
+        kids[n] = bin[k].index as usize;
+        n += 1;
     }
+    let kids = &kids[..n];
     let at = out.len();
     out.push(EMPTY_NODE);
     for (lane, &k) in kids.iter().enumerate() {

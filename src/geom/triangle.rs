@@ -63,8 +63,11 @@ pub struct WatertightRay {
 }
 
 impl WatertightRay {
+    #[inline]
     pub fn new(ray: &Ray) -> WatertightRay {
-        let a = ray.dir.abs();
+        const AXES: [Vec3A; 3] = [Vec3A::X, Vec3A::Y, Vec3A::Z];
+        let d = ray.dir;
+        let a = d.abs();
         let kz = if a.x >= a.y && a.x >= a.z {
             0
         } else if a.y >= a.z {
@@ -72,20 +75,21 @@ impl WatertightRay {
         } else {
             2
         };
-        let mut kx = (kz + 1) % 3;
-        let mut ky = (kx + 1) % 3;
+        let dz = [d.x, d.y, d.z][kz];
         // Keep the winding of the permuted space the same as the original one.
-        if ray.dir[kz] < 0.0 {
-            std::mem::swap(&mut kx, &mut ky);
-        }
-        let dz = ray.dir[kz];
-        let (sx, sy, sz) = (ray.dir[kx] / dz, ray.dir[ky] / dz, 1.0 / dz);
-        let mut rows = [Vec3A::ZERO; 3];
-        rows[0][kx] = 1.0;
-        rows[0][kz] = -sx;
-        rows[1][ky] = 1.0;
-        rows[1][kz] = -sy;
-        rows[2][kz] = sz;
+        let (kx, ky) = if dz < 0.0 {
+            ((kz + 2) % 3, (kz + 1) % 3)
+        } else {
+            ((kz + 1) % 3, (kz + 2) % 3)
+        };
+        let dv = [d.x, d.y, d.z];
+        let (sx, sy, sz) = (dv[kx] / dz, dv[ky] / dz, 1.0 / dz);
+        // Rows e_kx − Sx·e_kz, e_ky − Sy·e_kz, Sz·e_kz (their zero entries stay exact zeros).
+        let rows = [
+            AXES[kx] - sx * AXES[kz],
+            AXES[ky] - sy * AXES[kz],
+            sz * AXES[kz],
+        ];
         WatertightRay {
             origin: ray.origin.into(),
             t_max: ray.t_max,
