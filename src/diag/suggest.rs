@@ -77,8 +77,16 @@ mod tests {
         assert_eq!(edit_distance("kitten", "sitting"), 3);
         assert_eq!(edit_distance("", "abc"), 3);
         assert_eq!(edit_distance("same", "same"), 0);
-        assert_eq!(edit_distance("mian", "main"), 1, "a swap of neighbours is one edit");
-        assert_eq!(edit_distance("ca", "abc"), 3, "optimal string alignment, not full Damerau");
+        assert_eq!(
+            edit_distance("mian", "main"),
+            1,
+            "a swap of neighbours is one edit"
+        );
+        assert_eq!(
+            edit_distance("ca", "abc"),
+            3,
+            "optimal string alignment, not full Damerau"
+        );
     }
 
     #[test]
