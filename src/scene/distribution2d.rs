@@ -4,24 +4,31 @@
 //! image("sky.hdr") }`), where the weights are luminance × sin θ.
 //!
 //! The density is over the unit square `[0, 1)²` (u along a row, v down the rows):
-//! `pdf_uv(cell) = weight(cell) / Σ weights · width · height`, constant inside a cell. The
-//! conditional CDFs are stored flat (one allocation, not one per row) and built in parallel,
-//! so a 4096 × 2048 map is a few tens of milliseconds (see `benches/environment.rs`).
+//! `pdf_uv(cell) = P(row) · P(col | row) · width · height`, constant inside a cell, with
+//! `P(col | row) = cdf[col + 1] − cdf[col]`: the conditional probability is read from the same
+//! f32 CDF the sampler inverts, so it is exactly the frequency with which the cell is sampled
+//! (a cell whose weight is below f32 resolution of its row's total is never sampled and has
+//! density 0, consistently). The conditional CDFs are stored flat (one allocation, not one per
+//! row) and built in parallel, so a 4096 × 2048 map takes a few tens of milliseconds; each row
+//! has a guide table of [`GUIDES`] entries (the first cell whose CDF passes `k / GUIDES`) so a
+//! sample searches a few cache lines instead of the whole row (see `benches/environment.rs`).
 
 use glam::Vec2;
 use rayon::prelude::*;
 
 use super::distribution::Distribution1D;
 
+/// Guide entries per row.
+pub const GUIDES: usize = 128;
+
 #[derive(Debug, Clone)]
 pub struct Distribution2D {
     width: usize,
     height: usize,
-    /// Cleaned weights (finite, ≥ 0), row-major.
-    weights: Vec<f32>,
     /// Per row, `width + 1` CDF values `0 … 1` (a zero row keeps an all-zero CDF: never picked).
     cdf: Vec<f32>,
-    row_sums: Vec<f32>,
+    /// Per row, `GUIDES + 1` cells: entry `k` is the first cell `c` with `cdf[c + 1] > k/GUIDES`.
+    guide: Vec<u32>,
     marginal: Distribution1D,
 }
 
@@ -49,10 +56,12 @@ impl Distribution2D {
             }
         }
         let mut cdf = vec![0.0f32; (width + 1) * height];
+        let mut guide = vec![0u32; (GUIDES + 1) * height];
         let row_sums: Vec<f32> = weights
             .par_chunks(width)
             .zip(cdf.par_chunks_mut(width + 1))
-            .map(|(row, cdf)| {
+            .zip(guide.par_chunks_mut(GUIDES + 1))
+            .map(|((row, cdf), guide)| {
                 let mut acc = 0.0f64;
                 cdf[0] = 0.0;
                 for (c, &w) in row.iter().enumerate() {
@@ -66,6 +75,11 @@ impl Distribution2D {
                     }
                     cdf[width] = 1.0;
                 }
+                for (k, g) in guide.iter_mut().enumerate() {
+                    let threshold = k as f32 / GUIDES as f32;
+                    let first = cdf[1..].partition_point(|&c| c <= threshold);
+                    *g = first.min(width - 1) as u32;
+                }
                 acc as f32
             })
             .collect();
@@ -73,9 +87,8 @@ impl Distribution2D {
         Some(Distribution2D {
             width,
             height,
-            weights,
             cdf,
-            row_sums,
+            guide,
             marginal,
         })
     }
@@ -93,7 +106,11 @@ impl Distribution2D {
     pub fn sample(&self, u: Vec2) -> Sample2D {
         let (row, pmf_row, v_in) = self.marginal.sample(u.y);
         let cdf = &self.cdf[row * (self.width + 1)..(row + 1) * (self.width + 1)];
-        let col = cdf[1..].partition_point(|&c| c <= u.x).min(self.width - 1);
+        // The answer lies between the guides of u's bracket (`u < (k + 1)/GUIDES`).
+        let k = ((u.x * GUIDES as f32) as usize).min(GUIDES - 1);
+        let guide = &self.guide[row * (GUIDES + 1)..(row + 1) * (GUIDES + 1)];
+        let (lo, hi) = (guide[k] as usize, guide[k + 1] as usize);
+        let col = (lo + cdf[lo + 1..=hi + 1].partition_point(|&c| c <= u.x)).min(self.width - 1);
         let (lo, hi) = (cdf[col], cdf[col + 1]);
         let u_in = if hi > lo {
             ((u.x - lo) / (hi - lo)).clamp(0.0, 1.0 - f32::EPSILON / 2.0)
@@ -120,14 +137,10 @@ impl Distribution2D {
         self.marginal.pmf(row) * self.conditional(col, row) * (self.width * self.height) as f32
     }
 
-    /// P(column | row).
+    /// P(column | row), as sampled.
     fn conditional(&self, col: usize, row: usize) -> f32 {
-        let sum = self.row_sums[row];
-        if sum > 0.0 {
-            self.weights[row * self.width + col] / sum
-        } else {
-            0.0
-        }
+        let i = row * (self.width + 1) + col;
+        self.cdf[i + 1] - self.cdf[i]
     }
 }
 
@@ -170,6 +183,34 @@ mod tests {
             // Stratified inputs: each count is within a couple of strata of its expectation.
             assert!((c as f32 - expected).abs() <= 2.0 * n as f32, "{counts:?}");
             assert_eq!(c == 0, weights[k] == 0.0);
+        }
+    }
+
+    #[test]
+    fn the_guided_search_finds_what_a_full_search_finds() {
+        let (w, h) = (1000, 3);
+        // Uneven weights with zero runs, so guides bracket ranges of very different lengths.
+        let weights: Vec<f32> = (0..w * h)
+            .map(|i| {
+                let x = (i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 40;
+                if x % 7 == 0 {
+                    0.0
+                } else {
+                    (x % 1000) as f32 * if i % 97 == 0 { 1e3 } else { 1.0 }
+                }
+            })
+            .collect();
+        let d = Distribution2D::new(w, h, weights).expect("positive");
+        for k in 0..20_000 {
+            let u = Vec2::new(
+                (k as f32 * 0.618_034).fract(),
+                (k as f32 * 0.414_214).fract(),
+            );
+            let s = d.sample(u);
+            let cdf = &d.cdf[s.row * (w + 1)..(s.row + 1) * (w + 1)];
+            let full = cdf[1..].partition_point(|&c| c <= u.x).min(w - 1);
+            assert_eq!(s.col, full, "u = {u}");
+            assert!(s.pdf_uv > 0.0);
         }
     }
 }

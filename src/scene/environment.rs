@@ -164,7 +164,8 @@ impl EnvMap {
         if sin_theta <= 0.0 || s.pdf_uv <= 0.0 {
             return None;
         }
-        let m = Vec3::new(sin_theta * phi.cos(), cos_theta, sin_theta * phi.sin());
+        let (sin_phi, cos_phi) = phi.sin_cos();
+        let m = Vec3::new(sin_theta * cos_phi, cos_theta, sin_theta * sin_phi);
         Some(EnvSample {
             wi: self.to_world(m).normalize(),
             radiance: self.texels[s.row * self.width + s.col],
