@@ -323,3 +323,47 @@ fn an_all_black_map_warns_and_lights_nothing() {
     assert!(film.pixels().iter().all(|&p| p == Vec3::ZERO));
     assert_eq!(stats.shadow_rays + stats.brdf_rays, 0);
 }
+
+#[test]
+fn a_surface_facing_away_from_the_sun_is_not_noisier_with_mis_than_with_cosine_sampling() {
+    // The plane's normal leans 60° away from the sun (map azimuth 1 rad), so the sun is below
+    // its horizon and only the dim sky lights it: MIS's light samples spent on the sun must
+    // not cost more than the power heuristic gives back.
+    let (sources, file) = fixture();
+    let mut loader = MemLoader::new();
+    loader.insert("sky.pfm", pfm_bytes(W, H, &sky_texels()));
+    let mut desc = plane_under(asset(file, SCN, "sky.pfm"), 0.0);
+    let away = Vec3::new(-1.0f32.cos(), 0.0, -1.0f32.sin());
+    let axis = Vec3::Y.cross(away).normalize();
+    desc.objects = vec![object(
+        0,
+        0,
+        Mat4::from_axis_angle(axis, 60f32.to_radians()),
+    )];
+    let mut scene = build_with(&desc, &sources, &loader).expect("builds");
+    let normal = Mat4::from_axis_angle(axis, 60f32.to_radians()).transform_vector3(Vec3::Y);
+    let eye = normal * 1.5 + Vec3::Y * 0.1;
+    let ray = Ray::new(eye, -eye.normalize());
+    let n = 4000;
+    let mut variance = |strategy| {
+        scene.strategy = strategy;
+        let mut counts = RayCounts::default();
+        let values: Vec<f64> = (0..n)
+            .map(|i| radiance(&scene, &ray, &mut Sampler::new(8, 0, 0, i), &mut counts).x as f64)
+            .collect();
+        let mean = values.iter().sum::<f64>() / n as f64;
+        let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
+        (mean, var)
+    };
+    let (m_mis, v_mis) = variance(DirectStrategy::Mis);
+    let (m_cos, v_cos) = variance(DirectStrategy::BrdfOnly);
+    eprintln!(
+        "facing away: variance MIS {v_mis:.3e}, cosine {v_cos:.3e} (means {m_mis:.4}, {m_cos:.4})"
+    );
+    assert!(m_mis > 0.0 && m_cos > 0.0, "the sky lights the plane");
+    // The sample variance of 4000 values is itself uncertain by a few percent.
+    assert!(
+        v_mis <= 1.1 * v_cos,
+        "MIS {v_mis:.3e} vs cosine {v_cos:.3e}"
+    );
+}
