@@ -373,3 +373,37 @@ fn an_area_light_and_a_sky_together_give_the_closed_form_for_every_strategy() {
         }
     }
 }
+
+#[test]
+fn the_example_sky_has_its_sun_where_the_benchmark_puts_it() {
+    let bytes = std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/env/sky.hdr"))
+        .expect("examples/env/sky.hdr is in the repository");
+    let img = scnc::assets::hdr_image::decode_float_image(&bytes).expect("valid .hdr");
+    assert_eq!((img.width, img.height), (1024, 512));
+    // shared/bench/scenes/env/scene.json: sun_dir, half-angle 1.5°, radiance (3000, 2800, 2500).
+    let (el, az) = (30f32.to_radians(), 40f32.to_radians());
+    let sun = Vec3::new(el.cos() * az.cos(), el.sin(), el.cos() * az.sin());
+    for rotation in [0.0f32, 0.5] {
+        let m = scnc::scene::EnvMap::new(1024, 512, img.pixels.clone(), rotation).expect("sizes");
+        // Map azimuth φ appears at world azimuth φ − rotation.
+        let world_sun = Vec3::new(
+            el.cos() * (az - rotation).cos(),
+            el.sin(),
+            el.cos() * (az - rotation).sin(),
+        );
+        let at_sun = m.radiance(world_sun);
+        assert!((at_sun.x - 3000.0).abs() < 30.0, "{rotation}: {at_sun}");
+        assert!(
+            m.radiance(-Vec3::Y).max_element() < 0.2,
+            "below the horizon: ground colour"
+        );
+        let zenith = m.radiance(Vec3::Y);
+        assert!(
+            (zenith - Vec3::new(0.6, 0.8, 1.3)).abs().max_element() < 0.02,
+            "{zenith}"
+        );
+        if rotation != 0.0 {
+            assert!(m.radiance(sun).x < 10.0, "the rotation moved the sun");
+        }
+    }
+}

@@ -232,4 +232,19 @@ mod tests {
         );
         assert_eq!(img.pixels[1], Vec3::ZERO);
     }
+
+    #[test]
+    fn openexr_decodes_linear_and_top_first() {
+        let top_first = [1.5f32, 0.25, 0.0, 0.0, 0.0, 7.0];
+        let buffer = image::Rgb32FImage::from_raw(1, 2, top_first.to_vec()).expect("1 × 2");
+        let mut bytes = Cursor::new(Vec::new());
+        DynamicImage::ImageRgb32F(buffer)
+            .write_to(&mut bytes, image::ImageFormat::OpenExr)
+            .expect("encodes");
+        let img = decode_float_image(bytes.get_ref()).expect("valid EXR");
+        assert_eq!(
+            img.pixels,
+            vec![Vec3::new(1.5, 0.25, 0.0), Vec3::new(0.0, 0.0, 7.0)]
+        );
+    }
 }

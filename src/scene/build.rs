@@ -4,7 +4,9 @@
 //!
 //! Only what is used is built: meshes named by objects or area lights (each loaded once however
 //! many instances place it), textures reachable from used materials, light tables only when
-//! there are lights, and no acceleration structure at all when there are no triangles.
+//! there are lights, the environment map's sampling table only when there is geometry for it
+//! to light (see `environment`), and no acceleration structure at all when there are no
+//! triangles.
 
 use std::collections::BTreeSet;
 use std::time::Instant;
