@@ -184,7 +184,7 @@ fn a_good_obj_loads_once_for_two_instances_and_renders() {
 }
 
 #[test]
-fn image_textures_and_environments_are_unsupported_at_their_paths() {
+fn image_textures_are_unsupported_and_a_missing_environment_map_is_missing_at_their_paths() {
     let fx = Fixture::new();
     let mut desc = empty_desc(
         camera(Vec3::new(0.0, 0.0, -3.0), Vec3::ZERO, Vec3::Y, 40.0),
@@ -220,17 +220,24 @@ fn image_textures_and_environments_are_unsupported_at_their_paths() {
         &BuildOptions::default(),
     )
     .expect_err("unsupported");
-    let mut labelled: Vec<&str> = diags
+    let mut labelled: Vec<(&str, &str)> = diags
         .iter()
         .map(|d| {
-            assert_eq!(d.code, "scnc::build::unsupported");
             assert!(d.help.is_some());
-            fx.sources
-                .snippet(d.primary.as_ref().expect("labelled").span)
+            let at = fx
+                .sources
+                .snippet(d.primary.as_ref().expect("labelled").span);
+            (at, d.code)
         })
         .collect();
     labelled.sort();
-    assert_eq!(labelled, ["\"sky.hdr\"", "\"wood.png\""]);
+    assert_eq!(
+        labelled,
+        [
+            ("\"sky.hdr\"", "scnc::build::missing_file"),
+            ("\"wood.png\"", "scnc::build::unsupported")
+        ]
+    );
 }
 
 #[test]

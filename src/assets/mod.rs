@@ -4,8 +4,10 @@
 //! images) asks a [`Loader`]. [`FsLoader`] reads the disk and records each path it was asked
 //! for, found or not: that record is exactly the set of files `scnc watch` must watch.
 //! [`MemLoader`] serves files from memory so that every stage is testable without a disk.
-//! [`obj`] decodes OBJ bytes (read through a `Loader`) into triangles.
+//! [`obj`] decodes OBJ bytes (read through a `Loader`) into triangles; [`hdr_image`] decodes
+//! environment maps (HDR, EXR, PFM) into linear float RGB.
 
+pub mod hdr_image;
 mod loader;
 pub mod obj;
 

@@ -1,25 +1,28 @@
 //! Stage 4: direct lighting along one camera ray.
 //!
-//! At a hit: the material's `ambient` is always added; then `light_samples` lights are picked by
-//! power, each point light gives one shadow ray and each area light `samples` shadow rays: a
-//! triangle is picked by area, then a point on it either by
-//! solid angle (`L_e · f · cos θ · Ω / pmf`, see `spherical`) or by area
-//! (`L_e · f · cos θ · cos θ_l / r² / pdf_area`, `pdf_area = pmf / area`). A constant
-//! environment adds `light_samples` cosine-weighted directions (`L_env · f · π` when the
-//! direction is unoccluded). Every one of these random choices is stratified over all the
-//! samples of the pixel, not just within one pixel sample: sample `s` of `S` uses points
-//! `s·m … s·m + m − 1` of one set of `S·m` scrambled Hammersley points per pixel and stream
-//! (`Sampler::stratified_2d`), so 16 pixel samples with one shadow ray each sample an area light
-//! as evenly as one pixel sample with 16. Visibility is decided by the geometric normal (a light behind the
-//! surface contributes nothing, whatever the shading normal says); the BRDF uses the shading
-//! normal flipped to the viewer's side of the geometric one.
+//! At a hit: the material's `ambient` is always added; then `light_samples` lights (the
+//! environment among them) are picked by power. A point light gives one shadow ray; an area
+//! light `samples` shadow rays: a triangle is picked by area, then a point on it either by
+//! solid angle (`pdf = pmf / Ω`, see `spherical`) or by area (`pdf = r² / (cos θ_l · A)`); the
+//! environment one direction from its importance table (`scene::environment`). Then, for area
+//! lights and the environment, `light_samples` BRDF-sampled rays (`sampling`) are traced, and
+//! an emitter or the sky they reach adds its radiance. The two strategies are combined by
+//! multiple importance sampling with the power heuristic (see `mis`); point lights (a delta
+//! distribution no BRDF ray can hit) keep pure light sampling. [`DirectStrategy`] switches to
+//! one strategy alone for tests and measurements.
+//!
+//! Every random choice is stratified over all the samples of the pixel, not just within one
+//! pixel sample: sample `s` of `S` uses points `s·m … s·m + m − 1` of one set of `S·m` scrambled
+//! Hammersley points per pixel and stream (`Sampler::stratified_2d`), so 16 pixel samples with
+//! one shadow ray each sample an area light as evenly as one pixel sample with 16. Visibility is
+//! decided by the geometric normal (a light behind the surface contributes nothing, whatever the
+//! shading normal says); the BRDF uses the shading normal flipped to the viewer's side of the
+//! geometric one.
 //!
 //! Shadow rays start at the offset origin (see `surface`) and stop short of the light: towards a
 //! point light at `(1 − 1e-4)` of the distance, towards an area light at a point itself offset
 //! off the emitter's surface towards the shading point, so the sampled emitter never occludes
 //! itself while any other geometry in between still does.
-
-use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
@@ -29,21 +32,25 @@ use super::spherical;
 use super::surface::{offset_origin, surface_hit, SurfaceHit};
 use crate::geom::triangle::moller_trumbore;
 use crate::geom::Ray;
-use crate::scene::{AreaLight, Light, LightSampling, Scene, Surface};
+use crate::scene::{AreaLight, DirectStrategy, Light, LightSampling, Picked, Scene, Surface};
 
 /// Rays traced, by kind.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct RayCounts {
     pub camera: u64,
     pub shadow: u64,
+    /// BRDF-sampled rays looking for emitters and the sky (closest-hit).
+    pub brdf: u64,
 }
 
 const SHADOW_EPSILON: f32 = 1e-4;
 
-/// Per-pixel stratification streams: light picks, the environment, then one per light.
+/// Per-pixel stratification streams: light picks, the environment, BRDF directions, then one
+/// per light.
 const STREAM_PICK: u64 = 0;
-const STREAM_ENVIRONMENT: u64 = 1;
-const STREAM_LIGHTS: u64 = 2;
+pub(super) const STREAM_ENVIRONMENT: u64 = 1;
+pub(super) const STREAM_BRDF: u64 = 2;
+const STREAM_LIGHTS: u64 = 3;
 
 /// A sampled point on an emitter, seen from a shading point.
 struct LightSample {
@@ -51,6 +58,7 @@ struct LightSample {
     wi: Vec3,
     position: Vec3,
     error: Vec3,
+    /// `1 / pdf_solid_angle` of the light's own sampling (triangle pick included).
     weight: f32,
 }
 
@@ -63,8 +71,8 @@ pub fn radiance(scene: &Scene, ray: &Ray, sampler: &mut Sampler, counts: &mut Ra
         .and_then(|a| a.closest_hit(ray))
         .and_then(|h| surface_hit(scene, &h));
     let Some(hit) = hit else {
-        return match scene.lights.environment {
-            Some(env) if env.visible => env.radiance,
+        return match &scene.lights.environment {
+            Some(env) if env.visible => env.radiance(ray.dir.normalize()),
             _ => Vec3::ZERO,
         };
     };
@@ -113,28 +121,31 @@ fn shade(
         wo,
         phong,
     };
-    mat.ambient + at.lights(sampler, counts) + at.environment(sampler, counts)
+    mat.ambient + at.lights(sampler, counts) + at.brdf_rays(sampler, counts)
 }
 
-struct Shading<'a> {
-    scene: &'a Scene,
-    hit: &'a SurfaceHit,
+pub(super) struct Shading<'a> {
+    pub(super) scene: &'a Scene,
+    pub(super) hit: &'a SurfaceHit,
     /// Geometric and shading normals, both on the viewer's side.
-    ng: Vec3,
-    ns: Vec3,
-    wo: Vec3,
-    phong: Phong,
+    pub(super) ng: Vec3,
+    pub(super) ns: Vec3,
+    pub(super) wo: Vec3,
+    pub(super) phong: Phong,
 }
 
 impl Shading<'_> {
-    fn picks(&self) -> u32 {
+    pub(super) fn picks(&self) -> u32 {
         self.scene.settings.light_samples.max(1)
     }
 
+    /// The light-sampling strategy.
     fn lights(&self, sampler: &mut Sampler, counts: &mut RayCounts) -> Vec3 {
-        let Some(by_power) = &self.scene.lights.by_power else {
+        let lights = &self.scene.lights;
+        if lights.by_power.is_none() {
             return Vec3::ZERO;
-        };
+        }
+        let brdf_only = self.scene.strategy == DirectStrategy::BrdfOnly;
         let picks = self.picks();
         let (s, count) = sampler.index();
         let mut sum = Vec3::ZERO;
@@ -142,9 +153,11 @@ impl Shading<'_> {
             // Stratified over all the picks of all the pixel's samples.
             let j = s * picks + k;
             let u = sampler.stratified_2d(STREAM_PICK, j, count * picks).x;
-            let (index, pmf, _) = by_power.sample(u);
-            let contribution = match &self.scene.lights.lights[index] {
-                Light::Point(p) => {
+            let Some((picked, pmf, _)) = lights.pick(u) else {
+                continue;
+            };
+            let contribution = match picked {
+                Picked::Light(_, Light::Point(p)) => {
                     let to_light = p.position - self.hit.p;
                     let dist2 = to_light.length_squared();
                     let wi = to_light / dist2.sqrt();
@@ -154,18 +167,29 @@ impl Shading<'_> {
                             self.phong.eval(self.ns, wi, self.wo) * p.intensity * cos / dist2
                         })
                 }
-                Light::Area(a) => self.area_light(a, index, j, count * picks, sampler, counts),
+                Picked::Light(_, Light::Area(_)) | Picked::Environment(_) if brdf_only => {
+                    Vec3::ZERO
+                }
+                Picked::Light(index, Light::Area(a)) => {
+                    self.area_light(a, index, pmf, j, count * picks, sampler, counts)
+                }
+                Picked::Environment(env) => {
+                    self.environment(env, pmf, j, count * picks, sampler, counts)
+                }
             };
             sum += contribution / pmf;
         }
         sum / picks as f32
     }
 
-    /// `light` is `lights[index]`, picked for the `pick`-th of `picks` picks in the pixel.
+    /// `light` is `lights[index]`, picked with probability `pmf` for the `pick`-th of `picks`
+    /// picks in the pixel.
+    #[allow(clippy::too_many_arguments)] // reason: the pick's identity and its sampler slot
     fn area_light(
         &self,
         light: &AreaLight,
         index: usize,
+        pmf: f32,
         pick: u32,
         picks: u32,
         sampler: &mut Sampler,
@@ -176,7 +200,7 @@ impl Shading<'_> {
         for i in 0..n {
             let stream = STREAM_LIGHTS + index as u64;
             let u = sampler.stratified_2d(stream, pick * n + i, picks * n);
-            let (t, pmf, u0) = light.pick(u.x);
+            let (t, pmf_triangle, u0) = light.pick(u.x);
             let u = Vec2::new(u0, u.y);
             let tri = &light.triangles[t];
             let normal = light.normals[t];
@@ -184,14 +208,17 @@ impl Shading<'_> {
             if !light.two_sided && normal.dot(self.hit.p - tri[0]) <= 0.0 {
                 continue;
             }
-            let Some(s) = self.sample_triangle(light, t, pmf, u) else {
+            let Some(s) = self.sample_triangle(light, t, pmf_triangle, u) else {
                 continue;
             };
             // Stop the shadow ray just off the emitter, on the shading point's side.
             let target = offset_origin(s.position, s.error, normal, -s.wi);
             if let Some(cos) = self.unoccluded(s.wi, target, 0.0, counts) {
                 let f = self.phong.eval(self.ns, s.wi, self.wo);
-                sum += light.radiance * f * (cos * s.weight);
+                // Effective densities: `samples` light samples per pick of probability `pmf`
+                // against one BRDF sample per pick.
+                let mis = self.light_weight(n as f32 * pmf / s.weight, s.wi);
+                sum += light.radiance * f * (cos * s.weight * mis);
             }
         }
         sum / n as f32
@@ -251,37 +278,6 @@ impl Shading<'_> {
         })
     }
 
-    fn environment(&self, sampler: &mut Sampler, counts: &mut RayCounts) -> Vec3 {
-        let Some(env) = self.scene.lights.environment else {
-            return Vec3::ZERO;
-        };
-        if env.radiance == Vec3::ZERO {
-            return Vec3::ZERO;
-        }
-        let picks = self.picks();
-        let (s, count) = sampler.index();
-        let mut sum = Vec3::ZERO;
-        for k in 0..picks {
-            let u = sampler.stratified_2d(STREAM_ENVIRONMENT, s * picks + k, count * picks);
-            let wi = cosine_hemisphere(self.ns, u);
-            if wi.dot(self.ng) <= 0.0 {
-                continue;
-            }
-            counts.shadow += 1;
-            let origin = offset_origin(self.hit.p, self.hit.p_error, self.ng, wi);
-            let blocked = self
-                .scene
-                .accel
-                .as_ref()
-                .is_some_and(|a| a.any_hit(&Ray::new(origin, wi)));
-            if !blocked {
-                // f · L · cos θ / pdf with pdf = cos θ / π.
-                sum += self.phong.eval(self.ns, wi, self.wo) * env.radiance * PI;
-            }
-        }
-        sum / picks as f32
-    }
-
     /// Traces the shadow ray towards `target` (direction `wi`, unit). Returns the shading
     /// cosine if the light is above the geometric surface, in front of the shading normal and
     /// unoccluded.
@@ -304,23 +300,4 @@ impl Shading<'_> {
     }
 }
 
-/// A direction around unit `n` with density `cos θ / π` (Malley's method on a concentric disk).
-pub fn cosine_hemisphere(n: Vec3, u: Vec2) -> Vec3 {
-    let d = concentric_disk(u);
-    let z = (1.0 - d.length_squared()).max(0.0).sqrt();
-    let (t, b) = n.any_orthonormal_pair();
-    (d.x * t + d.y * b + z * n).normalize()
-}
-
-fn concentric_disk(u: Vec2) -> Vec2 {
-    let o = 2.0 * u - Vec2::ONE;
-    if o == Vec2::ZERO {
-        return Vec2::ZERO;
-    }
-    let (r, theta) = if o.x.abs() > o.y.abs() {
-        (o.x, PI / 4.0 * (o.y / o.x))
-    } else {
-        (o.y, PI / 2.0 - PI / 4.0 * (o.x / o.y))
-    };
-    r * Vec2::new(theta.cos(), theta.sin())
-}
+pub use super::sampling::cosine_hemisphere;

@@ -9,8 +9,10 @@
 pub mod brdf;
 pub mod camera;
 pub mod integrator;
+mod mis;
 pub mod pattern;
 pub mod rng;
+pub mod sampling;
 pub mod spherical;
 pub mod surface;
 
@@ -48,6 +50,8 @@ pub struct Cancelled;
 pub struct RenderStats {
     pub camera_rays: u64,
     pub shadow_rays: u64,
+    /// BRDF-sampled rays (multiple importance sampling of area lights and the environment).
+    pub brdf_rays: u64,
     pub wall: Duration,
     pub threads: usize,
     pub samples_per_pixel: u32,
@@ -55,10 +59,10 @@ pub struct RenderStats {
 
 impl RenderStats {
     pub fn rays(&self) -> u64 {
-        self.camera_rays + self.shadow_rays
+        self.camera_rays + self.shadow_rays + self.brdf_rays
     }
 
-    /// Millions of rays (camera + shadow) per second of wall time.
+    /// Millions of rays (camera + shadow + BRDF) per second of wall time.
     pub fn mrays_per_sec(&self) -> f64 {
         let secs = self.wall.as_secs_f64();
         if secs > 0.0 {
@@ -126,6 +130,7 @@ pub fn render(
         let (pixels, c) = result.ok_or(Cancelled)?;
         counts.camera += c.camera;
         counts.shadow += c.shadow;
+        counts.brdf += c.brdf;
         let tw = (tile.x1 - tile.x0) as usize;
         for (k, value) in pixels.into_iter().enumerate() {
             film.set(tile.x0 + (k % tw) as u32, tile.y0 + (k / tw) as u32, value);
@@ -134,6 +139,7 @@ pub fn render(
     let stats = RenderStats {
         camera_rays: counts.camera,
         shadow_rays: counts.shadow,
+        brdf_rays: counts.brdf,
         wall: start.elapsed(),
         threads: used_threads,
         samples_per_pixel: side * side,

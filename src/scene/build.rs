@@ -4,14 +4,18 @@
 //!
 //! Only what is used is built: meshes named by objects or area lights (each loaded once however
 //! many instances place it), textures reachable from used materials, light tables only when
-//! there are lights, and no acceleration structure at all when there are no triangles.
+//! there are lights, the environment map's sampling table only when there is geometry for it
+//! to light (see `environment`), and no acceleration structure at all when there are no
+//! triangles.
 
 use std::collections::BTreeSet;
 use std::time::Instant;
 
 use glam::{Affine3A, Mat3, Vec3};
 
-use super::lights::{AreaLight, Environment, Light, Lights, PointLight};
+use super::env_load::load_env_map;
+use super::environment::Environment;
+use super::lights::{AreaLight, Light, Lights, PointLight};
 use super::load::load_mesh;
 use super::mesh::TriMesh;
 use super::texture::{Texture, Textures};
@@ -112,6 +116,7 @@ pub fn build(
         textures,
         lights,
         light_sampling: Default::default(),
+        strategy: Default::default(),
         timings: BuildTimings {
             asset_load,
             accel_build,
@@ -213,35 +218,61 @@ impl Builder<'_> {
         out.slots[id as usize] = Some(resolved);
     }
 
+    /// Constant environments add up; the first image is loaded (a second is an error).
     fn environment(&mut self) -> Option<Environment> {
         let mut env: Option<Environment> = None;
+        let mut image_seen = false;
         for light in &self.desc.lights {
             let ir::Light::Environment(e) = light else {
                 continue;
             };
+            let env = env.get_or_insert_with(|| Environment::new(Vec3::ZERO, None, false));
+            env.visible |= e.visible;
             match &e.source {
-                EnvSource::Constant(c) => {
-                    let prev = env.unwrap_or(Environment {
-                        radiance: Vec3::ZERO,
-                        visible: false,
-                    });
-                    env = Some(Environment {
-                        radiance: prev.radiance + *c * e.intensity,
-                        visible: prev.visible || e.visible,
-                    });
+                EnvSource::Constant(c) => env.constant += *c * e.intensity,
+                EnvSource::Image(file) if image_seen => {
+                    self.problems.push(BuildError::Unsupported {
+                        what: format!("a second environment image (`{}`)", file.written),
+                        span: file.span,
+                        help: "merge the maps into one image, or keep one".into(),
+                    })
                 }
-                EnvSource::Image(file) => self.problems.push(BuildError::Unsupported {
-                    what: format!("the environment image `{}`", file.written),
-                    span: file.span,
-                    help: "image environments arrive with issue 5; use a constant colour for now"
-                        .into(),
-                }),
+                EnvSource::Image(file) => {
+                    image_seen = true;
+                    let (map, problems) =
+                        load_env_map(file, e.intensity, e.rotation_y_rad, self.loader);
+                    self.problems.extend(problems);
+                    env.map = map;
+                }
             }
         }
         env
     }
 
-    fn lights(&mut self, instances: &mut Vec<SceneInstance>, env: Option<Environment>) -> Lights {
+    /// Radius of the bounding sphere of every instance (0 with none).
+    fn scene_radius(&self, instances: &[SceneInstance]) -> f32 {
+        let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+        for inst in instances {
+            for &p in &self.meshes[inst.mesh as usize].positions {
+                let w = inst.world_from_object.transform_point3(p);
+                lo = lo.min(w);
+                hi = hi.max(w);
+            }
+        }
+        if lo.cmple(hi).all() {
+            (hi - lo).length() / 2.0
+        } else {
+            0.0
+        }
+    }
+
+    /// The lights and their table. The environment's sampling tables are built only when there
+    /// is geometry for it to light.
+    fn lights(
+        &mut self,
+        instances: &mut Vec<SceneInstance>,
+        mut env: Option<Environment>,
+    ) -> Lights {
         let mut lights = Vec::new();
         for light in &self.desc.lights {
             match light {
@@ -279,7 +310,12 @@ impl Builder<'_> {
                 ir::Light::Environment(_) => {}
             }
         }
-        Lights::new(lights, env)
+        let mut radius = 0.0;
+        if let Some(e) = env.as_mut().filter(|_| !instances.is_empty()) {
+            e.prepare_sampling();
+            radius = self.scene_radius(instances);
+        }
+        Lights::new(lights, env, radius)
     }
 
     /// The affine map and its normal matrix, or an error if it cannot place anything.

@@ -83,6 +83,34 @@ pub enum BuildError {
         span: Span,
         help: String,
     },
+    #[error("`{written}` is not a valid image: {reason}")]
+    #[diagnostic(code(scnc::build::corrupt_image))]
+    CorruptImage {
+        written: String,
+        span: Span,
+        reason: String,
+    },
+    #[error("`{written}` is {width} × {height}, larger than the {max_width} × {max_height} limit")]
+    #[diagnostic(code(scnc::build::image_too_large))]
+    ImageTooLarge {
+        written: String,
+        span: Span,
+        width: u32,
+        height: u32,
+        max_width: u32,
+        max_height: u32,
+    },
+    #[error("{count} of {total} pixels of `{written}` are negative, NaN or infinite; they were set to black")]
+    #[diagnostic(code(scnc::build::invalid_environment_pixels), severity(Warning))]
+    InvalidPixels {
+        written: String,
+        span: Span,
+        count: usize,
+        total: usize,
+    },
+    #[error("the environment map `{written}` is black everywhere; it lights nothing")]
+    #[diagnostic(code(scnc::build::black_environment), severity(Warning))]
+    BlackEnvironment { written: String, span: Span },
     #[error("the scene has no camera {which}")]
     #[diagnostic(code(scnc::build::no_camera))]
     NoCamera { which: String },
@@ -102,6 +130,10 @@ impl BuildError {
             BuildError::EmptyMesh { .. } => "scnc::build::empty_mesh",
             BuildError::SingularTransform { .. } => "scnc::build::singular_transform",
             BuildError::Unsupported { .. } => "scnc::build::unsupported",
+            BuildError::CorruptImage { .. } => "scnc::build::corrupt_image",
+            BuildError::ImageTooLarge { .. } => "scnc::build::image_too_large",
+            BuildError::InvalidPixels { .. } => "scnc::build::invalid_environment_pixels",
+            BuildError::BlackEnvironment { .. } => "scnc::build::black_environment",
             BuildError::NoCamera { .. } => "scnc::build::no_camera",
         }
     }
@@ -109,7 +141,10 @@ impl BuildError {
     /// Warnings never stop the build; errors do.
     pub fn severity(&self) -> Severity {
         match self {
-            BuildError::SomeDegenerate { .. } | BuildError::EmptyMesh { .. } => Severity::Warning,
+            BuildError::SomeDegenerate { .. }
+            | BuildError::EmptyMesh { .. }
+            | BuildError::InvalidPixels { .. }
+            | BuildError::BlackEnvironment { .. } => Severity::Warning,
             _ => Severity::Error,
         }
     }
@@ -125,7 +160,11 @@ impl BuildError {
             | BuildError::SomeDegenerate { span, .. }
             | BuildError::EmptyMesh { span, .. }
             | BuildError::SingularTransform { span }
-            | BuildError::Unsupported { span, .. } => Some(*span),
+            | BuildError::Unsupported { span, .. }
+            | BuildError::CorruptImage { span, .. }
+            | BuildError::ImageTooLarge { span, .. }
+            | BuildError::InvalidPixels { span, .. }
+            | BuildError::BlackEnvironment { span, .. } => Some(*span),
             BuildError::NoCamera { .. } => None,
         }
     }
@@ -140,6 +179,9 @@ impl BuildError {
             BuildError::EmptyMesh { .. } => "this mesh",
             BuildError::SingularTransform { .. } => "placed here",
             BuildError::Unsupported { .. } => "not supported yet",
+            BuildError::CorruptImage { .. } | BuildError::ImageTooLarge { .. } => "this image",
+            BuildError::InvalidPixels { .. } => "this image has invalid pixels",
+            BuildError::BlackEnvironment { .. } => "this image is black",
             BuildError::NoCamera { .. } => "",
         }
     }
@@ -160,6 +202,16 @@ impl BuildError {
             }
             BuildError::Unsupported { help, .. } => Some(help.clone()),
             BuildError::NoCamera { .. } => Some("declare one: `camera main { ... }`".into()),
+            BuildError::CorruptImage { .. } => {
+                Some("environment maps are Radiance .hdr, OpenEXR or PFM files".into())
+            }
+            BuildError::ImageTooLarge { .. } => {
+                Some("downsample the map; texels are looked up without filtering anyway".into())
+            }
+            BuildError::BlackEnvironment { .. } => Some(
+                "check the file's exposure, or remove the light; a constant colour needs no image"
+                    .into(),
+            ),
             _ => None,
         }
     }
@@ -239,6 +291,26 @@ mod tests {
                 span,
                 help: s(),
             },
+            BuildError::CorruptImage {
+                written: s(),
+                span,
+                reason: s(),
+            },
+            BuildError::ImageTooLarge {
+                written: s(),
+                span,
+                width: 1,
+                height: 1,
+                max_width: 1,
+                max_height: 1,
+            },
+            BuildError::InvalidPixels {
+                written: s(),
+                span,
+                count: 1,
+                total: 2,
+            },
+            BuildError::BlackEnvironment { written: s(), span },
             BuildError::NoCamera { which: s() },
         ];
         for e in &all {

@@ -7,12 +7,14 @@
 //! Area lights keep their triangles in world space with a CDF over triangle areas, so a point
 //! is sampled uniformly by area over the whole mesh (`pdf_area = 1 / total_area`). Point and area
 //! lights are picked by power through one [`Distribution1D`], so a scene with 100 lights traces
-//! the same number of shadow rays per shading point as a scene with one. The (constant)
-//! environment is not in that table: it is sampled on its own, by cosine-weighted directions.
+//! the same number of shadow rays per shading point as a scene with one. The environment, when
+//! the scene has one and geometry to light, is the table's last entry (index `lights.len()`),
+//! with the power estimate of [`Environment::power`].
 
 use glam::{Vec2, Vec3};
 
 use super::distribution::Distribution1D;
+use super::environment::Environment;
 
 #[derive(Debug, Clone)]
 pub struct PointLight {
@@ -84,6 +86,11 @@ impl AreaLight {
         self.by_area.sample(u)
     }
 
+    /// The probability that [`AreaLight::pick`] chooses triangle `i`.
+    pub fn triangle_pmf(&self, i: usize) -> f32 {
+        self.by_area.pmf(i)
+    }
+
     /// A point uniform by area on triangle `i`.
     pub fn point_on(&self, i: usize, u: Vec2) -> LightPoint {
         let s = u.x.sqrt();
@@ -121,14 +128,6 @@ pub enum Light {
     Area(AreaLight),
 }
 
-/// A constant environment: radiance arriving from every direction not blocked by geometry.
-#[derive(Debug, Clone, Copy)]
-pub struct Environment {
-    pub radiance: Vec3,
-    /// Whether escaped camera rays show it.
-    pub visible: bool,
-}
-
 /// Every light of the scene, with the table that picks one by power.
 #[derive(Debug, Clone, Default)]
 pub struct Lights {
@@ -136,21 +135,68 @@ pub struct Lights {
     /// `None` when there is no light with positive power: no shadow rays at all.
     pub by_power: Option<Distribution1D>,
     pub environment: Option<Environment>,
+    /// Whether `by_power` has the environment as its entry `lights.len()`.
+    environment_in_table: bool,
+    has_emitters: bool,
+}
+
+/// What [`Lights::pick`] chose.
+#[derive(Debug, Clone, Copy)]
+pub enum Picked<'a> {
+    Light(usize, &'a Light),
+    Environment(&'a Environment),
 }
 
 impl Lights {
-    pub fn new(lights: Vec<Light>, environment: Option<Environment>) -> Lights {
-        let powers: Vec<f32> = lights
+    /// `scene_radius` is the radius of the scene's bounding sphere (for the environment's
+    /// power); the environment joins the table only if its sampling was prepared.
+    pub fn new(lights: Vec<Light>, environment: Option<Environment>, scene_radius: f32) -> Lights {
+        let mut powers: Vec<f32> = lights
             .iter()
             .map(|l| match l {
                 Light::Point(p) => p.power(),
                 Light::Area(a) => a.power(),
             })
             .collect();
+        let environment = environment.filter(|e| !e.is_black() || e.visible);
+        let env_power = environment.as_ref().and_then(|e| e.power(scene_radius));
+        if let Some(p) = env_power {
+            powers.push(p);
+        }
         Lights {
             by_power: Distribution1D::new(&powers),
+            has_emitters: lights.iter().any(|l| matches!(l, Light::Area(_))),
             lights,
-            environment: environment.filter(|e| e.radiance.max_element() > 0.0 || e.visible),
+            environment,
+            environment_in_table: env_power.is_some(),
+        }
+    }
+
+    /// A light picked by power for `u` in [0, 1): what, its probability, `u` rescaled.
+    pub fn pick(&self, u: f32) -> Option<(Picked<'_>, f32, f32)> {
+        let (i, pmf, rest) = self.by_power.as_ref()?.sample(u);
+        let picked = match self.lights.get(i) {
+            Some(l) => Picked::Light(i, l),
+            None => Picked::Environment(self.environment.as_ref()?),
+        };
+        Some((picked, pmf, rest))
+    }
+
+    /// Whether any light is an area light (something a BRDF-sampled ray can hit).
+    pub fn has_emitters(&self) -> bool {
+        self.has_emitters
+    }
+
+    /// The probability that [`Lights::pick`] chooses `lights[i]`.
+    pub fn pmf_light(&self, i: usize) -> f32 {
+        self.by_power.as_ref().map_or(0.0, |d| d.pmf(i))
+    }
+
+    /// The probability that [`Lights::pick`] chooses the environment (0 when it is not sampled).
+    pub fn pmf_environment(&self) -> f32 {
+        match (&self.by_power, self.environment_in_table) {
+            (Some(d), true) => d.pmf(self.lights.len()),
+            _ => 0.0,
         }
     }
 }
@@ -198,6 +244,6 @@ mod tests {
             position: Vec3::ZERO,
             intensity: Vec3::ZERO,
         });
-        assert!(Lights::new(vec![dark], None).by_power.is_none());
+        assert!(Lights::new(vec![dark], None, 1.0).by_power.is_none());
     }
 }

@@ -9,6 +9,9 @@
 
 mod build;
 pub mod distribution;
+pub mod distribution2d;
+mod env_load;
+pub mod environment;
 mod error;
 pub mod lights;
 mod load;
@@ -21,8 +24,9 @@ use std::time::Duration;
 use glam::{Affine3A, Mat3, Vec3};
 
 pub use build::build;
+pub use environment::{EnvMap, EnvSample, Environment};
 pub use error::BuildError;
-pub use lights::{AreaLight, Environment, Light, Lights, PointLight};
+pub use lights::{AreaLight, Light, Lights, Picked, PointLight};
 pub use mesh::TriMesh;
 pub use texture::{Texture, Textures};
 
@@ -99,6 +103,19 @@ pub enum LightSampling {
     SolidAngle,
 }
 
+/// Which strategies estimate the light of area lights and the environment (point lights are
+/// always light-sampled: a BRDF ray cannot hit a point).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum DirectStrategy {
+    /// Light sampling and BRDF sampling, combined by the power heuristic.
+    #[default]
+    Mis,
+    /// Light sampling alone (no BRDF rays).
+    LightOnly,
+    /// BRDF sampling alone (cosine / Phong lobe directions that reach an emitter or the sky).
+    BrdfOnly,
+}
+
 /// Everything the renderer needs, ready to trace.
 #[derive(Debug)]
 pub struct Scene {
@@ -112,6 +129,8 @@ pub struct Scene {
     pub textures: Textures,
     pub lights: Lights,
     pub light_sampling: LightSampling,
+    /// How direct light from area lights and the environment is sampled (tests switch it).
+    pub strategy: DirectStrategy,
     pub timings: BuildTimings,
     /// Warnings found while building (degenerate triangles dropped, empty meshes).
     pub warnings: Vec<Diagnostic>,

@@ -225,3 +225,37 @@ pub fn showcase(size: u32, spp: u32) -> SceneDesc {
     ];
     desc
 }
+
+/// An environment light.
+pub fn environment(source: EnvSource, intensity: f32, rotation_y_rad: f32, visible: bool) -> Light {
+    Light::Environment(EnvironmentLight {
+        name: "sky".into(),
+        source,
+        intensity,
+        rotation_y_rad,
+        visible,
+        span: span(),
+    })
+}
+
+/// A little-endian colour PFM of `width × height` pixels given top row first.
+pub fn pfm_bytes(width: usize, height: usize, top_first: &[Vec3]) -> Vec<u8> {
+    let mut bytes = format!("PF\n{width} {height}\n-1.0\n").into_bytes();
+    for row in (0..height).rev() {
+        for p in &top_first[row * width..(row + 1) * width] {
+            for c in p.to_array() {
+                bytes.extend_from_slice(&c.to_le_bytes());
+            }
+        }
+    }
+    bytes
+}
+
+/// Builds with files served by `loader` (spans point into `sources`).
+pub fn build_with(
+    desc: &ir::SceneDesc,
+    sources: &SourceMap,
+    loader: &dyn scnc::assets::Loader,
+) -> Result<Scene, Vec<scnc::diag::Diagnostic>> {
+    scene::build(desc, sources, loader, &BuildOptions::default())
+}

@@ -1,0 +1,173 @@
+//! Stage 4: multiple importance sampling of area lights and the environment (`light … = area
+//! { … }`, `light sky = environment { image("sky.hdr") }`).
+//!
+//! Two strategies estimate the same direct lighting: light sampling (`integrator`: a light
+//! picked by power, then a point or direction on it) and BRDF sampling (here: a direction from
+//! the Phong mixture of `sampling`, traced to the first surface; if that is an emitter, or
+//! nothing and the sky is there, its radiance counts). Each sample is weighted by Veach's power
+//! heuristic on effective densities, so the weights of the two strategies sum to one for every
+//! direction and the sum stays unbiased:
+//!
+//! - light side: `samples · pmf_pick · pdf_light` (an area light takes `samples` points per
+//!   pick; the environment one direction), where `pdf_light` is the solid-angle density of the
+//!   light's own sampling at that direction (spherical triangle `pmf_triangle / Ω`, area
+//!   `r² / (cos θ_l · A_total)`, environment table);
+//! - BRDF side: `pdf_brdf` (one BRDF ray per pick).
+//!
+//! Both strategies take `light_samples` samples per shading point, so that count cancels. With
+//! [`DirectStrategy::LightOnly`] no BRDF ray is traced and light samples weigh 1; with
+//! [`DirectStrategy::BrdfOnly`] area lights and the environment are reached by BRDF rays
+//! alone (weight 1), and only point lights are still sampled.
+
+use glam::Vec3;
+
+use super::integrator::{RayCounts, Shading, STREAM_BRDF, STREAM_ENVIRONMENT};
+use super::rng::Sampler;
+use super::sampling::power_heuristic;
+use super::spherical;
+use super::surface::offset_origin;
+use crate::geom::Ray;
+use crate::scene::{AreaLight, DirectStrategy, Environment, Light, LightSampling, Surface};
+
+impl Shading<'_> {
+    /// The MIS weight of a light sample in direction `wi` whose effective density is
+    /// `light_density`.
+    pub(super) fn light_weight(&self, light_density: f32, wi: Vec3) -> f32 {
+        match self.scene.strategy {
+            DirectStrategy::Mis => {
+                power_heuristic(light_density, self.phong.pdf(self.ns, self.wo, wi))
+            }
+            DirectStrategy::LightOnly | DirectStrategy::BrdfOnly => 1.0,
+        }
+    }
+
+    /// One light-sampled direction of the environment, picked with probability `pmf` for the
+    /// `pick`-th of `picks` picks in the pixel; `L · f · cos θ / pdf · w` (the caller divides by
+    /// `pmf`).
+    pub(super) fn environment(
+        &self,
+        env: &Environment,
+        pmf: f32,
+        pick: u32,
+        picks: u32,
+        sampler: &mut Sampler,
+        counts: &mut RayCounts,
+    ) -> Vec3 {
+        let u = sampler.stratified_2d(STREAM_ENVIRONMENT, pick, picks);
+        let Some(s) = env.sample(u) else {
+            return Vec3::ZERO;
+        };
+        let cos = self.ns.dot(s.wi);
+        if s.pdf_solid_angle <= 0.0 || cos <= 0.0 || s.wi.dot(self.ng) <= 0.0 {
+            return Vec3::ZERO;
+        }
+        if s.radiance == Vec3::ZERO || self.blocked(s.wi, counts) {
+            return Vec3::ZERO;
+        }
+        let f = self.phong.eval(self.ns, s.wi, self.wo);
+        let w = self.light_weight(pmf * s.pdf_solid_angle, s.wi);
+        s.radiance * f * (cos * w / s.pdf_solid_angle)
+    }
+
+    /// Whether anything lies in direction `wi` (unit) from the shading point.
+    fn blocked(&self, wi: Vec3, counts: &mut RayCounts) -> bool {
+        counts.shadow += 1;
+        let origin = offset_origin(self.hit.p, self.hit.p_error, self.ng, wi);
+        let ray = Ray::new(origin, wi);
+        self.scene.accel.as_ref().is_some_and(|a| a.any_hit(&ray))
+    }
+
+    /// The BRDF-sampling strategy: `light_samples` directions from the Phong mixture, each
+    /// adding the MIS-weighted radiance of the emitter or sky it reaches.
+    pub(super) fn brdf_rays(&self, sampler: &mut Sampler, counts: &mut RayCounts) -> Vec3 {
+        let lights = &self.scene.lights;
+        let env = lights
+            .environment
+            .as_ref()
+            .filter(|_| lights.pmf_environment() > 0.0);
+        if self.scene.strategy == DirectStrategy::LightOnly
+            || (env.is_none() && !lights.has_emitters())
+            || self.phong.diffuse_share().is_none()
+        {
+            return Vec3::ZERO;
+        }
+        let picks = self.picks();
+        let (s, count) = sampler.index();
+        let mut sum = Vec3::ZERO;
+        for k in 0..picks {
+            let u = sampler.stratified_2d(STREAM_BRDF, s * picks + k, count * picks);
+            let Some(wi) = self.phong.sample(self.ns, self.wo, u) else {
+                continue;
+            };
+            let cos = self.ns.dot(wi);
+            if cos <= 0.0 || wi.dot(self.ng) <= 0.0 || !wi.is_finite() {
+                continue;
+            }
+            let pdf = self.phong.pdf(self.ns, self.wo, wi);
+            if pdf <= 0.0 {
+                continue;
+            }
+            counts.brdf += 1;
+            let origin = offset_origin(self.hit.p, self.hit.p_error, self.ng, wi);
+            let ray = Ray::new(origin, wi);
+            let hit = self.scene.accel.as_ref().and_then(|a| a.closest_hit(&ray));
+            let (radiance, light_density) = match hit {
+                None => match env {
+                    Some(e) => (e.radiance(wi), lights.pmf_environment() * e.pdf(wi)),
+                    None => continue,
+                },
+                Some(h) => {
+                    let Some(inst) = self.scene.instances.get(h.instance as usize) else {
+                        continue;
+                    };
+                    let Surface::Emitter(i) = inst.surface else {
+                        continue;
+                    };
+                    let Some(Light::Area(light)) = lights.lights.get(i as usize) else {
+                        continue;
+                    };
+                    let p_light = ray.at(h.t);
+                    let Some(pdf_light) = self.area_pdf(light, h.prim as usize, p_light, wi) else {
+                        continue;
+                    };
+                    let pmf = lights.pmf_light(i as usize);
+                    (light.radiance, light.samples as f32 * pmf * pdf_light)
+                }
+            };
+            let w = match self.scene.strategy {
+                DirectStrategy::BrdfOnly => 1.0,
+                _ => power_heuristic(pdf, light_density),
+            };
+            let f = self.phong.eval(self.ns, wi, self.wo);
+            sum += radiance * f * (cos * w / pdf);
+        }
+        sum / picks as f32
+    }
+
+    /// The solid-angle density with which `integrator::sample_triangle` would produce the
+    /// point `p_light` of triangle `t` of `light` (direction `wi` from the shading point), or
+    /// `None` if that side of the triangle emits nothing.
+    fn area_pdf(&self, light: &AreaLight, t: usize, p_light: Vec3, wi: Vec3) -> Option<f32> {
+        let tri = light.triangles.get(t)?;
+        let normal = light.normals[t];
+        let cos_light = -normal.dot(wi);
+        let cos_light = if light.two_sided {
+            cos_light.abs()
+        } else {
+            cos_light
+        };
+        if cos_light <= 0.0 {
+            return None;
+        }
+        let pmf_triangle = light.triangle_pmf(t);
+        let p = self.hit.p;
+        if self.scene.light_sampling == LightSampling::SolidAngle {
+            let omega = spherical::solid_angle(p, tri);
+            if (spherical::MIN_SOLID_ANGLE..=spherical::MAX_SOLID_ANGLE).contains(&omega) {
+                return Some(pmf_triangle / omega);
+            }
+        }
+        let dist2 = (p_light - p).length_squared();
+        Some(dist2 / (cos_light * light.total_area))
+    }
+}

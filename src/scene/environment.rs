@@ -1,0 +1,301 @@
+//! Stage 3/4: the environment light: radiance from every direction no geometry blocks, from a
+//! constant colour and/or an equirectangular image, with its importance-sampling tables.
+//!
+//! Syntax: `light sky = environment { image("sky.hdr")  intensity 1  rotate 90deg  visible true }`
+//! or `environment { rgb(0.2, 0.3, 0.5) }`. Several constant environments add up; at most one
+//! image is supported.
+//!
+//! **Mapping convention** (the benchmark's, `shared/bench/scenes/gen.py` `sky()`): pixel
+//! (`col`, `row`) of a `W × H` map covers `u = φ / 2π ∈ [col/W, (col+1)/W)` and
+//! `θ = π·v ∈ [π·row/H, π·(row+1)/H)`, its centre at `θ = π·(row + 0.5)/H`, for the map-space
+//! direction `(sin θ cos φ, cos θ, sin θ sin φ)`: row 0 is up (+y), `φ = 0` is +x and
+//! `φ = π/2` is +z. `rotate a` turns the whole map by `a` radians about +y, right-handed (+z
+//! towards +x): world direction `d` reads the map at `R_y(−a)·d`, so a feature at map azimuth
+//! `φ` appears at world azimuth `φ − a`.
+//!
+//! **Lookup: nearest texel**, no filtering, so the piecewise-constant sampling distribution
+//! matches the radiance exactly (a sampled direction's radiance is its texel's value).
+//!
+//! **Sampling**: texel weights are luminance × sin θ (row centre), a [`Distribution2D`] over them
+//! gives `pdf_uv`, and `pdf_solid_angle = pdf_uv / (2π² sin θ)` (the Jacobian of
+//! `(u, v) → ω`). A constant part is sampled uniformly over the sphere (`1 / 4π`); with both,
+//! the two are mixed in proportion to their average radiance. Tables are built only when the
+//! scene has geometry to shade.
+
+use std::f32::consts::PI;
+
+use glam::{Vec2, Vec3};
+
+use super::distribution2d::Distribution2D;
+
+/// Rec. 709 luminance of linear RGB.
+pub fn luminance(c: Vec3) -> f32 {
+    c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
+}
+
+/// An equirectangular radiance map (intensity already applied), row 0 at the top (+y).
+#[derive(Debug, Clone)]
+pub struct EnvMap {
+    width: usize,
+    height: usize,
+    texels: Vec<Vec3>,
+    cos_rot: f32,
+    sin_rot: f32,
+    /// Solid-angle-weighted mean radiance.
+    average: Vec3,
+    distribution: Option<Distribution2D>,
+}
+
+/// A direction sampled from the environment.
+#[derive(Debug, Clone, Copy)]
+pub struct EnvSample {
+    /// Unit world direction.
+    pub wi: Vec3,
+    pub radiance: Vec3,
+    /// Density over solid angle of the whole environment's sampling (all its parts).
+    pub pdf_solid_angle: f32,
+}
+
+impl EnvMap {
+    /// `texels.len()` must be `width · height` (checked: `None` otherwise); `texels` must be
+    /// finite and non-negative (the image loader cleans them).
+    pub fn new(
+        width: usize,
+        height: usize,
+        texels: Vec<Vec3>,
+        rotation_y_rad: f32,
+    ) -> Option<EnvMap> {
+        if width == 0 || height == 0 || texels.len() != width.checked_mul(height)? {
+            return None;
+        }
+        let mut sum = glam::DVec3::ZERO;
+        let mut weight = 0.0f64;
+        for (row, line) in texels.chunks(width).enumerate() {
+            let s = row_sin_theta(row, height) as f64;
+            let row_sum: glam::DVec3 = line.iter().map(|t| t.as_dvec3()).sum();
+            sum += row_sum * s;
+            weight += s * width as f64;
+        }
+        Some(EnvMap {
+            width,
+            height,
+            texels,
+            cos_rot: rotation_y_rad.cos(),
+            sin_rot: rotation_y_rad.sin(),
+            average: (sum / weight.max(f64::MIN_POSITIVE)).as_vec3(),
+            distribution: None,
+        })
+    }
+
+    pub fn size(&self) -> (usize, usize) {
+        (self.width, self.height)
+    }
+
+    pub fn average(&self) -> Vec3 {
+        self.average
+    }
+
+    /// Builds the sampling table (luminance × sin θ). Returns `false` (and builds nothing) when
+    /// the map is black.
+    pub fn build_distribution(&mut self) -> bool {
+        let weights: Vec<f32> = self
+            .texels
+            .chunks(self.width)
+            .enumerate()
+            .flat_map(|(row, line)| {
+                let s = row_sin_theta(row, self.height);
+                line.iter().map(move |&t| luminance(t) * s)
+            })
+            .collect();
+        self.distribution = Distribution2D::new(self.width, self.height, weights);
+        self.distribution.is_some()
+    }
+
+    pub fn has_distribution(&self) -> bool {
+        self.distribution.is_some()
+    }
+
+    fn to_map(&self, d: Vec3) -> Vec3 {
+        // R_y(−a)·d.
+        Vec3::new(
+            self.cos_rot * d.x - self.sin_rot * d.z,
+            d.y,
+            self.sin_rot * d.x + self.cos_rot * d.z,
+        )
+    }
+
+    fn to_world(&self, m: Vec3) -> Vec3 {
+        // R_y(a)·m.
+        Vec3::new(
+            self.cos_rot * m.x + self.sin_rot * m.z,
+            m.y,
+            -self.sin_rot * m.x + self.cos_rot * m.z,
+        )
+    }
+
+    /// The texel (`col`, `row`) world direction `d` (unit) reads, and the map-space sin θ.
+    pub fn texel_of(&self, d: Vec3) -> (usize, usize, f32) {
+        let m = self.to_map(d);
+        let cos_theta = m.y.clamp(-1.0, 1.0);
+        let theta = cos_theta.acos();
+        let mut phi = m.z.atan2(m.x);
+        if phi < 0.0 {
+            phi += 2.0 * PI;
+        }
+        let col = ((phi / (2.0 * PI) * self.width as f32) as usize).min(self.width - 1);
+        let row = ((theta / PI * self.height as f32) as usize).min(self.height - 1);
+        let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
+        (col, row, sin_theta)
+    }
+
+    /// Radiance arriving from world direction `d` (unit): the nearest texel.
+    pub fn radiance(&self, d: Vec3) -> Vec3 {
+        let (col, row, _) = self.texel_of(d);
+        self.texels[row * self.width + col]
+    }
+
+    /// A direction by the table (`None` without one, or at a pole where the density is
+    /// singular): world direction, its texel's radiance and `pdf_solid_angle` of the map alone.
+    pub fn sample(&self, u: Vec2) -> Option<EnvSample> {
+        let s = self.distribution.as_ref()?.sample(u);
+        let theta = PI * s.uv.y;
+        let phi = 2.0 * PI * s.uv.x;
+        let (sin_theta, cos_theta) = theta.sin_cos();
+        if sin_theta <= 0.0 || s.pdf_uv <= 0.0 {
+            return None;
+        }
+        let (sin_phi, cos_phi) = phi.sin_cos();
+        let m = Vec3::new(sin_theta * cos_phi, cos_theta, sin_theta * sin_phi);
+        Some(EnvSample {
+            wi: self.to_world(m).normalize(),
+            radiance: self.texels[s.row * self.width + s.col],
+            pdf_solid_angle: s.pdf_uv / (2.0 * PI * PI * sin_theta),
+        })
+    }
+
+    /// The density over solid angle that [`EnvMap::sample`] has at world direction `d` (unit).
+    pub fn pdf(&self, d: Vec3) -> f32 {
+        let Some(dist) = &self.distribution else {
+            return 0.0;
+        };
+        let (col, row, sin_theta) = self.texel_of(d);
+        if sin_theta <= 0.0 {
+            return 0.0;
+        }
+        dist.pdf_uv(col, row) / (2.0 * PI * PI * sin_theta)
+    }
+}
+
+fn row_sin_theta(row: usize, height: usize) -> f32 {
+    (PI * (row as f32 + 0.5) / height as f32).sin()
+}
+
+/// The scene's environment: a constant part plus an optional map.
+#[derive(Debug, Clone)]
+pub struct Environment {
+    pub constant: Vec3,
+    pub map: Option<EnvMap>,
+    /// Whether escaped camera rays show it.
+    pub visible: bool,
+    /// Probability of sampling the map rather than the uniform sphere (set by
+    /// [`Environment::prepare_sampling`]).
+    map_fraction: f32,
+    /// Whether the sampling tables were built (only for scenes with geometry).
+    sampled: bool,
+}
+
+impl Environment {
+    pub fn new(constant: Vec3, map: Option<EnvMap>, visible: bool) -> Environment {
+        Environment {
+            constant,
+            map,
+            visible,
+            map_fraction: 0.0,
+            sampled: false,
+        }
+    }
+
+    /// Whether nothing is emitted at all.
+    pub fn is_black(&self) -> bool {
+        self.constant.max_element() <= 0.0 && self.map.is_none()
+    }
+
+    /// Builds the map's table; returns `false` if the map turned out black (it is then dropped).
+    pub fn prepare_sampling(&mut self) -> bool {
+        let mut black_map = false;
+        if let Some(map) = &mut self.map {
+            if !map.build_distribution() {
+                black_map = true;
+                self.map = None;
+            }
+        }
+        let map_weight = self.map.as_ref().map_or(0.0, |m| luminance(m.average()));
+        let constant_weight = luminance(self.constant.max(Vec3::ZERO));
+        self.map_fraction = if map_weight > 0.0 {
+            map_weight / (map_weight + constant_weight)
+        } else {
+            0.0
+        };
+        self.sampled = true;
+        !black_map
+    }
+
+    /// Solid-angle-weighted mean radiance (for picking lights by power).
+    pub fn average_radiance(&self) -> Vec3 {
+        self.constant + self.map.as_ref().map_or(Vec3::ZERO, EnvMap::average)
+    }
+
+    /// The power used to pick the environment among the lights, `None` before
+    /// [`Environment::prepare_sampling`] or when it emits nothing: `π · (π R²) · L̄`, the flux an
+    /// area light of the scene's cross-section (`R` = bounding-sphere radius) and the
+    /// environment's mean radiance `L̄` (averaged over channels) would emit, so that it compares
+    /// with [`super::AreaLight::power`] (`π · A · L`).
+    pub fn power(&self, scene_radius: f32) -> Option<f32> {
+        let mean = self.average_radiance().element_sum() / 3.0;
+        let power = PI * PI * scene_radius * scene_radius * mean;
+        (self.sampled && power > 0.0 && power.is_finite()).then_some(power)
+    }
+
+    /// Radiance from world direction `d` (unit).
+    pub fn radiance(&self, d: Vec3) -> Vec3 {
+        self.constant + self.map.as_ref().map_or(Vec3::ZERO, |m| m.radiance(d))
+    }
+
+    /// A direction with density `pdf_solid_angle` (the map by its table with probability
+    /// `map_fraction`, otherwise uniform over the sphere).
+    pub fn sample(&self, u: Vec2) -> Option<EnvSample> {
+        let f = self.map_fraction;
+        if u.x < f {
+            let map = self.map.as_ref()?;
+            let u_map = Vec2::new((u.x / f).min(1.0 - f32::EPSILON / 2.0), u.y);
+            let s = map.sample(u_map)?;
+            return Some(EnvSample {
+                wi: s.wi,
+                radiance: self.constant + s.radiance,
+                pdf_solid_angle: f * s.pdf_solid_angle + (1.0 - f) / (4.0 * PI),
+            });
+        }
+        let u_sphere = Vec2::new(((u.x - f) / (1.0 - f)).clamp(0.0, 1.0), u.y);
+        let wi = uniform_sphere(u_sphere);
+        Some(EnvSample {
+            wi,
+            radiance: self.radiance(wi),
+            pdf_solid_angle: self.pdf(wi),
+        })
+    }
+
+    /// The density of [`Environment::sample`] at world direction `d` (unit).
+    pub fn pdf(&self, d: Vec3) -> f32 {
+        let f = self.map_fraction;
+        let map = self.map.as_ref().map_or(0.0, |m| m.pdf(d));
+        f * map + (1.0 - f) / (4.0 * PI)
+    }
+}
+
+/// A direction uniform over the unit sphere (density `1 / 4π`).
+pub fn uniform_sphere(u: Vec2) -> Vec3 {
+    let z = 1.0 - 2.0 * u.x;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let phi = 2.0 * PI * u.y;
+    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+}
