@@ -146,6 +146,29 @@ fn an_include_created_later_fixes_the_build() {
 }
 
 #[test]
+fn a_new_edit_cancels_the_render_in_flight() {
+    let dir = scene_dir("cancel");
+    // 256 spp at 320x240: the final pass takes far longer than the preview passes.
+    let heavy = |eye: f32| {
+        scene(eye).replace(
+            "resolution 32 x 24  samples rgss 4",
+            "resolution 320 x 240  samples rgss 256",
+        )
+    };
+    dir.write("scene.scn", &heavy(1.0));
+    let mut w = Watch::start(&dir, "scene.scn", &["--no-serve"]);
+    w.expect("watching");
+    w.expect_where("pass", |e| e["spp"] == 1);
+    dir.write("scene.scn", &heavy(2.0));
+    w.expect("compiled");
+    let finals = w.seen.iter().filter(|e| e["final"] == true).count();
+    assert_eq!(finals, 0, "the 256-spp pass was cancelled: {:#?}", w.seen);
+    // The new render starts over from the preview pass.
+    let next = w.expect("pass");
+    assert_eq!(next["spp"], 1, "{next}");
+}
+
+#[test]
 #[cfg(unix)]
 fn ctrl_c_stops_cleanly_leaving_no_temporary_files() {
     let dir = scene_dir("ctrlc");
