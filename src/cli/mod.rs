@@ -9,6 +9,7 @@ mod ir;
 mod render;
 pub mod report;
 mod stats;
+mod watch;
 
 use std::process::ExitCode;
 
@@ -20,6 +21,7 @@ pub use render::{AccelArg, RenderArgs};
 pub use report::{
     compile_and_report, print_diagnostics, DiagArgs, DiagnosticFormat, JsonTo, SceneArg,
 };
+pub use watch::WatchArgs;
 
 /// scnc: a declarative scene-language compiler and ray tracer.
 #[derive(Debug, Parser)]
@@ -37,6 +39,9 @@ pub enum Command {
     Render(RenderArgs),
     /// Print a scene's validated intermediate representation as JSON.
     Ir(IrArgs),
+    /// Render, then re-render on every change of the scene, its includes and assets, with a
+    /// live preview page (Ctrl-C to stop).
+    Watch(WatchArgs),
 }
 
 /// Parses the process arguments and runs the chosen command.
@@ -49,5 +54,6 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Check(args) => check::run(&args),
         Command::Ir(args) => ir::run(&args),
         Command::Render(args) => render::run(&args),
+        Command::Watch(args) => watch::run(&args),
     }
 }

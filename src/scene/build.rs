@@ -13,6 +13,7 @@ use std::time::Instant;
 
 use glam::{Affine3A, Mat3, Vec3};
 
+use super::cache::BuildCache;
 use super::env_load::load_env_map;
 use super::environment::Environment;
 use super::lights::{AreaLight, Light, Lights, PointLight};
@@ -38,10 +39,34 @@ pub fn build(
     loader: &dyn Loader,
     options: &BuildOptions,
 ) -> Result<Scene, Vec<Diagnostic>> {
+    build_with(desc, loader, options, None)
+}
+
+/// [`build`] reusing what `cache` kept from earlier builds (meshes by source and content,
+/// the accel by meshes and transforms); the same scene as [`build`] would make. Hand the scene
+/// back with [`BuildCache::recycle`] when done; [`BuildCache::report`] says what was rebuilt.
+pub fn build_cached(
+    desc: &ir::SceneDesc,
+    _sources: &SourceMap,
+    loader: &dyn Loader,
+    options: &BuildOptions,
+    cache: &mut BuildCache,
+) -> Result<Scene, Vec<Diagnostic>> {
+    cache.begin();
+    build_with(desc, loader, options, Some(cache))
+}
+
+fn build_with(
+    desc: &ir::SceneDesc,
+    loader: &dyn Loader,
+    options: &BuildOptions,
+    cache: Option<&mut BuildCache>,
+) -> Result<Scene, Vec<Diagnostic>> {
     let start = Instant::now();
     let mut b = Builder {
         desc,
         loader,
+        cache,
         problems: Vec::new(),
         meshes: Vec::new(),
         mesh_slots: vec![None; desc.meshes.len()],
@@ -84,6 +109,9 @@ pub fn build(
     let (Some(camera), false) = (camera, diags.iter().any(|d| d.severity == Severity::Error))
     else {
         diags.sort_by_key(|d| std::cmp::Reverse(d.severity));
+        if let Some(cache) = b.cache {
+            cache.give_back(b.meshes, None);
+        }
         return Err(diags);
     };
 
@@ -93,6 +121,9 @@ pub fn build(
         .map(|i| b.meshes[i.mesh as usize].triangles.len())
         .sum();
     let accel = (triangles > 0).then(|| {
+        if let Some(cache) = b.cache.as_deref_mut() {
+            return cache.accel(&b.meshes, &instances, options.accel);
+        }
         let refs: Vec<MeshRef<'_>> = b.meshes.iter().map(TriMesh::as_mesh_ref).collect();
         let accel_instances: Vec<Instance> = instances
             .iter()
@@ -129,6 +160,7 @@ pub fn build(
 struct Builder<'a> {
     desc: &'a ir::SceneDesc,
     loader: &'a dyn Loader,
+    cache: Option<&'a mut BuildCache>,
     problems: Vec<BuildError>,
     meshes: Vec<TriMesh>,
     /// Per `ir::MeshId`: not tried yet, or `Some(index into meshes)` / `Some(None)` if it failed.
@@ -337,7 +369,11 @@ impl Builder<'_> {
             return *done;
         }
         let decl = self.desc.meshes.get(id as usize)?;
-        let index = match load_mesh(decl, self.loader) {
+        let loaded = match self.cache.as_deref_mut() {
+            Some(cache) => cache.load_mesh(decl, self.loader),
+            None => load_mesh(decl, self.loader),
+        };
+        let index = match loaded {
             Ok((mesh, warning)) => {
                 self.problems.extend(warning);
                 self.meshes.push(mesh);

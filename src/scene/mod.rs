@@ -8,6 +8,7 @@
 //! diagnostics labelled at the path literal or declaration in the `.scn`.
 
 mod build;
+pub mod cache;
 pub mod distribution;
 pub mod distribution2d;
 mod env_load;
@@ -23,7 +24,8 @@ use std::time::Duration;
 
 use glam::{Affine3A, Mat3, Vec3};
 
-pub use build::build;
+pub use build::{build, build_cached};
+pub use cache::{BuildCache, CacheReport};
 pub use environment::{EnvMap, EnvSample, Environment};
 pub use error::BuildError;
 pub use lights::{AreaLight, Light, Lights, Picked, PointLight};

@@ -1,0 +1,116 @@
+//! `scnc watch`: progressive rendering on a thread of its own. Pass 1 at preview quality
+//! (1 sample per pixel), then passes refining to the scene's samples (1, 4, then the scene's
+//! N², each skipped when it would not add samples). Each finished pass is written atomically
+//! to every output and handed to the preview. Stopping sets the cancel flag (the renderer checks
+//! it before every tile) and gives the scene back for the build cache.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::thread::JoinHandle;
+
+use super::server::Preview;
+use super::session::Ready;
+use super::status::Status;
+use crate::film;
+use crate::render::{self, RenderOptions};
+use crate::scene::Scene;
+use crate::source::SourceMap;
+
+/// The samples per pixel of each pass, for a scene rendering `full` in the end.
+pub fn plan(full: u32) -> Vec<u32> {
+    let mut passes: Vec<u32> = [1, 4].into_iter().filter(|&s| s < full).collect();
+    passes.push(full.max(1));
+    passes
+}
+
+/// A render in flight.
+pub struct RenderJob {
+    cancel: Arc<AtomicBool>,
+    handle: JoinHandle<Scene>,
+}
+
+impl RenderJob {
+    pub fn start(
+        ready: Ready,
+        sources: Arc<SourceMap>,
+        threads: Option<usize>,
+        status: Arc<Status>,
+        preview: Option<Arc<Preview>>,
+    ) -> RenderJob {
+        let cancel = Arc::new(AtomicBool::new(false));
+        let flag = cancel.clone();
+        let handle = std::thread::spawn(move || {
+            run(
+                &ready,
+                &sources,
+                threads,
+                &status,
+                preview.as_deref(),
+                &flag,
+            );
+            ready.scene
+        });
+        RenderJob { cancel, handle }
+    }
+
+    /// Cancels the render (at the next tile) and waits for it; a pass being written finishes
+    /// its atomic write first. Returns the scene for the cache (`None` if the thread panicked).
+    pub fn stop(self) -> Option<Scene> {
+        self.cancel.store(true, Ordering::Relaxed);
+        self.handle.join().ok()
+    }
+}
+
+fn run(
+    ready: &Ready,
+    sources: &SourceMap,
+    threads: Option<usize>,
+    status: &Status,
+    preview: Option<&Preview>,
+    cancel: &AtomicBool,
+) {
+    let scene = &ready.scene;
+    let passes = plan(scene.settings.samples_per_pixel);
+    for (i, &spp) in passes.iter().enumerate() {
+        let options = RenderOptions {
+            spp: Some(spp),
+            threads,
+        };
+        let Ok((film, stats)) = render::render(scene, &options, &|_| {}, cancel) else {
+            return;
+        };
+        for (path, span) in &ready.outputs {
+            if let Err(e) = film::write(&film, path, &ready.write) {
+                status.write_failed(&e.to_diagnostic(*span), sources);
+            }
+        }
+        if let Some(p) = preview {
+            if let Ok(png) = film::encode_png(&film, &ready.write) {
+                p.set_image(png);
+            }
+        }
+        status.pass(
+            i + 1,
+            stats.samples_per_pixel,
+            stats.wall.as_secs_f64() * 1e3,
+            (film.width(), film.height()),
+            i + 1 == passes.len(),
+        );
+        if cancel.load(Ordering::Relaxed) {
+            return;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::plan;
+
+    #[test]
+    fn passes_refine_up_to_the_scene() {
+        assert_eq!(plan(1), vec![1]);
+        assert_eq!(plan(4), vec![1, 4]);
+        assert_eq!(plan(16), vec![1, 4, 16]);
+        assert_eq!(plan(0), vec![1]);
+    }
+}

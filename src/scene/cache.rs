@@ -1,0 +1,238 @@
+//! Stage 3, between builds: [`BuildCache`] keeps what an earlier [`build_cached`] loaded and
+//! built, so that `scnc watch` redoes only what an edit changed.
+//!
+//! No syntax of its own; it memoises the work behind `mesh … = obj(…) | inline {…} | quad |
+//! box | sphere` and behind the placement of `object`s and area lights:
+//! - a loaded, validated mesh, keyed by its source ([`MeshKey`]: the OBJ path, or a hash of the
+//!   inline arrays / built-in shape parameters) and, for files, the content hash of the bytes it
+//!   was loaded from. The caller reports current content hashes through
+//!   [`BuildCache::retain_current`]; an entry whose file changed is dropped, an unchanged file
+//!   is not read again.
+//! - the acceleration structure, keyed by its kind and the list of (mesh key, transform) of
+//!   every instance: a camera, material, light-colour or render-setting edit reuses it.
+//!
+//! Entries are moved into the new scene (no copy of a 1M-triangle mesh or its BVH); hand the
+//! scene back with [`BuildCache::recycle`] when it is no longer rendered.
+//!
+//! [`build_cached`]: super::build_cached
+
+use std::collections::HashMap;
+use std::hash::{Hash, Hasher};
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+
+use super::load::load_mesh;
+use super::mesh::TriMesh;
+use super::{BuildError, Scene, SceneInstance};
+use crate::assets::Loader;
+use crate::bvh::{Accel, AccelKind, Instance, MeshRef};
+use crate::ir::{self, MeshSource};
+
+/// A hash of file contents (64-bit SipHash with fixed keys: stable within and across runs of
+/// one build of scnc, which is all a cache needs).
+pub fn content_hash(bytes: &[u8]) -> u64 {
+    #[allow(deprecated)] // SipHasher is the std hasher with fixed keys; stable for our purpose.
+    let mut h = std::hash::SipHasher::new();
+    bytes.hash(&mut h);
+    h.finish()
+}
+
+/// What a mesh was made from, without its span (moving a declaration is not a change).
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub enum MeshKey {
+    Obj(PathBuf),
+    /// Hash of the serialised inline arrays or built-in shape parameters.
+    Data(u64),
+}
+
+impl MeshKey {
+    pub fn of(source: &MeshSource) -> MeshKey {
+        let json = match source {
+            MeshSource::Obj(path) => return MeshKey::Obj(path.path.clone()),
+            MeshSource::Inline(m) => serde_json::to_vec(m),
+            MeshSource::Builtin(shape) => serde_json::to_vec(shape),
+        };
+        // Serialising plain numbers cannot fail; an empty key would only cost a reload.
+        MeshKey::Data(content_hash(&json.unwrap_or_default()))
+    }
+}
+
+/// What one [`build_cached`](super::build_cached) did, for the watch status line.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct CacheReport {
+    /// Meshes loaded (read, parsed, tessellated or validated) in this build.
+    pub meshes_loaded: usize,
+    /// Meshes taken from the cache.
+    pub meshes_reused: usize,
+    /// Whether the acceleration structure was built (false: reused or no triangles).
+    pub accel_built: bool,
+}
+
+impl CacheReport {
+    /// Names of what was rebuilt: `"meshes"`, `"bvh"`.
+    pub fn rebuilt(&self) -> Vec<&'static str> {
+        let mut out = Vec::new();
+        if self.meshes_loaded > 0 {
+            out.push("meshes");
+        }
+        if self.accel_built {
+            out.push("bvh");
+        }
+        out
+    }
+}
+
+#[derive(Debug)]
+struct CachedMesh {
+    mesh: TriMesh,
+    /// Content hash of the OBJ file it came from (`None` for inline and built-in meshes).
+    file_hash: Option<u64>,
+}
+
+/// Per instance: the mesh, the content hash of its file, and the transform's bits.
+type AccelKey = (AccelKind, Vec<(MeshKey, Option<u64>, [u32; 12])>);
+
+/// Meshes and acceleration structure kept between builds. See the module doc.
+#[derive(Debug, Default)]
+pub struct BuildCache {
+    meshes: HashMap<MeshKey, CachedMesh>,
+    accel: Option<(AccelKey, Accel)>,
+    /// Keys (and file hashes) of the meshes of the scene built last, in its mesh order.
+    current: Vec<(MeshKey, Option<u64>)>,
+    /// The key of the accel the current build made or reused (stored with it on give-back).
+    last_accel_key: Option<AccelKey>,
+    report: CacheReport,
+}
+
+impl BuildCache {
+    pub fn new() -> BuildCache {
+        BuildCache::default()
+    }
+
+    /// Drops every mesh whose file's current content hash (from `hash_of`; `None`: missing or
+    /// unknown) differs from the one it was loaded from.
+    pub fn retain_current(&mut self, hash_of: impl Fn(&Path) -> Option<u64>) {
+        self.meshes.retain(|key, m| match key {
+            MeshKey::Obj(path) => m.file_hash.is_some() && hash_of(path) == m.file_hash,
+            MeshKey::Data(_) => true,
+        });
+    }
+
+    /// The files (and their content hashes) of the meshes of the scene built last: the watch
+    /// set must include them even when they were not read again.
+    pub fn files_in_use(&self) -> Vec<(PathBuf, u64)> {
+        self.current
+            .iter()
+            .filter_map(|(k, h)| match (k, h) {
+                (MeshKey::Obj(p), Some(h)) => Some((p.clone(), *h)),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// What the last build loaded and built.
+    pub fn report(&self) -> &CacheReport {
+        &self.report
+    }
+
+    /// Takes a scene's meshes and accel back for the next build.
+    pub fn recycle(&mut self, scene: Scene) {
+        self.give_back(scene.meshes, scene.accel);
+    }
+
+    pub(super) fn begin(&mut self) {
+        self.current.clear();
+        self.last_accel_key = None;
+        self.report = CacheReport::default();
+    }
+
+    /// Returns meshes (in the order they were loaded in the current build) and an accel.
+    pub(super) fn give_back(&mut self, meshes: Vec<TriMesh>, accel: Option<Accel>) {
+        for ((key, file_hash), mesh) in self.current.iter().cloned().zip(meshes) {
+            self.meshes.insert(key, CachedMesh { mesh, file_hash });
+        }
+        if let (Some(accel), Some(key)) = (accel, self.last_accel_key.take()) {
+            self.accel = Some((key, accel));
+        }
+    }
+
+    /// [`load_mesh`] through the cache. The caller pushes the mesh (in order) into the scene.
+    pub(super) fn load_mesh(
+        &mut self,
+        decl: &ir::Mesh,
+        loader: &dyn Loader,
+    ) -> Result<(TriMesh, Option<BuildError>), BuildError> {
+        let key = MeshKey::of(&decl.source);
+        if let Some(hit) = self.meshes.remove(&key) {
+            self.report.meshes_reused += 1;
+            self.current.push((key, hit.file_hash));
+            return Ok((hit.mesh, None));
+        }
+        let hashing = HashingLoader {
+            inner: loader,
+            last: Mutex::new(None),
+        };
+        let loaded = load_mesh(decl, &hashing)?;
+        self.report.meshes_loaded += 1;
+        let file_hash = hashing.last.lock().ok().and_then(|h| *h);
+        self.current.push((key, file_hash));
+        Ok(loaded)
+    }
+
+    /// The acceleration structure for `instances` over `meshes` (loaded by this build), reused
+    /// when the same meshes sit at the same places.
+    pub(super) fn accel(
+        &mut self,
+        meshes: &[TriMesh],
+        instances: &[SceneInstance],
+        kind: AccelKind,
+    ) -> Accel {
+        let key: AccelKey = (
+            kind,
+            instances
+                .iter()
+                .map(|i| {
+                    let (k, h) = self
+                        .current
+                        .get(i.mesh as usize)
+                        .cloned()
+                        .unwrap_or((MeshKey::Data(u64::MAX), None));
+                    (k, h, i.world_from_object.to_cols_array().map(f32::to_bits))
+                })
+                .collect(),
+        );
+        self.last_accel_key = Some(key.clone());
+        if let Some((old, accel)) = self.accel.take() {
+            if old == key {
+                return accel;
+            }
+        }
+        self.report.accel_built = true;
+        let refs: Vec<MeshRef<'_>> = meshes.iter().map(TriMesh::as_mesh_ref).collect();
+        let accel_instances: Vec<Instance> = instances
+            .iter()
+            .map(|i| Instance::new(i.mesh, i.world_from_object))
+            .collect();
+        Accel::build(&refs, &accel_instances, kind)
+    }
+}
+
+/// Remembers the content hash of the last file read (a mesh reads at most one file).
+struct HashingLoader<'a> {
+    inner: &'a dyn Loader,
+    last: Mutex<Option<u64>>,
+}
+
+impl Loader for HashingLoader<'_> {
+    fn read(&self, path: &Path) -> std::io::Result<Arc<[u8]>> {
+        let bytes = self.inner.read(path)?;
+        if let Ok(mut last) = self.last.lock() {
+            *last = Some(content_hash(&bytes));
+        }
+        Ok(bytes)
+    }
+
+    fn recorded(&self) -> Vec<PathBuf> {
+        self.inner.recorded()
+    }
+}

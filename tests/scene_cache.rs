@@ -1,0 +1,151 @@
+//! `scene::build_cached` (issue 6): the same scene as `scene::build`, rebuilding only what an
+//! edit changed: meshes by source and content hash, the BVH by meshes and transforms.
+
+use std::sync::atomic::AtomicBool;
+
+use scnc::assets::MemLoader;
+use scnc::compile::compile_source;
+use scnc::render::{self, RenderOptions};
+use scnc::scene::cache::content_hash;
+use scnc::scene::{self, BuildCache, BuildOptions, CacheReport, Scene};
+
+const OBJ: &str = "v -2 -1 0\nv 2 -1 0\nv 0 2 0\nf 1 2 3\n";
+
+fn text(eye_y: f32, shift_z: f32) -> String {
+    format!(
+        "scnc 1
+camera main {{ eye (0, {eye_y}, -4)  target (0, 0, 0)  up (0, 1, 0)  fov 40deg }}
+material white = phong {{ diffuse rgb(0.8, 0.8, 0.8)  specular 0 }}
+mesh ball = sphere {{ radius 1  segments 12 }}
+mesh tri = obj(\"meshes/tri.obj\")
+object ball {{ material white }}
+object tri {{ material white  transform {{ translate (0, 0, {shift_z}) }} }}
+light key = point {{ position (2, 4, -3)  intensity rgb(30, 30, 30) }}
+render {{ resolution 24 x 16  samples 1 }}
+"
+    )
+}
+
+fn loader(obj: &str) -> MemLoader {
+    let mut l = MemLoader::new();
+    l.insert("meshes/tri.obj", obj.as_bytes());
+    l
+}
+
+/// Builds `text` with or without a cache; the scene and, with a cache, its report.
+fn build(text: &str, loader: &MemLoader, cache: Option<&mut BuildCache>) -> Scene {
+    let compiled = compile_source("s.scn", text, loader);
+    let desc = compiled.scene.expect("the test scene compiles");
+    let opts = BuildOptions::default();
+    match cache {
+        Some(c) => scene::build_cached(&desc, &compiled.sources, loader, &opts, c),
+        None => scene::build(&desc, &compiled.sources, loader, &opts),
+    }
+    .expect("the test scene builds")
+}
+
+fn image(scene: &Scene) -> Vec<glam::Vec3> {
+    let (film, _) = render::render(
+        scene,
+        &RenderOptions::default(),
+        &|_| {},
+        &AtomicBool::new(false),
+    )
+    .expect("not cancelled");
+    film.pixels().to_vec()
+}
+
+fn report(loaded: usize, reused: usize, accel_built: bool) -> CacheReport {
+    CacheReport {
+        meshes_loaded: loaded,
+        meshes_reused: reused,
+        accel_built,
+    }
+}
+
+#[test]
+fn cached_builds_render_the_same_image_as_plain_builds() {
+    let l = loader(OBJ);
+    let mut cache = BuildCache::new();
+    for (eye, shift) in [(1.0, 1.0), (1.5, 1.0), (1.5, 2.0)] {
+        let cached = build(&text(eye, shift), &l, Some(&mut cache));
+        let plain = build(&text(eye, shift), &l, None);
+        assert_eq!(image(&cached), image(&plain), "eye {eye}, shift {shift}");
+        cache.recycle(cached);
+    }
+}
+
+#[test]
+fn only_what_changed_is_rebuilt() {
+    let l = loader(OBJ);
+    let mut cache = BuildCache::new();
+    let s = build(&text(1.0, 1.0), &l, Some(&mut cache));
+    assert_eq!(*cache.report(), report(2, 0, true));
+    assert_eq!(cache.report().rebuilt(), ["meshes", "bvh"]);
+    cache.recycle(s);
+
+    // Camera edit: nothing reloaded, BVH reused.
+    let s = build(&text(2.0, 1.0), &l, Some(&mut cache));
+    assert_eq!(*cache.report(), report(0, 2, false));
+    assert!(cache.report().rebuilt().is_empty());
+    cache.recycle(s);
+
+    // Transform edit: meshes reused, BVH rebuilt.
+    let s = build(&text(2.0, 1.5), &l, Some(&mut cache));
+    assert_eq!(*cache.report(), report(0, 2, true));
+    cache.recycle(s);
+
+    // The OBJ's content changed: it alone is reloaded, and the BVH rebuilt.
+    let edited = OBJ.replace("v 0 2 0", "v 0 3 0");
+    let l2 = loader(&edited);
+    let new_hash = content_hash(edited.as_bytes());
+    cache.retain_current(|_| Some(new_hash));
+    let s = build(&text(2.0, 1.5), &l2, Some(&mut cache));
+    assert_eq!(*cache.report(), report(1, 1, true));
+    assert_eq!(cache.files_in_use(), [("meshes/tri.obj".into(), new_hash)]);
+    cache.recycle(s);
+
+    // Same content as before: kept, and not read at all (the loader records nothing).
+    cache.retain_current(|_| Some(new_hash));
+    let fresh = loader(&edited);
+    let compiled = compile_source("s.scn", &text(2.0, 1.5), &fresh);
+    let desc = compiled.scene.expect("compiles");
+    let s = scene::build_cached(
+        &desc,
+        &compiled.sources,
+        &fresh,
+        &BuildOptions::default(),
+        &mut cache,
+    )
+    .expect("builds");
+    assert_eq!(*cache.report(), report(0, 2, false));
+    assert!(scnc::assets::Loader::recorded(&fresh).is_empty());
+    cache.recycle(s);
+}
+
+#[test]
+fn a_failed_build_gives_its_meshes_back() {
+    let l = loader(OBJ);
+    let mut cache = BuildCache::new();
+    let s = build(&text(1.0, 1.0), &l, Some(&mut cache));
+    cache.recycle(s);
+    // A third mesh whose file is missing: the build fails after taking the other two.
+    let broken = format!(
+        "{}mesh gone = obj(\"missing.obj\")\nobject gone {{ material white }}\n",
+        text(1.0, 1.0)
+    );
+    let compiled = compile_source("s.scn", &broken, &l);
+    let desc = compiled.scene.expect("the checker does not read files");
+    let r = scene::build_cached(
+        &desc,
+        &compiled.sources,
+        &l,
+        &BuildOptions::default(),
+        &mut cache,
+    );
+    assert!(r.is_err());
+    assert_eq!(cache.report().meshes_reused, 2);
+    let s = build(&text(1.0, 1.0), &l, Some(&mut cache));
+    assert_eq!(cache.report().meshes_reused, 2);
+    cache.recycle(s);
+}
