@@ -1,7 +1,7 @@
-;; Highlights for scnc scene files (.scn). Standard capture names, so Neovim, Helix and Zed
-;; themes colour them. The patterns do not overlap (each node gets one capture whatever the
-;; editor's precedence rule), and every word list is checked against the compiler's tables by
-;; tests/editors_drift.rs: keep one list per predicate.
+;; Highlights for scnc scene files (.scn), with the standard capture names of Neovim and Zed
+;; (for Helix, see editors/README.md). The patterns do not overlap (each node gets one capture
+;; whatever the editor's precedence rule), and every word list is checked against the
+;; compiler's tables by tests/editors_drift.rs: keep one list per predicate.
 
 (line_comment) @comment
 (block_comment) @comment
