@@ -42,7 +42,10 @@ fn language() -> Language {
         .filter_map(|l| l.split_whitespace().next())
         .map(str::to_owned)
         .collect();
-    assert_eq!(keywords, in_pest, "STATEMENT_KEYWORDS + transform vs the pest kw_ rules");
+    assert_eq!(
+        keywords, in_pest,
+        "STATEMENT_KEYWORDS + transform vs the pest kw_ rules"
+    );
     Language {
         keywords,
         keys: set(v::PROPERTY_KEYS.iter().copied()),
@@ -66,9 +69,17 @@ fn same(grammar: &str, class: &str, found: &Words, want: &Words) {
 
 /// The `|`-separated alternation between `open` and the next `close` in `text`.
 fn alternation(text: &str, open: &str, close: &str) -> Words {
-    let start = text.find(open).unwrap_or_else(|| panic!("`{open}` not found in {text}")) + open.len();
-    let len = text[start..].find(close).unwrap_or_else(|| panic!("`{close}` not found after `{open}`"));
-    text[start..start + len].split('|').map(str::to_owned).collect()
+    let start = text
+        .find(open)
+        .unwrap_or_else(|| panic!("`{open}` not found in {text}"))
+        + open.len();
+    let len = text[start..]
+        .find(close)
+        .unwrap_or_else(|| panic!("`{close}` not found after `{open}`"));
+    text[start..start + len]
+        .split('|')
+        .map(str::to_owned)
+        .collect()
 }
 
 fn union(a: &Words, b: &Words) -> Words {
@@ -87,17 +98,55 @@ fn textmate_grammar_matches_the_language() {
             .to_owned()
     };
     let g = "scn.tmLanguage.json";
-    same(g, "keywords", &alternation(&rx("keyword", "match"), r"\b(?:", r")\b"), &lang.keywords);
-    same(g, "keys", &alternation(&rx("key", "match"), r"\b(?:", r")\b"), &lang.keys);
-    same(g, "kinds", &alternation(&rx("kind", "match"), r"\b(?:", r")\b"), &lang.kinds);
-    same(g, "kinds (calls)", &alternation(&rx("call-kind", "begin"), r"\b(", r")(\("), &lang.kinds);
-    same(g, "words", &alternation(&rx("word", "match"), r"\b(?:", r")\b"), &lang.words);
-    same(g, "booleans", &alternation(&rx("boolean", "match"), r"\b(?:", r")\b"), &lang.booleans);
+    same(
+        g,
+        "keywords",
+        &alternation(&rx("keyword", "match"), r"\b(?:", r")\b"),
+        &lang.keywords,
+    );
+    same(
+        g,
+        "keys",
+        &alternation(&rx("key", "match"), r"\b(?:", r")\b"),
+        &lang.keys,
+    );
+    same(
+        g,
+        "kinds",
+        &alternation(&rx("kind", "match"), r"\b(?:", r")\b"),
+        &lang.kinds,
+    );
+    same(
+        g,
+        "kinds (calls)",
+        &alternation(&rx("call-kind", "begin"), r"\b(", r")(\("),
+        &lang.kinds,
+    );
+    same(
+        g,
+        "words",
+        &alternation(&rx("word", "match"), r"\b(?:", r")\b"),
+        &lang.words,
+    );
+    same(
+        g,
+        "booleans",
+        &alternation(&rx("boolean", "match"), r"\b(?:", r")\b"),
+        &lang.booleans,
+    );
     let colour = alternation(&rx("call-color", "begin"), r"\b(", r")(\(");
     let other = alternation(&rx("call-builtin", "begin"), r"\b(", r")(\(");
-    assert!(colour.is_subset(&lang.functions), "{g}: colour functions {colour:?}");
+    assert!(
+        colour.is_subset(&lang.functions),
+        "{g}: colour functions {colour:?}"
+    );
     same(g, "functions", &union(&colour, &other), &lang.functions);
-    same(g, "units", &alternation(&rx("number", "match"), "(?:(", ")(?!"), &lang.units);
+    same(
+        g,
+        "units",
+        &alternation(&rx("number", "match"), "(?:(", ")(?!"),
+        &lang.units,
+    );
 }
 
 #[test]
@@ -110,8 +159,16 @@ fn sublime_syntax_matches_the_language() {
     same(g, "kinds", &var("kinds"), &lang.kinds);
     same(g, "words", &var("words"), &lang.words);
     let colour = var("color_functions");
-    assert!(colour.is_subset(&lang.functions), "{g}: colour functions {colour:?}");
-    same(g, "functions", &union(&colour, &var("functions")), &lang.functions);
+    assert!(
+        colour.is_subset(&lang.functions),
+        "{g}: colour functions {colour:?}"
+    );
+    same(
+        g,
+        "functions",
+        &union(&colour, &var("functions")),
+        &lang.functions,
+    );
     same(g, "units", &var("units"), &lang.units);
     same(g, "booleans", &var("booleans"), &lang.booleans);
 }
@@ -128,7 +185,11 @@ fn predicate_words(query: &str, pred: &str, capture: &str) -> Words {
         if after.starts_with(char::is_whitespace) {
             seen = true;
             let end = after.find(')').expect("predicate is closed");
-            out.extend(after[..end].split_whitespace().map(|w| w.trim_matches('"').to_owned()));
+            out.extend(
+                after[..end]
+                    .split_whitespace()
+                    .map(|w| w.trim_matches('"').to_owned()),
+            );
         }
         rest = after;
     }
@@ -156,23 +217,72 @@ fn tree_sitter_grammar_and_highlights_match_the_language() {
         .collect();
     same("grammar.js", "keywords", &literals, &lang.keywords);
     let g = "highlights.scm";
-    let kw_start = TS_HIGHLIGHTS.find("\n[\n").expect("a [ ... ] @keyword list");
-    let kw_len = TS_HIGHLIGHTS[kw_start..].find("] @keyword").expect("the list is @keyword");
+    let kw_start = TS_HIGHLIGHTS
+        .find("\n[\n")
+        .expect("a [ ... ] @keyword list");
+    let kw_len = TS_HIGHLIGHTS[kw_start..]
+        .find("] @keyword")
+        .expect("the list is @keyword");
     let kws: Words = TS_HIGHLIGHTS[kw_start + 3..kw_start + kw_len]
         .split_whitespace()
         .map(|w| w.trim_matches('"').to_owned())
         .collect();
     same(g, "keywords", &kws, &lang.keywords);
-    same(g, "keys", &predicate_words(TS_HIGHLIGHTS, "any-of?", "property"), &lang.keys);
-    same(g, "kinds", &predicate_words(TS_HIGHLIGHTS, "any-of?", "type.builtin"), &lang.kinds);
-    same(g, "words", &predicate_words(TS_HIGHLIGHTS, "any-of?", "constant.builtin"), &lang.words);
-    same(g, "functions", &predicate_words(TS_HIGHLIGHTS, "any-of?", "function.builtin"), &lang.functions);
-    same(g, "booleans", &predicate_words(TS_HIGHLIGHTS, "any-of?", "boolean"), &lang.booleans);
-    same(g, "units", &predicate_words(TS_HIGHLIGHTS, "any-of?", "keyword.unit"), &lang.units);
-    same(g, "units (error)", &predicate_words(TS_HIGHLIGHTS, "not-any-of?", "error"), &lang.units);
-    same(g, "other calls", &predicate_words(TS_HIGHLIGHTS, "not-any-of?", "function"), &union(&lang.kinds, &lang.functions));
+    same(
+        g,
+        "keys",
+        &predicate_words(TS_HIGHLIGHTS, "any-of?", "property"),
+        &lang.keys,
+    );
+    same(
+        g,
+        "kinds",
+        &predicate_words(TS_HIGHLIGHTS, "any-of?", "type.builtin"),
+        &lang.kinds,
+    );
+    same(
+        g,
+        "words",
+        &predicate_words(TS_HIGHLIGHTS, "any-of?", "constant.builtin"),
+        &lang.words,
+    );
+    same(
+        g,
+        "functions",
+        &predicate_words(TS_HIGHLIGHTS, "any-of?", "function.builtin"),
+        &lang.functions,
+    );
+    same(
+        g,
+        "booleans",
+        &predicate_words(TS_HIGHLIGHTS, "any-of?", "boolean"),
+        &lang.booleans,
+    );
+    same(
+        g,
+        "units",
+        &predicate_words(TS_HIGHLIGHTS, "any-of?", "keyword.unit"),
+        &lang.units,
+    );
+    same(
+        g,
+        "units (error)",
+        &predicate_words(TS_HIGHLIGHTS, "not-any-of?", "error"),
+        &lang.units,
+    );
+    same(
+        g,
+        "other calls",
+        &predicate_words(TS_HIGHLIGHTS, "not-any-of?", "function"),
+        &union(&lang.kinds, &lang.functions),
+    );
     let not_references = union(&union(&lang.keys, &lang.words), &lang.booleans);
-    same(g, "non-references", &predicate_words(TS_HIGHLIGHTS, "not-any-of?", "variable"), &not_references);
+    same(
+        g,
+        "non-references",
+        &predicate_words(TS_HIGHLIGHTS, "not-any-of?", "variable"),
+        &not_references,
+    );
 }
 
 #[test]
@@ -194,13 +304,24 @@ fn vim_syntax_matches_the_language() {
     same(g, "kinds", &group("scnKind"), &lang.kinds);
     same(g, "words", &group("scnWord"), &lang.words);
     let colour = group("scnColorFunction");
-    assert!(colour.is_subset(&lang.functions), "{g}: colour functions {colour:?}");
-    same(g, "functions", &union(&colour, &group("scnFunction")), &lang.functions);
+    assert!(
+        colour.is_subset(&lang.functions),
+        "{g}: colour functions {colour:?}"
+    );
+    same(
+        g,
+        "functions",
+        &union(&colour, &group("scnFunction")),
+        &lang.functions,
+    );
     same(g, "booleans", &group("scnBoolean"), &lang.booleans);
     let open = r"syn match scnUnit /\(";
     let start = VIM.find(open).expect("a scnUnit match") + open.len();
     let len = VIM[start..].find(r"\)").expect("the unit group is closed");
-    let units: Words = VIM[start..start + len].split(r"\|").map(str::to_owned).collect();
+    let units: Words = VIM[start..start + len]
+        .split(r"\|")
+        .map(str::to_owned)
+        .collect();
     same(g, "units", &units, &lang.units);
 }
 

@@ -24,14 +24,17 @@ fn syntax_set() -> SyntaxSet {
 
 /// The scope stack (as names, bottom first) of every byte of every line.
 fn highlight(ss: &SyntaxSet, lines: &[&str]) -> Vec<Vec<Vec<String>>> {
-    let syntax = ss.find_syntax_by_scope(syntect::parsing::Scope::new("source.scn").expect("valid scope"))
+    let syntax = ss
+        .find_syntax_by_scope(syntect::parsing::Scope::new("source.scn").expect("valid scope"))
         .expect("the set holds the scn syntax");
     let mut state = ParseState::new(syntax);
     let mut stack = ScopeStack::new();
     let mut out = Vec::new();
     for line in lines {
         let text = format!("{line}\n");
-        let ops = state.parse_line(&text, ss).expect("syntect parses every line");
+        let ops = state
+            .parse_line(&text, ss)
+            .expect("syntect parses every line");
         let mut per_byte = Vec::with_capacity(text.len());
         let mut ops = ops.into_iter().peekable();
         for i in 0..text.len() {
@@ -62,17 +65,25 @@ struct Assertion {
 fn parse_test(text: &str) -> (Vec<&str>, Vec<Assertion>) {
     let mut lines = text.lines();
     let header = lines.next().unwrap_or_default();
-    assert!(header.starts_with("// SYNTAX TEST \"source.scn\""), "bad header: {header}");
+    assert!(
+        header.starts_with("// SYNTAX TEST \"source.scn\""),
+        "bad header: {header}"
+    );
     let (mut source, mut asserts) = (Vec::new(), Vec::new());
     for (i, line) in lines.enumerate() {
         let rest = line.strip_prefix("//").unwrap_or("");
         let trimmed = rest.trim_start();
-        let is_assert = line.starts_with("//") && (trimmed.starts_with('^') || trimmed.starts_with("<-"));
+        let is_assert =
+            line.starts_with("//") && (trimmed.starts_with('^') || trimmed.starts_with("<-"));
         if !is_assert {
             source.push(line);
             continue;
         }
-        assert!(!source.is_empty(), "assertion before any source line at line {}", i + 2);
+        assert!(
+            !source.is_empty(),
+            "assertion before any source line at line {}",
+            i + 2
+        );
         let (from, to, scopes) = if let Some(s) = trimmed.strip_prefix("<-") {
             (0, 1, s)
         } else {
@@ -81,8 +92,18 @@ fn parse_test(text: &str) -> (Vec<&str>, Vec<Assertion>) {
             (from, from + carets, &trimmed[carets..])
         };
         let scopes: Vec<String> = scopes.split_whitespace().map(str::to_owned).collect();
-        assert!(!scopes.is_empty(), "assertion without scopes at line {}", i + 2);
-        asserts.push(Assertion { file_line: i + 2, source_line: source.len() - 1, from, to, scopes });
+        assert!(
+            !scopes.is_empty(),
+            "assertion without scopes at line {}",
+            i + 2
+        );
+        asserts.push(Assertion {
+            file_line: i + 2,
+            source_line: source.len() - 1,
+            from,
+            to,
+            scopes,
+        });
     }
     (source, asserts)
 }
@@ -122,26 +143,53 @@ fn corpus_assertions_hold_in_the_sublime_syntax() {
                 if !is_subsequence(&a.scopes, &stack) {
                     failures.push(format!(
                         "{}:{} col {col} ({:?}): want {:?}, got {:?}",
-                        f.display(), a.file_line, source[a.source_line].get(col..col + 1), a.scopes, stack
+                        f.display(),
+                        a.file_line,
+                        source[a.source_line].get(col..col + 1),
+                        a.scopes,
+                        stack
                     ));
                     break;
                 }
             }
         }
     }
-    assert!(failures.is_empty(), "{} of {count} assertions failed:\n{}", failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} of {count} assertions failed:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
     // The corpus covers every token class the grammars promise.
     for class in [
-        "comment.line.double-slash.scn", "comment.block.scn", "string.quoted.double.scn",
-        "constant.character.escape.scn", "constant.numeric.scn", "keyword.other.unit.scn",
-        "constant.other.color.rgb-value.scn", "support.function.builtin.color.scn",
-        "support.function.builtin.scn", "keyword.other.scn", "variable.other.property.scn",
-        "entity.name.constant.scn", "entity.name.camera.scn", "entity.name.material.scn",
-        "entity.name.texture.scn", "entity.name.mesh.scn", "entity.name.light.scn",
-        "entity.name.group.scn", "variable.other.scn", "variable.other.mesh.scn",
-        "support.type.scn", "support.constant.scn", "constant.language.boolean.scn",
-        "keyword.operator.arithmetic.scn", "keyword.operator.assignment.scn",
-        "invalid.illegal.character.scn", "invalid.illegal.unit.scn", "invalid.illegal.color.scn",
+        "comment.line.double-slash.scn",
+        "comment.block.scn",
+        "string.quoted.double.scn",
+        "constant.character.escape.scn",
+        "constant.numeric.scn",
+        "keyword.other.unit.scn",
+        "constant.other.color.rgb-value.scn",
+        "support.function.builtin.color.scn",
+        "support.function.builtin.scn",
+        "keyword.other.scn",
+        "variable.other.property.scn",
+        "entity.name.constant.scn",
+        "entity.name.camera.scn",
+        "entity.name.material.scn",
+        "entity.name.texture.scn",
+        "entity.name.mesh.scn",
+        "entity.name.light.scn",
+        "entity.name.group.scn",
+        "variable.other.scn",
+        "variable.other.mesh.scn",
+        "support.type.scn",
+        "support.constant.scn",
+        "constant.language.boolean.scn",
+        "keyword.operator.arithmetic.scn",
+        "keyword.operator.assignment.scn",
+        "invalid.illegal.character.scn",
+        "invalid.illegal.unit.scn",
+        "invalid.illegal.color.scn",
     ] {
         assert!(asserted.contains(class), "the corpus never asserts {class}");
     }
@@ -172,7 +220,10 @@ fn examples_have_no_invalid_scope_in_the_sublime_syntax() {
                 assert!(
                     !stack.iter().any(|s| s.starts_with("invalid")),
                     "{}:{}:{} highlighted invalid: {stack:?}\n{}",
-                    f.display(), n + 1, col + 1, lines[n]
+                    f.display(),
+                    n + 1,
+                    col + 1,
+                    lines[n]
                 );
             }
         }
@@ -184,5 +235,11 @@ fn stray_characters_are_invalid() {
     // The checks above can fail: a stray character is flagged.
     let ss = syntax_set();
     let scopes = highlight(&ss, &["camera c { fov 40deg ; }"]);
-    assert!(scopes[0][21].iter().any(|s| s == "invalid.illegal.character.scn"), "{:?}", scopes[0][21]);
+    assert!(
+        scopes[0][21]
+            .iter()
+            .any(|s| s == "invalid.illegal.character.scn"),
+        "{:?}",
+        scopes[0][21]
+    );
 }

@@ -15,7 +15,9 @@ fn parse(text: &str) -> Tree {
     parser
         .set_language(&language())
         .expect("the generated parser's ABI is supported by this tree-sitter version");
-    parser.parse(text, None).expect("parsing is not cancelled (no timeout set)")
+    parser
+        .parse(text, None)
+        .expect("parsing is not cancelled (no timeout set)")
 }
 
 /// Every ERROR or MISSING node, as `row:column kind`.
@@ -53,13 +55,22 @@ fn examples_parse_without_error_nodes() {
         errors(tree.root_node(), &mut found);
         assert!(found.is_empty(), "{}: {found:?}", f.display());
         assert!(!tree.root_node().has_error());
-        assert!(tree.root_node().named_child_count() > 0, "{} parsed to nothing", f.display());
+        assert!(
+            tree.root_node().named_child_count() > 0,
+            "{} parsed to nothing",
+            f.display()
+        );
     }
 }
 
 #[test]
 fn broken_input_has_error_nodes() {
-    for bad in ["camera { fov 40deg }", "let = 1", "render { (1, 2 }", "object o { /* open"] {
+    for bad in [
+        "camera { fov 40deg }",
+        "let = 1",
+        "render { (1, 2 }",
+        "object o { /* open",
+    ] {
         assert!(parse(bad).root_node().has_error(), "accepted: {bad}");
     }
 }
@@ -86,7 +97,11 @@ fn captures(query_src: &str, text: &str) -> Vec<(String, String, std::ops::Range
     while let Some((m, i)) = caps.next() {
         let c = m.captures[*i];
         let name = query.capture_names()[c.index as usize].to_string();
-        let node_text = c.node.utf8_text(text.as_bytes()).expect("source is UTF-8").to_string();
+        let node_text = c
+            .node
+            .utf8_text(text.as_bytes())
+            .expect("source is UTF-8")
+            .to_string();
         out.push((name, node_text, c.node.byte_range()));
     }
     out
