@@ -13,7 +13,7 @@ use crate::ir;
 use crate::source::Span;
 use crate::syntax::{Block, Ident};
 
-const KEYS: &[&str] = &["eye", "target", "up", "fov"];
+use super::vocabulary::CAMERA_KEYS as KEYS;
 
 impl Checker<'_> {
     pub(super) fn camera(&mut self, name: &Ident, body: &Block, span: Span) -> Option<ir::Camera> {

@@ -67,7 +67,7 @@ impl Checker<'_> {
                     } else if s.name.starts_with("rad") {
                         "write `rad`, e.g. `0.5rad`".to_string()
                     } else {
-                        suggest::help_for(&s.name, &["deg", "rad"], "units")
+                        suggest::help_for(&s.name, super::vocabulary::UNITS, "units")
                     };
                     self.error(
                         Diagnostic::error(

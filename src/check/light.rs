@@ -18,7 +18,7 @@ use crate::diag::{suggest, Diagnostic};
 use crate::ir;
 use crate::syntax::{Block, Decl};
 
-const KINDS: &[&str] = &["point", "area", "environment"];
+use super::vocabulary::LIGHT_KINDS as KINDS;
 
 impl Checker<'_> {
     pub(super) fn light(&mut self, d: &Decl) {
@@ -62,7 +62,13 @@ impl Checker<'_> {
     }
 
     fn point_light(&mut self, d: &Decl, body: &Block) -> Option<ir::Light> {
-        let props = self.split(body, "a point light", &["position", "intensity"], &[], &[]);
+        let props = self.split(
+            body,
+            "a point light",
+            super::vocabulary::POINT_LIGHT_KEYS,
+            &[],
+            &[],
+        );
         let position = match props.get("position") {
             Some(p) => self.one(p, "position (0, 4, 0)").and_then(|e| self.vec3(e)),
             None => {
@@ -91,7 +97,7 @@ impl Checker<'_> {
     }
 
     fn area_light(&mut self, d: &Decl, body: &Block) -> Option<ir::Light> {
-        let keys = &["quad", "mesh", "radiance", "two_sided", "samples"];
+        let keys = super::vocabulary::AREA_LIGHT_KEYS;
         let props = self.split(body, "an area light", keys, &[], &["transform"]);
         let world = self.transforms(&props.transforms, "an area light");
         let mesh = match (props.get("quad"), props.get("mesh")) {
@@ -186,7 +192,7 @@ impl Checker<'_> {
     }
 
     fn environment_light(&mut self, d: &Decl, body: &Block) -> Option<ir::Light> {
-        let keys = &["image", "color", "intensity", "rotate", "visible"];
+        let keys = super::vocabulary::ENVIRONMENT_LIGHT_KEYS;
         let props = self.split(body, "an environment light", keys, &[], &[]);
         let source = match (props.get("image"), props.get("color")) {
             (Some(i), None) => self

@@ -15,15 +15,7 @@ use crate::diag::{suggest, Diagnostic};
 use crate::ir;
 use crate::syntax::{Decl, Expr};
 
-const KEYS: &[&str] = &[
-    "diffuse",
-    "specular",
-    "shininess",
-    "ambient",
-    "normal_map",
-    "normal_strength",
-    "normal_green",
-];
+use super::vocabulary::MATERIAL_KEYS as KEYS;
 
 impl Checker<'_> {
     /// Lowers a material; also returns the texture table indices it refers to.
@@ -38,7 +30,7 @@ impl Checker<'_> {
                 .at(d.ctor.span, "not a material kind")
                 .help(suggest::help_for(
                     &d.ctor.name.name,
-                    &["phong"],
+                    super::vocabulary::MATERIAL_KINDS,
                     "material kinds",
                 )),
             );
@@ -89,7 +81,7 @@ impl Checker<'_> {
         let green = match props.get("normal_green") {
             None => Some(ir::GreenConvention::OpenGl),
             Some(p) => self.one(p, "normal_green opengl").and_then(|e| {
-                self.word(e, &["opengl", "directx"], "normal map convention")
+                self.word(e, super::vocabulary::GREEN_WORDS, "normal map convention")
                     .map(|w| match w {
                         "opengl" => ir::GreenConvention::OpenGl,
                         _ => ir::GreenConvention::DirectX,

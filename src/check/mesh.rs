@@ -15,7 +15,7 @@ use crate::ir;
 use crate::source::Span;
 use crate::syntax::{Block, Decl, Expr, ExprKind};
 
-const KINDS: &[&str] = &["obj", "inline", "sphere", "quad", "box"];
+use super::vocabulary::MESH_KINDS as KINDS;
 
 impl Checker<'_> {
     pub(super) fn mesh(&mut self, d: &Decl) -> Option<ir::Mesh> {
@@ -44,7 +44,7 @@ impl Checker<'_> {
             }
             ("inline", None) => ir::MeshSource::Inline(self.inline_mesh(body, d.name.span)?),
             ("sphere", None) => {
-                let props = self.split(body, "a sphere", &["radius", "segments"], &[], &[]);
+                let props = self.split(body, "a sphere", super::vocabulary::SPHERE_KEYS, &[], &[]);
                 let radius = match props.get("radius") {
                     None => Some(1.0),
                     Some(p) => self
@@ -63,7 +63,7 @@ impl Checker<'_> {
                 })
             }
             ("quad", None) => {
-                let props = self.split(body, "a quad", &["size"], &[], &[]);
+                let props = self.split(body, "a quad", super::vocabulary::QUAD_KEYS, &[], &[]);
                 let size = match props.get("size") {
                     None => Some(glam::DVec2::ONE),
                     Some(p) => self.one(p, "size (2, 2)").and_then(|e| {
@@ -77,7 +77,7 @@ impl Checker<'_> {
                 })
             }
             ("box", None) => {
-                let props = self.split(body, "a box", &["size"], &[], &[]);
+                let props = self.split(body, "a box", super::vocabulary::BOX_KEYS, &[], &[]);
                 let size = match props.get("size") {
                     None => Some(glam::DVec3::ONE),
                     Some(p) => self.one(p, "size (1, 1, 1)").and_then(|e| {
@@ -144,7 +144,7 @@ impl Checker<'_> {
     }
 
     pub(super) fn inline_mesh(&mut self, body: &Block, name_span: Span) -> Option<ir::InlineMesh> {
-        let keys = &["positions", "normals", "uvs", "indices"];
+        let keys = super::vocabulary::INLINE_MESH_KEYS;
         let props = self.split(body, "an inline mesh", keys, &[], &[]);
         let mut ok = true;
         let mut get = |cx: &mut Self, key: &str| -> Option<(&Expr, Span)> {

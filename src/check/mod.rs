@@ -21,6 +21,7 @@ mod render;
 mod texture;
 pub mod transform;
 pub mod value;
+pub mod vocabulary;
 
 pub use eval::FUNCTIONS;
 

@@ -23,7 +23,13 @@ impl Checker<'_> {
     }
 
     fn object(&mut self, o: &ObjectStmt, parent: Mat4) {
-        let props = self.split(&o.body, "an object", &["material"], &[], &["transform"]);
+        let props = self.split(
+            &o.body,
+            "an object",
+            super::vocabulary::OBJECT_KEYS,
+            &[],
+            &["transform"],
+        );
         let local = self.transforms(&props.transforms, "an object");
         let mesh = self.resolve_name(Namespace::Mesh, &o.mesh.name, o.mesh.span);
         if let Some(m) = mesh {

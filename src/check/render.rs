@@ -14,16 +14,7 @@ use crate::ir;
 use crate::source::Span;
 use crate::syntax::Block;
 
-const KEYS: &[&str] = &[
-    "resolution",
-    "samples",
-    "light_samples",
-    "seed",
-    "camera",
-    "output",
-    "exposure",
-    "tonemap",
-];
+use super::vocabulary::RENDER_KEYS as KEYS;
 const EXTENSIONS: &[&str] = &["png", "exr", "hdr", "pfm"];
 
 impl Checker<'_> {
@@ -78,7 +69,7 @@ impl Checker<'_> {
                     .is_some(),
                 _ => self
                     .one(p, "tonemap filmic")
-                    .and_then(|e| self.word(e, &["clamp", "reinhard", "filmic"], "tone mapping"))
+                    .and_then(|e| self.word(e, super::vocabulary::TONEMAP_WORDS, "tone mapping"))
                     .map(|w| {
                         s.tonemap = match w {
                             "clamp" => ir::ToneMap::Clamp,
@@ -121,7 +112,11 @@ impl Checker<'_> {
         let (pattern, count) = match p.values.as_slice() {
             [n] => (ir::SamplePattern::RotatedGrid, *n),
             [pat, n] => {
-                let w = self.word(pat, &["rgss", "grid"], "sample pattern")?;
+                let w = self.word(
+                    pat,
+                    super::vocabulary::SAMPLE_PATTERN_WORDS,
+                    "sample pattern",
+                )?;
                 let pattern = if w == "rgss" {
                     ir::SamplePattern::RotatedGrid
                 } else {

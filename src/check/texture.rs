@@ -14,7 +14,7 @@ use crate::diag::{suggest, Diagnostic};
 use crate::ir;
 use crate::syntax::{Block, Decl, Expr};
 
-const KINDS: &[&str] = &["image", "checker", "constant"];
+use super::vocabulary::TEXTURE_KINDS as KINDS;
 
 impl Checker<'_> {
     pub(super) fn texture(&mut self, d: &Decl) -> Option<ir::Texture> {
@@ -29,7 +29,7 @@ impl Checker<'_> {
                 let props = self.split(
                     body,
                     "a checker texture",
-                    &["even", "odd", "scale"],
+                    super::vocabulary::CHECKER_KEYS,
                     &[],
                     &[],
                 );
@@ -54,7 +54,13 @@ impl Checker<'_> {
                 }
             }
             ("constant", None) => {
-                let props = self.split(body, "a constant texture", &["color"], &[], &[]);
+                let props = self.split(
+                    body,
+                    "a constant texture",
+                    super::vocabulary::CONSTANT_TEXTURE_KEYS,
+                    &[],
+                    &[],
+                );
                 let c = match props.get("color") {
                     None => DVec3::splat(0.5),
                     Some(p) => {
@@ -98,7 +104,7 @@ impl Checker<'_> {
         let props = self.split(
             body,
             "an image texture",
-            &["wrap", "filter", "encoding"],
+            super::vocabulary::IMAGE_TEXTURE_KEYS,
             &[],
             &[],
         );
@@ -116,7 +122,7 @@ impl Checker<'_> {
         let wrap = match props.get("wrap") {
             None => Some(ir::WrapMode::Repeat),
             Some(p) => self.one(p, "wrap repeat").and_then(|e| {
-                self.word(e, &["repeat", "clamp", "mirror"], "wrap mode")
+                self.word(e, super::vocabulary::WRAP_WORDS, "wrap mode")
                     .map(|w| match w {
                         "repeat" => ir::WrapMode::Repeat,
                         "clamp" => ir::WrapMode::Clamp,
@@ -127,7 +133,7 @@ impl Checker<'_> {
         let filter = match props.get("filter") {
             None => Some(ir::Filter::Trilinear),
             Some(p) => self.one(p, "filter trilinear").and_then(|e| {
-                self.word(e, &["nearest", "bilinear", "trilinear"], "filter")
+                self.word(e, super::vocabulary::FILTER_WORDS, "filter")
                     .map(|w| match w {
                         "nearest" => ir::Filter::Nearest,
                         "bilinear" => ir::Filter::Bilinear,
@@ -138,7 +144,7 @@ impl Checker<'_> {
         let encoding = match props.get("encoding") {
             None => Some(ir::TextureEncoding::Srgb),
             Some(p) => self.one(p, "encoding data").and_then(|e| {
-                self.word(e, &["srgb", "data"], "encoding")
+                self.word(e, super::vocabulary::ENCODING_WORDS, "encoding")
                     .map(|w| match w {
                         "srgb" => ir::TextureEncoding::Srgb,
                         _ => ir::TextureEncoding::Linear,

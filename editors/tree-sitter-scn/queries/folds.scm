@@ -1,0 +1,5 @@
+;; Folds for scnc scene files: blocks and block comments.
+[
+  (block)
+  (block_comment)
+] @fold

@@ -1,0 +1,2 @@
+" scnc scene files
+autocmd BufRead,BufNewFile *.scn setfiletype scn

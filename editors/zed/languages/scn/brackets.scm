@@ -1,0 +1,3 @@
+; Bracket pairs for Zed.
+("{" @open "}" @close)
+("(" @open ")" @close)

@@ -1,0 +1,2 @@
+; Indents for Zed: a block indents its items.
+(block "}" @end) @indent
