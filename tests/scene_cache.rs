@@ -3,7 +3,7 @@
 
 use std::sync::atomic::AtomicBool;
 
-use scnc::assets::MemLoader;
+use scnc::assets::{Loader, MemLoader};
 use scnc::compile::compile_source;
 use scnc::render::{self, RenderOptions};
 use scnc::scene::cache::content_hash;
@@ -60,6 +60,7 @@ fn report(loaded: usize, reused: usize, accel_built: bool) -> CacheReport {
         meshes_loaded: loaded,
         meshes_reused: reused,
         accel_built,
+        environment_loaded: false,
     }
 }
 
@@ -148,4 +149,75 @@ fn a_failed_build_gives_its_meshes_back() {
     let s = build(&text(1.0, 1.0), &l, Some(&mut cache));
     assert_eq!(cache.report().meshes_reused, 2);
     cache.recycle(s);
+}
+
+/// A 4×2 PFM sky (little-endian colour), brightest in its first texel, times `gain`.
+fn sky_pfm(gain: f32) -> Vec<u8> {
+    let mut bytes = b"PF\n4 2\n-1.0\n".to_vec();
+    for i in 0..8 {
+        let v = gain * if i == 0 { 40.0 } else { 0.5 };
+        for _ in 0..3 {
+            bytes.extend_from_slice(&v.to_le_bytes());
+        }
+    }
+    bytes
+}
+
+fn sky_scene(eye_y: f32, intensity: f32) -> String {
+    format!(
+        "scnc 1
+camera main {{ eye (0, {eye_y}, -4)  target (0, 0, 0)  up (0, 1, 0)  fov 40deg }}
+material white = phong {{ diffuse rgb(0.8, 0.8, 0.8)  specular 0 }}
+mesh ball = sphere {{ radius 1  segments 12 }}
+object ball {{ material white }}
+light sky = environment {{ image(\"sky.pfm\")  intensity {intensity} }}
+render {{ resolution 24 x 16  samples 1 }}
+"
+    )
+}
+
+#[test]
+fn an_environment_map_is_read_once_while_its_file_and_settings_stay() {
+    let mut l = MemLoader::new();
+    l.insert("sky.pfm", sky_pfm(1.0));
+    let mut cache = BuildCache::new();
+    let s = build(&sky_scene(1.0, 1.0), &l, Some(&mut cache));
+    assert!(cache.report().environment_loaded);
+    assert_eq!(cache.report().rebuilt(), ["meshes", "bvh", "environment"]);
+    let first = image(&s);
+    cache.recycle(s);
+
+    // Camera edit: the map (and its sampling table) is reused, the file not read again.
+    let hash = content_hash(&sky_pfm(1.0));
+    cache.retain_current(|_| Some(hash));
+    assert_eq!(cache.files_in_use(), [("sky.pfm".into(), hash)]);
+    let fresh = {
+        let mut f = MemLoader::new();
+        f.insert("sky.pfm", sky_pfm(1.0));
+        f
+    };
+    let s = build(&sky_scene(1.5, 1.0), &fresh, Some(&mut cache));
+    assert!(!cache.report().environment_loaded);
+    assert!(cache.report().rebuilt().is_empty());
+    assert!(fresh.recorded().is_empty(), "{:?}", fresh.recorded());
+    assert_eq!(image(&s), image(&build(&sky_scene(1.5, 1.0), &l, None)));
+    cache.recycle(s);
+
+    // Intensity edit: loaded again (intensity is baked into the texels).
+    let s = build(&sky_scene(1.5, 2.0), &l, Some(&mut cache));
+    assert!(cache.report().environment_loaded);
+    cache.recycle(s);
+
+    // The file changed: loaded again, and the image follows the new content.
+    let mut brighter = MemLoader::new();
+    brighter.insert("sky.pfm", sky_pfm(2.0));
+    let new_hash = content_hash(&sky_pfm(2.0));
+    cache.retain_current(|_| Some(new_hash));
+    let s = build(&sky_scene(1.0, 1.0), &brighter, Some(&mut cache));
+    assert!(cache.report().environment_loaded);
+    assert_ne!(image(&s), first);
+    assert_eq!(
+        image(&s),
+        image(&build(&sky_scene(1.0, 1.0), &brighter, None))
+    );
 }

@@ -271,8 +271,12 @@ impl Builder<'_> {
                 }
                 EnvSource::Image(file) => {
                     image_seen = true;
-                    let (map, problems) =
-                        load_env_map(file, e.intensity, e.rotation_y_rad, self.loader);
+                    let (map, problems) = match self.cache.as_deref_mut() {
+                        Some(cache) => {
+                            cache.load_env_map(file, e.intensity, e.rotation_y_rad, self.loader)
+                        }
+                        None => load_env_map(file, e.intensity, e.rotation_y_rad, self.loader),
+                    };
                     self.problems.extend(problems);
                     env.map = map;
                 }

@@ -10,6 +10,9 @@
 //!   is not read again.
 //! - the acceleration structure, keyed by its kind and the list of (mesh key, transform) of
 //!   every instance: a camera, material, light-colour or render-setting edit reuses it.
+//! - the environment map (`light … = environment { image(…) }`), decoded, cleaned, scaled and
+//!   with its sampling table, keyed by path, intensity and rotation and by the content hash of
+//!   the file: an edit elsewhere neither re-reads the image nor rebuilds its table.
 //!
 //! Entries are moved into the new scene (no copy of a 1M-triangle mesh or its BVH); hand the
 //! scene back with [`BuildCache::recycle`] when it is no longer rendered.
@@ -21,12 +24,14 @@ use std::hash::{Hash, Hasher};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
+use super::env_load::load_env_map;
+use super::environment::EnvMap;
 use super::load::load_mesh;
 use super::mesh::TriMesh;
 use super::{BuildError, Scene, SceneInstance};
 use crate::assets::Loader;
 use crate::bvh::{Accel, AccelKind, Instance, MeshRef};
-use crate::ir::{self, MeshSource};
+use crate::ir::{self, AssetPath, MeshSource};
 
 /// A hash of file contents (64-bit SipHash with fixed keys: stable within and across runs of
 /// one build of scnc, which is all a cache needs).
@@ -66,6 +71,8 @@ pub struct CacheReport {
     pub meshes_reused: usize,
     /// Whether the acceleration structure was built (false: reused or no triangles).
     pub accel_built: bool,
+    /// Whether an environment map was read and decoded (false: reused or none).
+    pub environment_loaded: bool,
 }
 
 impl CacheReport {
@@ -78,6 +85,9 @@ impl CacheReport {
         if self.accel_built {
             out.push("bvh");
         }
+        if self.environment_loaded {
+            out.push("environment");
+        }
         out
     }
 }
@@ -86,6 +96,15 @@ impl CacheReport {
 struct CachedMesh {
     mesh: TriMesh,
     /// Content hash of the OBJ file it came from (`None` for inline and built-in meshes).
+    file_hash: Option<u64>,
+}
+
+/// An environment map's file, intensity bits and rotation bits.
+type EnvKey = (PathBuf, u32, u32);
+
+#[derive(Debug)]
+struct CachedEnvMap {
+    map: EnvMap,
     file_hash: Option<u64>,
 }
 
@@ -101,6 +120,10 @@ pub struct BuildCache {
     current: Vec<(MeshKey, Option<u64>)>,
     /// The key of the accel the current build made or reused (stored with it on give-back).
     last_accel_key: Option<AccelKey>,
+    /// The environment map kept between builds (at most one image per scene).
+    env_map: Option<(EnvKey, CachedEnvMap)>,
+    /// The key and file hash of the environment map of the scene built last.
+    current_env: Option<(EnvKey, Option<u64>)>,
     report: CacheReport,
 }
 
@@ -116,6 +139,11 @@ impl BuildCache {
             MeshKey::Obj(path) => m.file_hash.is_some() && hash_of(path) == m.file_hash,
             MeshKey::Data(_) => true,
         });
+        if let Some(((path, _, _), cached)) = &self.env_map {
+            if cached.file_hash.is_none() || hash_of(path) != cached.file_hash {
+                self.env_map = None;
+            }
+        }
     }
 
     /// The files (and their content hashes) of the meshes of the scene built last: the watch
@@ -127,6 +155,11 @@ impl BuildCache {
                 (MeshKey::Obj(p), Some(h)) => Some((p.clone(), *h)),
                 _ => None,
             })
+            .chain(
+                self.current_env
+                    .iter()
+                    .filter_map(|((p, _, _), h)| Some((p.clone(), (*h)?))),
+            )
             .collect()
     }
 
@@ -137,11 +170,16 @@ impl BuildCache {
 
     /// Takes a scene's meshes and accel back for the next build.
     pub fn recycle(&mut self, scene: Scene) {
+        let env_map = scene.lights.environment.and_then(|e| e.map);
+        if let (Some(map), Some((key, file_hash))) = (env_map, self.current_env.clone()) {
+            self.env_map = Some((key, CachedEnvMap { map, file_hash }));
+        }
         self.give_back(scene.meshes, scene.accel);
     }
 
     pub(super) fn begin(&mut self) {
         self.current.clear();
+        self.current_env = None;
         self.last_accel_key = None;
         self.report = CacheReport::default();
     }
@@ -177,6 +215,38 @@ impl BuildCache {
         let file_hash = hashing.last.lock().ok().and_then(|h| *h);
         self.current.push((key, file_hash));
         Ok(loaded)
+    }
+
+    /// [`load_env_map`] through the cache: a map with the same file content, intensity and
+    /// rotation as the one recycled last is reused (with its sampling table); its warnings were
+    /// reported when it was loaded.
+    pub(super) fn load_env_map(
+        &mut self,
+        file: &AssetPath,
+        intensity: f32,
+        rotation_y_rad: f32,
+        loader: &dyn Loader,
+    ) -> (Option<EnvMap>, Vec<BuildError>) {
+        let key: EnvKey = (
+            file.path.clone(),
+            intensity.to_bits(),
+            rotation_y_rad.to_bits(),
+        );
+        if let Some((cached_key, cached)) = self.env_map.take() {
+            if cached_key == key {
+                self.current_env = Some((key, cached.file_hash));
+                return (Some(cached.map), Vec::new());
+            }
+        }
+        let hashing = HashingLoader {
+            inner: loader,
+            last: Mutex::new(None),
+        };
+        let loaded = load_env_map(file, intensity, rotation_y_rad, &hashing);
+        self.report.environment_loaded = true;
+        let file_hash = hashing.last.lock().ok().and_then(|h| *h);
+        self.current_env = Some((key, file_hash));
+        loaded
     }
 
     /// The acceleration structure for `instances` over `meshes` (loaded by this build), reused
@@ -217,7 +287,7 @@ impl BuildCache {
     }
 }
 
-/// Remembers the content hash of the last file read (a mesh reads at most one file).
+/// Remembers the content hash of the last file read (a mesh or a map reads at most one file).
 struct HashingLoader<'a> {
     inner: &'a dyn Loader,
     last: Mutex<Option<u64>>,

@@ -224,7 +224,8 @@ impl Environment {
     pub fn prepare_sampling(&mut self) -> bool {
         let mut black_map = false;
         if let Some(map) = &mut self.map {
-            if !map.build_distribution() {
+            // A map reused from the watch cache keeps the table it was given last time.
+            if !map.has_distribution() && !map.build_distribution() {
                 black_map = true;
                 self.map = None;
             }
