@@ -11,7 +11,7 @@
 //! of the largest thread count over the first. Run it on an idle machine: with other work on
 //! the cores the speed-up measures the other work. Figures go in `docs/renderer.md`.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 use std::time::Duration;
 
@@ -62,7 +62,7 @@ fn parse_args() -> Result<Args, String> {
     Ok(args)
 }
 
-fn load(path: &PathBuf) -> Result<Scene, String> {
+fn load(path: &Path) -> Result<Scene, String> {
     let loader = FsLoader::new();
     let compiled = compile_file(path, &loader);
     let desc = compiled
@@ -103,7 +103,6 @@ fn main() {
             let options = RenderOptions {
                 spp: args.spp,
                 threads: Some(threads),
-                ..RenderOptions::default()
             };
             let mut walls = Vec::new();
             let mut last: Option<RenderStats> = None;
