@@ -42,7 +42,6 @@ impl Checker<'_> {
         };
         let body = d.body.as_ref().unwrap_or(&empty);
         let props = self.split(body, "a phong material", KEYS, &[], &[]);
-        let mut ok = true;
         let color_input = |cx: &mut Self, key: &str, default: f64, textures: &mut Vec<usize>| {
             let Some(p) = props.get(key) else {
                 return Some(ir::ColorInput::Constant(DVec3::splat(default).as_vec3()));
@@ -97,21 +96,30 @@ impl Checker<'_> {
                 Some(Some(t))
             }),
         };
-        ok &= diffuse.is_some() && specular.is_some() && shininess.is_some();
-        ok &= ambient.is_some() && strength.is_some() && green.is_some() && normal_map.is_some();
-        if !ok {
+        let (
+            Some(diffuse),
+            Some(specular),
+            Some(shininess),
+            Some(ambient),
+            Some(strength),
+            Some(green),
+            Some(normal_map),
+        ) = (
+            diffuse, specular, shininess, ambient, strength, green, normal_map,
+        )
+        else {
             return (None, textures);
-        }
+        };
         let m = ir::Material {
             name: d.name.name.clone(),
-            diffuse: diffuse.expect("checked above"),
-            specular: specular.expect("checked above"),
-            shininess: shininess.expect("checked above"),
-            ambient: ambient.expect("checked above").as_vec3(),
-            normal_map: normal_map.expect("checked above").map(|t| ir::NormalMap {
+            diffuse,
+            specular,
+            shininess,
+            ambient: ambient.as_vec3(),
+            normal_map: normal_map.map(|t| ir::NormalMap {
                 texture: t as u32,
-                strength: strength.expect("checked above") as f32,
-                green: green.expect("checked above"),
+                strength: strength as f32,
+                green,
             }),
             span: d.name.span,
         };

@@ -8,7 +8,7 @@
 
 use std::cell::{Cell, RefCell};
 
-use pest::iterators::Pair;
+use pest::iterators::{Pair, Pairs};
 
 use super::ast::*;
 use super::Rule;
@@ -102,32 +102,30 @@ impl Converter {
         let span = self.span(&pair);
         let rule = pair.as_rule();
         let mut inner = pair.into_inner();
-        let kw = inner
-            .next()
-            .expect("grammar: every statement starts with its keyword");
+        let kw = part(&mut inner, "every statement starts with its keyword");
         match rule {
             Rule::version => Stmt::Version {
-                value: self.top_term(inner.next().expect("grammar: version has a value")),
+                value: self.top_term(part(&mut inner, "version has a value")),
                 span,
             },
             Rule::include => Stmt::Include {
-                path: self.top_term(inner.next().expect("grammar: include has a path")),
+                path: self.top_term(part(&mut inner, "include has a path")),
                 span,
             },
             Rule::let_stmt => Stmt::Let {
-                name: self.ident(inner.next().expect("grammar: let has a name")),
-                value: self.top_expr(inner.next().expect("grammar: let has a value")),
+                name: self.ident(part(&mut inner, "let has a name")),
+                value: self.top_expr(part(&mut inner, "let has a value")),
                 span,
             },
             Rule::camera => Stmt::Camera {
-                name: self.ident(inner.next().expect("grammar: camera has a name")),
-                body: self.block(inner.next().expect("grammar: camera has a block")),
+                name: self.ident(part(&mut inner, "camera has a name")),
+                body: self.block(part(&mut inner, "camera has a block")),
                 span,
             },
             Rule::object => Stmt::Object(self.object_rest(inner, span)),
             Rule::group => Stmt::Group(self.group_rest(inner, span)),
             Rule::render => Stmt::Render {
-                body: self.block(inner.next().expect("grammar: render has a block")),
+                body: self.block(part(&mut inner, "render has a block")),
                 span,
             },
             Rule::decl => {
@@ -137,8 +135,8 @@ impl Converter {
                     Rule::kw_mesh => DeclKind::Mesh,
                     _ => DeclKind::Light,
                 };
-                let name = self.ident(inner.next().expect("grammar: decl has a name"));
-                let ctor = self.ctor(inner.next().expect("grammar: decl has a constructor"));
+                let name = self.ident(part(&mut inner, "decl has a name"));
+                let ctor = self.ctor(part(&mut inner, "decl has a constructor"));
                 let body = inner.next().map(|b| self.block(b));
                 Stmt::Decl(Decl {
                     kind,
@@ -154,26 +152,23 @@ impl Converter {
 
     fn object_rest(&self, mut inner: pest::iterators::Pairs<Rule>, span: Span) -> ObjectStmt {
         ObjectStmt {
-            mesh: self.ident(inner.next().expect("grammar: object names a mesh")),
-            body: self.block(inner.next().expect("grammar: object has a block")),
+            mesh: self.ident(part(&mut inner, "object names a mesh")),
+            body: self.block(part(&mut inner, "object has a block")),
             span,
         }
     }
 
     fn group_rest(&self, mut inner: pest::iterators::Pairs<Rule>, span: Span) -> GroupStmt {
         GroupStmt {
-            name: self.ident(inner.next().expect("grammar: group has a name")),
-            body: self.block(inner.next().expect("grammar: group has a block")),
+            name: self.ident(part(&mut inner, "group has a name")),
+            body: self.block(part(&mut inner, "group has a block")),
             span,
         }
     }
 
     fn ctor(&self, pair: Pair<Rule>) -> Ctor {
         let span = self.span(&pair);
-        let inner = pair
-            .into_inner()
-            .next()
-            .expect("grammar: ctor is a call or a name");
+        let inner = part(&mut pair.into_inner(), "ctor is a call or a name");
         match inner.as_rule() {
             Rule::call => {
                 let p2 = inner.clone();
@@ -238,10 +233,8 @@ impl Converter {
 
     fn call_parts(&self, pair: Pair<Rule>) -> (Ident, Vec<Expr>) {
         let mut inner = pair.into_inner();
-        let func = self.ident(inner.next().expect("grammar: call has a callee"));
-        let args = inner
-            .next()
-            .expect("grammar: call has arguments")
+        let func = self.ident(part(&mut inner, "call has a callee"));
+        let args = part(&mut inner, "call has arguments")
             .into_inner()
             .map(|a| self.expr(a))
             .collect();
@@ -328,7 +321,7 @@ impl Converter {
         let kind = match pair.as_rule() {
             Rule::number => {
                 let mut inner = pair.into_inner();
-                let digits = inner.next().expect("grammar: a number has digits");
+                let digits = part(&mut inner, "a number has digits");
                 // The grammar only admits well-formed decimal literals, which f64 parses; the
                 // fallback is for literals too long to matter.
                 let value = digits.as_str().parse::<f64>().unwrap_or(f64::NAN);
@@ -356,6 +349,16 @@ impl Converter {
             _ => ExprKind::Name(pair.as_str().to_string()),
         };
         Expr { kind, span }
+    }
+}
+
+/// The next child of a parse-tree node whose rule in `grammar/scene.pest` always has it (`what`
+/// names the rule's guarantee). Only a grammar change that forgot this converter can break
+/// that, so it is an invariant of the program, not a user error.
+fn part<'i>(pairs: &mut Pairs<'i, Rule>, what: &str) -> Pair<'i, Rule> {
+    match pairs.next() {
+        Some(pair) => pair,
+        None => unreachable!("grammar: {what}"),
     }
 }
 
