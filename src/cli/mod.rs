@@ -9,6 +9,7 @@ mod ir;
 mod render;
 pub mod report;
 mod stats;
+mod targets;
 mod watch;
 
 use std::process::ExitCode;

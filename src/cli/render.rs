@@ -6,7 +6,7 @@
 //! render at the next tile and writes nothing, so the previous image survives.
 
 use std::io::IsTerminal;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -18,9 +18,8 @@ use super::report::{compile_and_report, print_diagnostic_list, DiagArgs, JsonTo,
 use super::stats::PhaseStats;
 use crate::assets::FsLoader;
 use crate::bvh::AccelKind;
-use crate::diag::Diagnostic;
+use crate::cli::targets::{camera_index, output_targets};
 use crate::film::{self, WriteSettings};
-use crate::ir::SceneDesc;
 use crate::render::{self, RenderOptions};
 use crate::scene::{self, BuildOptions};
 
@@ -175,7 +174,7 @@ pub fn run(args: &RenderArgs) -> ExitCode {
     let t = Instant::now();
     let settings = WriteSettings::from_render(&scene.settings);
     let mut failed = false;
-    for (path, span) in outputs(args, &desc) {
+    for (path, span) in output_targets(args.output.as_deref(), &args.scene.file, &desc) {
         match film::write(&film, &path, &settings) {
             Ok(()) => eprintln!("wrote {}", path.display()),
             Err(e) => {
@@ -201,43 +200,6 @@ pub fn run(args: &RenderArgs) -> ExitCode {
     }
 }
 
-/// `--camera NAME` → index, or a diagnostic listing the cameras there are.
-fn camera_index(desc: &SceneDesc, name: &str) -> Result<usize, Box<Diagnostic>> {
-    desc.camera_by_name(name).ok_or_else(|| {
-        let names: Vec<&str> = desc.cameras.iter().map(|c| c.name.as_str()).collect();
-        let mut d = Diagnostic::error(
-            "scnc::cli::unknown_camera",
-            format!("the scene has no camera named `{name}`"),
-        );
-        d = match crate::diag::suggest::did_you_mean(name, names.iter().copied()) {
-            Some(s) => d.help(format!("did you mean `{s}`? cameras: {}", names.join(", "))),
-            None => d.help(format!("cameras: {}", names.join(", "))),
-        };
-        Box::new(d)
-    })
-}
-
-/// Where to write: `-o`, else the scene's outputs, else `<scene name>.png` here. Scene outputs
-/// keep their span so a write error points at the `output` string.
-fn outputs(args: &RenderArgs, desc: &SceneDesc) -> Vec<(PathBuf, Option<crate::source::Span>)> {
-    if let Some(o) = &args.output {
-        return vec![(o.clone(), None)];
-    }
-    if !desc.render.outputs.is_empty() {
-        return desc
-            .render
-            .outputs
-            .iter()
-            .map(|o| (o.file.path.clone(), Some(o.file.span)))
-            .collect();
-    }
-    let stem = args
-        .scene
-        .file
-        .file_stem()
-        .unwrap_or(std::ffi::OsStr::new("scene"));
-    vec![(Path::new(stem).with_extension("png"), None)]
-}
 
 fn progress_bar() -> Option<indicatif::ProgressBar> {
     if !std::io::stderr().is_terminal() {

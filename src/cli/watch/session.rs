@@ -12,6 +12,7 @@ use super::status::CompileFigures;
 use super::watcher::{absolute, FileSet};
 use crate::assets::Loader;
 use crate::bvh::AccelKind;
+use crate::cli::targets::{camera_index, output_targets};
 use crate::compile::compile_file;
 use crate::diag::Diagnostic;
 use crate::film::WriteSettings;
@@ -132,10 +133,7 @@ impl Session {
     ) -> Result<Ready, Vec<Diagnostic>> {
         let camera = match self.camera.as_deref() {
             None => None,
-            Some(name) => match desc.camera_by_name(name) {
-                Some(i) => Some(i),
-                None => return Err(vec![unknown_camera(desc, name)]),
-            },
+            Some(name) => Some(camera_index(desc, name).map_err(|d| vec![*d])?),
         };
         let options = BuildOptions {
             accel: AccelKind::Bvh,
@@ -144,38 +142,9 @@ impl Session {
         let mut scene = build_cached(desc, sources, loader, &options, &mut self.cache)?;
         warnings.append(&mut scene.warnings);
         Ok(Ready {
-            outputs: self.outputs(desc),
+            outputs: output_targets(self.output.as_deref(), &self.file, desc),
             write: WriteSettings::from_render(&scene.settings),
             scene,
         })
     }
-
-    /// `-o`, else the scene's outputs, else `<scene name>.png` here (as `scnc render`).
-    fn outputs(&self, desc: &SceneDesc) -> Vec<(PathBuf, Option<Span>)> {
-        if let Some(o) = &self.output {
-            return vec![(o.clone(), None)];
-        }
-        if !desc.render.outputs.is_empty() {
-            return desc
-                .render
-                .outputs
-                .iter()
-                .map(|o| (o.file.path.clone(), Some(o.file.span)))
-                .collect();
-        }
-        let stem = self
-            .file
-            .file_stem()
-            .unwrap_or(std::ffi::OsStr::new("scene"));
-        vec![(Path::new(stem).with_extension("png"), None)]
-    }
-}
-
-fn unknown_camera(desc: &SceneDesc, name: &str) -> Diagnostic {
-    let names: Vec<&str> = desc.cameras.iter().map(|c| c.name.as_str()).collect();
-    Diagnostic::error(
-        "scnc::cli::unknown_camera",
-        format!("the scene has no camera named `{name}`"),
-    )
-    .help(format!("cameras: {}", names.join(", ")))
 }
