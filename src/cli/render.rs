@@ -200,7 +200,6 @@ pub fn run(args: &RenderArgs) -> ExitCode {
     }
 }
 
-
 fn progress_bar() -> Option<indicatif::ProgressBar> {
     if !std::io::stderr().is_terminal() {
         return None;
