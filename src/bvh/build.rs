@@ -30,10 +30,36 @@ impl PrimBox {
 
 /// A primitive to build over: its bounds and the caller's index. The builder reorders these in
 /// place, so every pass over a node's primitives reads memory sequentially.
+///
+/// 32 bytes (Embree's layout: the id in the fourth lane of the lower corner): the references
+/// are the largest temporary of a build, alive while the nodes are made, so their size is
+/// the build's memory peak (two `Vec3A` and an id would take 48).
 #[derive(Debug, Clone, Copy)]
+#[repr(C, align(16))]
 pub struct PrimRef {
-    pub bounds: PrimBox,
+    min: [f32; 3],
     pub id: u32,
+    max: [f32; 3],
+    _pad: u32,
+}
+
+impl PrimRef {
+    pub fn new(bounds: PrimBox, id: u32) -> PrimRef {
+        PrimRef {
+            min: bounds.min.to_array(),
+            id,
+            max: bounds.max.to_array(),
+            _pad: 0,
+        }
+    }
+
+    #[inline]
+    pub fn bounds(&self) -> PrimBox {
+        PrimBox {
+            min: Vec3A::from_array(self.min),
+            max: Vec3A::from_array(self.max),
+        }
+    }
 }
 
 /// A built hierarchy: `nodes[0]` is the root (if any); leaves refer to `order[first..first+count]`,
@@ -56,7 +82,7 @@ pub fn build(mut refs: Vec<PrimRef>) -> Built {
     if refs.is_empty() {
         return Built::default();
     }
-    let mut nodes = Vec::with_capacity(refs.len() / 2 + 1);
+    let mut nodes = Vec::with_capacity(node_capacity(refs.len()));
     build_node(&mut refs, 0, 0, &mut nodes);
     Built {
         nodes,
@@ -81,7 +107,7 @@ fn bounds_of(refs: &[PrimRef]) -> (Vec3A, Vec3A, Vec3A, Vec3A) {
     let inf = Vec3A::splat(f32::INFINITY);
     let (mut lo, mut hi, mut clo, mut chi) = (inf, -inf, inf, -inf);
     for r in refs {
-        let b = &r.bounds;
+        let b = r.bounds();
         lo = lo.min(b.min);
         hi = hi.max(b.max);
         let c = b.doubled_centroid();
@@ -125,7 +151,7 @@ fn find_sah_split(refs: &[PrimRef], clo: Vec3A, chi: Vec3A) -> Option<Split> {
     let scale = Vec3A::splat(bins as f32 * (1.0 - 1e-6)) / extent;
     let mut table = [[EMPTY_BIN; MAX_BINS]; 3];
     for r in refs {
-        let b = &r.bounds;
+        let b = r.bounds();
         let c = b.doubled_centroid();
         for (axis, row) in table.iter_mut().enumerate() {
             let bin = &mut row[bin_of(c, axis, clo, scale, bins)];
@@ -180,7 +206,7 @@ fn median_split(refs: &mut [PrimRef], clo: Vec3A, chi: Vec3A) -> (usize, usize) 
         2
     };
     let mid = refs.len() / 2;
-    let key = |r: &PrimRef| r.bounds.doubled_centroid()[axis];
+    let key = |r: &PrimRef| r.bounds().doubled_centroid()[axis];
     refs.select_nth_unstable_by(mid, |a, b| key(a).total_cmp(&key(b)).then(a.id.cmp(&b.id)));
     (mid, axis)
 }
@@ -227,7 +253,7 @@ fn build_node(refs: &mut [PrimRef], base: u32, depth: usize, out: &mut Vec<Node>
             let bins = if n < 256 { 16 } else { MAX_BINS };
             let scale = Vec3A::splat(bins as f32 * (1.0 - 1e-6)) / (chi - clo);
             let mid = partition(refs, |r| {
-                bin_of(r.bounds.doubled_centroid(), s.axis, clo, scale, bins) < s.bin
+                bin_of(r.bounds().doubled_centroid(), s.axis, clo, scale, bins) < s.bin
             });
             if mid == 0 || mid == n {
                 median_split(refs, clo, chi)
@@ -257,8 +283,16 @@ fn build_node(refs: &mut [PrimRef], base: u32, depth: usize, out: &mut Vec<Node>
     }
 }
 
+/// Room for the largest tree over `n` primitives (one per leaf: `2n − 1` nodes), reserved up
+/// front so that the node array never grows by reallocation: a grown copy would briefly hold
+/// the old and the new array (the build's memory peak on large meshes). The operating system
+/// commits only the pages written, so the unused tail costs address space, not memory.
+fn node_capacity(n: usize) -> usize {
+    2 * n
+}
+
 fn subtree(refs: &mut [PrimRef], base: u32, depth: usize) -> Vec<Node> {
-    let mut v = Vec::with_capacity(refs.len() / 2 + 1);
+    let mut v = Vec::with_capacity(node_capacity(refs.len()));
     build_node(refs, base, depth, &mut v);
     v
 }

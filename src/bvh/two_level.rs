@@ -124,12 +124,12 @@ impl TwoLevel {
         let refs: Vec<PrimRef> = placed
             .iter()
             .enumerate()
-            .map(|(i, p)| PrimRef {
-                bounds: PrimBox {
+            .map(|(i, p)| {
+                let bounds = PrimBox {
                     min: Vec3A::from(p.world_bounds.min),
                     max: Vec3A::from(p.world_bounds.max),
-                },
-                id: i as u32,
+                };
+                PrimRef::new(bounds, i as u32)
             })
             .collect();
         let top = build(refs);
