@@ -78,16 +78,30 @@ const SAH_MAX_DEPTH: usize = MAX_DEPTH - 34;
 const TRAVERSAL_COST: f32 = 1.0;
 
 /// Builds a BVH over `refs`; the leaf order names their ids.
+///
+/// The nodes go into one zero-initialised array with room for the largest possible tree
+/// (`2n − 1` nodes; fresh zero pages from the operating system, committed only when written).
+/// A subtree built in parallel gets a fixed slot range of that array sized for its own largest
+/// tree, so parallel tasks write disjoint slices: no per-task vectors, no copies, and the same
+/// layout whatever the number of threads. Unused slots (gaps after parallel subtrees that came
+/// out smaller than their bound) are never linked to and, being whole untouched pages mostly,
+/// cost address space rather than memory.
 pub fn build(mut refs: Vec<PrimRef>) -> Built {
     if refs.is_empty() {
         return Built::default();
     }
-    let mut nodes = Vec::with_capacity(node_capacity(refs.len()));
-    build_node(&mut refs, 0, 0, &mut nodes);
+    let mut nodes: Vec<Node> = bytemuck::zeroed_vec(slots_for(refs.len()));
+    let used = build_node(&mut refs, 0, 0, &mut nodes, 0);
+    nodes.truncate(used);
     Built {
         nodes,
         order: refs.iter().map(|r| r.id).collect(),
     }
+}
+
+/// Most nodes a tree over `n ≥ 1` primitives can have: one primitive per leaf, `2n − 1`.
+fn slots_for(n: usize) -> usize {
+    2 * n - 1
 }
 
 fn half_area(min: Vec3A, max: Vec3A) -> f32 {
@@ -222,14 +236,16 @@ fn partition(refs: &mut [PrimRef], mut goes_left: impl FnMut(&PrimRef) -> bool) 
     mid
 }
 
-/// Builds the subtree over `refs` (which sit at `base` in the final order) into `out`.
-fn build_node(refs: &mut [PrimRef], base: u32, depth: usize, out: &mut Vec<Node>) {
+/// Builds the subtree over `refs` (which sit at `base` in the final order) into `out`, whose
+/// first slot is node `at` of the whole array and which has room for `slots_for(refs.len())`
+/// nodes. Returns how many slots from the start of `out` the subtree spans.
+fn build_node(refs: &mut [PrimRef], base: u32, depth: usize, out: &mut [Node], at: u32) -> usize {
     let n = refs.len();
     let (lo, hi, clo, chi) = bounds_of(refs);
     let bounds = to_aabb(lo, hi);
     if n == 1 {
-        out.push(Node::leaf(&bounds, base, 1));
-        return;
+        out[0] = Node::leaf(&bounds, base, 1);
+        return 1;
     }
     let sah = if depth < SAH_MAX_DEPTH {
         find_sah_split(refs, clo, chi)
@@ -245,8 +261,8 @@ fn build_node(refs: &mut [PrimRef], base: u32, depth: usize, out: &mut Vec<Node>
         None => true,
     };
     if n <= MAX_LEAF as usize && sah_says_leaf {
-        out.push(Node::leaf(&bounds, base, n as u32));
-        return;
+        out[0] = Node::leaf(&bounds, base, n as u32);
+        return 1;
     }
     let (mid, axis) = match sah {
         Some(s) => {
@@ -265,45 +281,37 @@ fn build_node(refs: &mut [PrimRef], base: u32, depth: usize, out: &mut Vec<Node>
     };
     let (left, right) = refs.split_at_mut(mid);
     let right_base = base + mid as u32;
-    if n >= PARALLEL_MIN {
-        let (l, r) = rayon::join(
-            || subtree(left, base, depth + 1),
-            || subtree(right, right_base, depth + 1),
+    let (head, rest) = out.split_at_mut(1);
+    let spans = if n >= PARALLEL_MIN {
+        // The right subtree starts where the left one's largest possible tree would end.
+        let right_start = 1 + slots_for(mid);
+        let (left_out, right_out) = rest.split_at_mut(right_start - 1);
+        let (_, right_used) = rayon::join(
+            || build_node(left, base, depth + 1, left_out, at + 1),
+            || {
+                build_node(
+                    right,
+                    right_base,
+                    depth + 1,
+                    right_out,
+                    at + right_start as u32,
+                )
+            },
         );
-        let at = out.len() as u32;
-        out.push(Node::interior(&bounds, at + 1 + l.len() as u32, axis));
-        append_shifted(out, &l, at + 1);
-        append_shifted(out, &r, at + 1 + l.len() as u32);
+        (right_start, right_used)
     } else {
-        let at = out.len();
-        out.push(Node::interior(&bounds, 0, axis));
-        build_node(left, base, depth + 1, out);
-        out[at].index = out.len() as u32;
-        build_node(right, right_base, depth + 1, out);
-    }
-}
-
-/// Room for the largest tree over `n` primitives (one per leaf: `2n − 1` nodes), reserved up
-/// front so that the node array never grows by reallocation: a grown copy would briefly hold
-/// the old and the new array (the build's memory peak on large meshes). The operating system
-/// commits only the pages written, so the unused tail costs address space, not memory.
-fn node_capacity(n: usize) -> usize {
-    2 * n
-}
-
-fn subtree(refs: &mut [PrimRef], base: u32, depth: usize) -> Vec<Node> {
-    let mut v = Vec::with_capacity(node_capacity(refs.len()));
-    build_node(refs, base, depth, &mut v);
-    v
-}
-
-/// Appends a subtree built on its own, moving its child links by `shift`.
-fn append_shifted(out: &mut Vec<Node>, sub: &[Node], shift: u32) {
-    out.extend(sub.iter().map(|n| {
-        let mut n = *n;
-        if !n.is_leaf() {
-            n.index += shift;
-        }
-        n
-    }));
+        let left_used = build_node(left, base, depth + 1, rest, at + 1);
+        let right_start = 1 + left_used;
+        let right_out = &mut rest[left_used..];
+        let right_used = build_node(
+            right,
+            right_base,
+            depth + 1,
+            right_out,
+            at + right_start as u32,
+        );
+        (right_start, right_used)
+    };
+    head[0] = Node::interior(&bounds, at + spans.0 as u32, axis);
+    spans.0 + spans.1
 }

@@ -13,7 +13,7 @@ pub const MAX_DEPTH: usize = 96;
 
 /// One node of a flattened BVH: bounds, then either the second child (interior) or the first
 /// primitive (leaf), and `count << 2 | split axis` (`count == 0` marks an interior node).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 #[repr(C)]
 pub struct Node {
     pub min: [f32; 3],
