@@ -336,6 +336,7 @@ fn shadow_rays_never_hit_their_own_tilted_plane() {
 
 #[test]
 fn contact_shadow_at_a_gap_of_1e_4_times_the_distance_stays_dark() {
+    let mut fixed_leaks = 0;
     for shift in [0.0f32, 1e3, 1e6] {
         for d in [1e-3f32, 1.0, 1e2, 1e3, 1e4, 1e6] {
             if d < 6e-5 * shift {
@@ -362,12 +363,14 @@ fn contact_shadow_at_a_gap_of_1e_4_times_the_distance_stays_dark() {
                 .collect();
             let shadowed = blocked(&scene, &under, light, false);
             let lit_blocked = blocked(&scene, &outside, light, false);
+            let fixed_shadowed = blocked(&scene, &under, light, true);
             eprintln!(
-                "gap 1e-4·{d:e}, offset {shift:e}: {shadowed} of {} under the lid shadowed, \
-                 {lit_blocked} of {} outside blocked",
+                "gap 1e-4·{d:e}, offset {shift:e}: {shadowed} of {} under the lid shadowed \
+                 (fixed-ε {fixed_shadowed}), {lit_blocked} of {} outside blocked",
                 under.len(),
                 outside.len()
             );
+            fixed_leaks += under.len() - fixed_shadowed;
             assert!(under.len() > 100 && outside.len() > 100);
             // A gap of a few ulps of the coordinates is inside the rounding error of the hit
             // point itself (γ(7)·|p| ≈ 4e-7·|p|), so no f32 offset can both clear the surface
@@ -388,6 +391,8 @@ fn contact_shadow_at_a_gap_of_1e_4_times_the_distance_stays_dark() {
             assert_eq!(lit_blocked, 0, "acne beside the lid (d {d}, {shift})");
         }
     }
+    // The control: a fixed offset of 1e-4 starts small scenes' shadow rays above the lid.
+    assert!(fixed_leaks > 0, "the fixed-ε control never leaked");
 }
 
 #[test]
