@@ -16,6 +16,7 @@ use glam::{Affine3A, Mat3, Vec3};
 use super::cache::BuildCache;
 use super::env_load::load_env_map;
 use super::environment::Environment;
+use super::facing::{faces_away, world_boxes};
 use super::lights::{AreaLight, Light, Lights, PointLight};
 use super::load::load_mesh;
 use super::mesh::TriMesh;
@@ -155,17 +156,6 @@ fn build_with(
         },
         warnings: diags,
     })
-}
-
-/// A one-sided emitter whose every triangle has all the scene's geometry (`boxes`, the corners
-/// of each instance's world bounds, so conservative) on or behind its plane: it lights nothing.
-/// False when there is no geometry at all (nothing to light is a different problem).
-pub(super) fn faces_away(light: &[[Vec3; 3]], boxes: &[[Vec3; 8]]) -> bool {
-    !boxes.is_empty()
-        && light.iter().all(|[p0, p1, p2]| {
-            let n = (*p1 - *p0).cross(*p2 - *p0);
-            boxes.iter().flatten().all(|&c| n.dot(c - *p0) <= 0.0)
-        })
 }
 
 struct Builder<'a> {
@@ -316,7 +306,7 @@ impl Builder<'_> {
         instances: &mut Vec<SceneInstance>,
         mut env: Option<Environment>,
     ) -> Lights {
-        let boxes = self.world_boxes(instances);
+        let boxes = world_boxes(&self.meshes, instances);
         let mut lights = Vec::new();
         for light in &self.desc.lights {
             match light {
@@ -366,33 +356,6 @@ impl Builder<'_> {
             radius = self.scene_radius(instances);
         }
         Lights::new(lights, env, radius)
-    }
-
-    /// World-space bounds of every instance placed so far (the objects, before any emitter).
-    fn world_boxes(&self, instances: &[SceneInstance]) -> Vec<[Vec3; 8]> {
-        instances
-            .iter()
-            .filter_map(|inst| {
-                let m = &self.meshes[inst.mesh as usize];
-                let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
-                for t in &m.triangles {
-                    for &i in t {
-                        lo = lo.min(m.positions[i as usize]);
-                        hi = hi.max(m.positions[i as usize]);
-                    }
-                }
-                lo.cmple(hi).all().then(|| {
-                    std::array::from_fn(|k| {
-                        let corner = Vec3::select(
-                            glam::BVec3::new(k & 1 != 0, k & 2 != 0, k & 4 != 0),
-                            hi,
-                            lo,
-                        );
-                        inst.world_from_object.transform_point3(corner)
-                    })
-                })
-            })
-            .collect()
     }
 
     /// The affine map and its normal matrix, or an error if it cannot place anything.

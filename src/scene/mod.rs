@@ -14,6 +14,7 @@ pub mod distribution2d;
 mod env_load;
 pub mod environment;
 mod error;
+mod facing;
 mod inventory;
 pub mod lights;
 mod load;
