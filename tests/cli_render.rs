@@ -97,6 +97,19 @@ fn stats_report_every_phase_and_the_ray_counts() {
         assert!(err.contains(needle), "--stats lacks `{needle}`:\n{err}");
     }
     assert!(err.contains(&format!("{} camera", 16 * 16 * 4)), "{err}");
+    // What was built (only what the Cornell box needs), and the per-sample path counters.
+    for needle in [
+        "built",
+        "meshes",
+        "light table",
+        "0 textured, 0 specular, 0 environment; 0 NaN/inf samples dropped",
+    ] {
+        assert!(err.contains(needle), "--stats lacks `{needle}`:\n{err}");
+    }
+    assert!(
+        !err.contains("textures ") && !err.contains("environment map"),
+        "{err}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -131,9 +131,21 @@ fn obj_with_out_of_range_indices() {
 
 #[test]
 fn obj_with_a_nan_vertex() {
+    // Its only triangle has a NaN corner: nothing is left to render.
     let fx = Fixture::new();
     let d = fx.obj_error(b"v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
-    assert_eq!(d.code, "scnc::build::non_finite_vertex");
+    assert_eq!(d.code, "scnc::build::degenerate_mesh");
+    // With a good triangle beside it, the NaN and infinite ones are dropped with a warning.
+    let mut loader = MemLoader::new();
+    loader.insert(
+        "scenes/meshes/m.obj",
+        format!("{TRIANGLE}v nan 0 0\nv 0 inf 0\nf 1 2 3\nf 1 2 4\nf 5 2 3\n").into_bytes(),
+    );
+    let scene = fx.build_obj(&loader).expect("one good triangle");
+    assert_eq!(scene.meshes[0].triangles.len(), 1);
+    assert_eq!(scene.warnings[0].code, "scnc::build::degenerate_triangles");
+    assert!(scene.warnings[0].message.starts_with("2 of 3"));
+    assert!(scene.meshes[0].positions.iter().all(|p| p.is_finite()));
 }
 
 #[test]

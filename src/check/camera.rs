@@ -100,7 +100,13 @@ impl Checker<'_> {
             (eye, target - eye, up, up_span)
         };
         let forward = forward.try_normalize()?;
-        let Some(right) = forward.cross(up).try_normalize() else {
+        // `up` exactly along the view still leaves a cross product of rounding noise (~1e-16),
+        // which would normalise to an arbitrary frame: treat a sine below 1e-9 as parallel.
+        let cross = forward.cross(up);
+        let Some(right) = cross
+            .try_normalize()
+            .filter(|_| cross.length() > 1e-9 * up.length())
+        else {
             self.error(
                 Diagnostic::error(
                     "scnc::check::up_parallel",

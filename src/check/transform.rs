@@ -20,7 +20,12 @@ pub const TRANSFORM_KEYS: &[&str] = &["translate", "rotate", "scale", "look_at",
 /// The rigid frame at `eye` with +z towards `target` and +y towards `up`; `None` if degenerate.
 pub fn look_at(eye: DVec3, target: DVec3, up: DVec3) -> Option<DMat4> {
     let f = (target - eye).try_normalize()?;
-    let s = up.cross(f).try_normalize()?;
+    let s = up.cross(f);
+    // A sine below 1e-9 is `up` along the view plus rounding noise, not a direction.
+    if s.length() <= 1e-9 * up.length() {
+        return None;
+    }
+    let s = s.try_normalize()?;
     let u = f.cross(s);
     Some(DMat4::from_cols(
         s.extend(0.0),

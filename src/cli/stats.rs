@@ -1,4 +1,6 @@
-//! `--stats`: the time of each phase, rays by kind, throughput, BVH size and peak memory.
+//! `--stats`: the time of each phase, rays by kind, throughput, what the build made and its
+//! memory (only the structures the scene uses), how often the per-sample loop took the paths of
+//! optional features, samples dropped as NaN or infinite, and peak memory.
 
 use std::fmt::Write;
 use std::time::Duration;
@@ -54,6 +56,22 @@ impl PhaseStats {
             accel.leaves,
             accel.bytes as f64 / (1024.0 * 1024.0)
         );
+        let c = &render.counts;
+        let _ = writeln!(
+            s,
+            "sample paths   {} textured, {} specular, {} environment; {} NaN/inf samples dropped",
+            c.textured, c.specular, c.environment, c.nonfinite
+        );
+        let _ = writeln!(s, "built");
+        for b in scene.inventory() {
+            let _ = writeln!(
+                s,
+                "  {:<18} {:>10}  {}",
+                b.what,
+                human_bytes(b.bytes),
+                b.detail
+            );
+        }
         let _ = write!(
             s,
             "peak memory    {}",
@@ -62,6 +80,18 @@ impl PhaseStats {
                 .unwrap_or_else(|| "unknown on this platform".into())
         );
         s
+    }
+}
+
+/// `1234 B`, `12.1 KiB`, `3.4 MiB`.
+fn human_bytes(bytes: usize) -> String {
+    let b = bytes as f64;
+    if b < 1024.0 {
+        format!("{bytes} B")
+    } else if b < 1024.0 * 1024.0 {
+        format!("{:.1} KiB", b / 1024.0)
+    } else {
+        format!("{:.1} MiB", b / (1024.0 * 1024.0))
     }
 }
 

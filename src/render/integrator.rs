@@ -34,13 +34,35 @@ use crate::geom::triangle::moller_trumbore;
 use crate::geom::Ray;
 use crate::scene::{AreaLight, DirectStrategy, Light, LightSampling, Picked, Scene, Surface};
 
-/// Rays traced, by kind.
+/// Rays traced, by kind, and how often the per-sample loop took the paths of optional features
+/// (so a test can prove a scene without them never pays for them).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct RayCounts {
     pub camera: u64,
     pub shadow: u64,
     /// BRDF-sampled rays looking for emitters and the sky (closest-hit).
     pub brdf: u64,
+    /// Shading points whose material looked up a texture.
+    pub textured: u64,
+    /// Shading points that evaluated a specular lobe.
+    pub specular: u64,
+    /// Camera rays that escaped to a visible environment, and environment light picks.
+    pub environment: u64,
+    /// Pixel samples whose radiance was NaN or infinite and was dropped (counted by the film
+    /// loop, never by `radiance`).
+    pub nonfinite: u64,
+}
+
+impl RayCounts {
+    pub fn add(&mut self, o: &RayCounts) {
+        self.camera += o.camera;
+        self.shadow += o.shadow;
+        self.brdf += o.brdf;
+        self.textured += o.textured;
+        self.specular += o.specular;
+        self.environment += o.environment;
+        self.nonfinite += o.nonfinite;
+    }
 }
 
 const SHADOW_EPSILON: f32 = 1e-4;
@@ -72,7 +94,10 @@ pub fn radiance(scene: &Scene, ray: &Ray, sampler: &mut Sampler, counts: &mut Ra
         .and_then(|h| surface_hit(scene, &h));
     let Some(hit) = hit else {
         return match &scene.lights.environment {
-            Some(env) if env.visible => env.radiance(ray.dir.normalize()),
+            Some(env) if env.visible => {
+                counts.environment += 1;
+                env.radiance(ray.dir.normalize())
+            }
             _ => Vec3::ZERO,
         };
     };
@@ -107,12 +132,18 @@ fn shade(
     } else {
         hit.ns
     };
+    if mat.is_textured() {
+        counts.textured += 1;
+    }
     let t = &scene.textures;
     let phong = Phong {
         diffuse: t.color(mat.diffuse, hit.uv),
         specular: t.color(mat.specular, hit.uv),
         shininess: t.scalar(mat.shininess, hit.uv),
     };
+    if phong.specular != Vec3::ZERO {
+        counts.specular += 1;
+    }
     let at = Shading {
         scene,
         hit,
@@ -174,6 +205,7 @@ impl Shading<'_> {
                     self.area_light(a, index, pmf, j, count * picks, sampler, counts)
                 }
                 Picked::Environment(env) => {
+                    counts.environment += 1;
                     self.environment(env, pmf, j, count * picks, sampler, counts)
                 }
             };

@@ -113,7 +113,10 @@ impl Shading<'_> {
             let hit = self.scene.accel.as_ref().and_then(|a| a.closest_hit(&ray));
             let (radiance, light_density) = match hit {
                 None => match env {
-                    Some(e) => (e.radiance(wi), lights.pmf_environment() * e.pdf(wi)),
+                    Some(e) => {
+                        counts.environment += 1;
+                        (e.radiance(wi), lights.pmf_environment() * e.pdf(wi))
+                    }
                     None => continue,
                 },
                 Some(h) => {

@@ -55,6 +55,8 @@ pub struct RenderStats {
     pub wall: Duration,
     pub threads: usize,
     pub samples_per_pixel: u32,
+    /// Rays by kind, optional feature paths taken, and samples dropped as NaN or infinite.
+    pub counts: RayCounts,
 }
 
 impl RenderStats {
@@ -128,9 +130,7 @@ pub fn render(
     let mut counts = RayCounts::default();
     for (tile, result) in tiles.iter().zip(results) {
         let (pixels, c) = result.ok_or(Cancelled)?;
-        counts.camera += c.camera;
-        counts.shadow += c.shadow;
-        counts.brdf += c.brdf;
+        counts.add(&c);
         let tw = (tile.x1 - tile.x0) as usize;
         for (k, value) in pixels.into_iter().enumerate() {
             film.set(tile.x0 + (k % tw) as u32, tile.y0 + (k / tw) as u32, value);
@@ -143,6 +143,7 @@ pub fn render(
         wall: start.elapsed(),
         threads: used_threads,
         samples_per_pixel: side * side,
+        counts,
     };
     Ok((film, stats))
 }
@@ -190,9 +191,11 @@ impl Job<'_> {
                 Sampler::for_pixel_sample(self.scene.settings.seed, x, y, s as u32, count);
             let l = radiance(self.scene, &ray, &mut sampler, counts);
             // A non-finite sample (a degenerate configuration the guards missed) must not
-            // poison the pixel.
+            // poison the pixel; it is counted for `--stats` instead.
             if l.is_finite() {
                 sum += l;
+            } else {
+                counts.nonfinite += 1;
             }
         }
         sum / self.offsets.len() as f32

@@ -16,6 +16,7 @@ use glam::{Affine3A, Mat3, Vec3};
 use super::cache::BuildCache;
 use super::env_load::load_env_map;
 use super::environment::Environment;
+use super::facing::{faces_away, world_boxes};
 use super::lights::{AreaLight, Light, Lights, PointLight};
 use super::load::load_mesh;
 use super::mesh::TriMesh;
@@ -309,6 +310,7 @@ impl Builder<'_> {
         instances: &mut Vec<SceneInstance>,
         mut env: Option<Environment>,
     ) -> Lights {
+        let boxes = world_boxes(&self.meshes, instances);
         let mut lights = Vec::new();
         for light in &self.desc.lights {
             match light {
@@ -333,6 +335,12 @@ impl Builder<'_> {
                             t.map(|i| world_from_object.transform_point3(m.positions[i as usize]))
                         })
                         .collect();
+                    if !a.two_sided && faces_away(&world, &boxes) {
+                        self.problems.push(BuildError::LightFacesAway {
+                            light: a.name.clone(),
+                            span: a.span,
+                        });
+                    }
                     if let Some(area) = AreaLight::new(a.radiance, a.two_sided, a.samples, world) {
                         instances.push(SceneInstance {
                             mesh,

@@ -37,6 +37,11 @@ impl Distribution1D {
         Some(Distribution1D { cdf, pmf })
     }
 
+    /// Heap memory of the tables.
+    pub fn bytes(&self) -> usize {
+        (self.cdf.len() + self.pmf.len()) * std::mem::size_of::<f32>()
+    }
+
     pub fn len(&self) -> usize {
         self.pmf.len()
     }

@@ -93,6 +93,13 @@ impl Distribution2D {
         })
     }
 
+    /// Heap memory of the tables (conditional CDFs, guides, marginal).
+    pub fn bytes(&self) -> usize {
+        self.cdf.len() * std::mem::size_of::<f32>()
+            + self.guide.len() * std::mem::size_of::<u32>()
+            + self.marginal.bytes()
+    }
+
     pub fn width(&self) -> usize {
         self.width
     }

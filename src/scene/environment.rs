@@ -115,6 +115,14 @@ impl EnvMap {
         self.distribution.is_some()
     }
 
+    /// Heap memory of the texels and of the importance table (if built).
+    pub fn bytes(&self) -> (usize, usize) {
+        (
+            self.texels.len() * std::mem::size_of::<Vec3>(),
+            self.distribution.as_ref().map_or(0, Distribution2D::bytes),
+        )
+    }
+
     fn to_map(&self, d: Vec3) -> Vec3 {
         // R_y(−a)·d.
         Vec3::new(

@@ -47,22 +47,14 @@ pub enum BuildError {
         span: Span,
         reason: String,
     },
-    #[error("mesh `{mesh}` has a non-finite vertex position (vertex {index}: {value})")]
-    #[diagnostic(code(scnc::build::non_finite_vertex))]
-    NonFiniteVertex {
-        mesh: String,
-        index: usize,
-        value: String,
-        span: Span,
-    },
-    #[error("every triangle of mesh `{mesh}` is degenerate ({count} triangles of zero area)")]
+    #[error("every triangle of mesh `{mesh}` is degenerate ({count} triangles of zero area or with a NaN or infinite corner)")]
     #[diagnostic(code(scnc::build::degenerate_mesh))]
     AllDegenerate {
         mesh: String,
         count: usize,
         span: Span,
     },
-    #[error("{count} of {total} triangles of mesh `{mesh}` are degenerate and were dropped")]
+    #[error("{count} of {total} triangles of mesh `{mesh}` are degenerate (zero area, repeated vertices, or a NaN or infinite corner) and were dropped")]
     #[diagnostic(code(scnc::build::degenerate_triangles), severity(Warning))]
     SomeDegenerate {
         mesh: String,
@@ -111,6 +103,9 @@ pub enum BuildError {
     #[error("the environment map `{written}` is black everywhere; it lights nothing")]
     #[diagnostic(code(scnc::build::black_environment), severity(Warning))]
     BlackEnvironment { written: String, span: Span },
+    #[error("area light `{light}` faces away from everything: all the scene's geometry is behind its one-sided front")]
+    #[diagnostic(code(scnc::build::light_faces_away), severity(Warning))]
+    LightFacesAway { light: String, span: Span },
     #[error("the scene has no camera {which}")]
     #[diagnostic(code(scnc::build::no_camera))]
     NoCamera { which: String },
@@ -124,7 +119,6 @@ impl BuildError {
             BuildError::Read { .. } => "scnc::build::read_failed",
             BuildError::CorruptObj { .. } => "scnc::build::corrupt_obj",
             BuildError::IndexOutOfRange { .. } => "scnc::build::index_out_of_range",
-            BuildError::NonFiniteVertex { .. } => "scnc::build::non_finite_vertex",
             BuildError::AllDegenerate { .. } => "scnc::build::degenerate_mesh",
             BuildError::SomeDegenerate { .. } => "scnc::build::degenerate_triangles",
             BuildError::EmptyMesh { .. } => "scnc::build::empty_mesh",
@@ -134,6 +128,7 @@ impl BuildError {
             BuildError::ImageTooLarge { .. } => "scnc::build::image_too_large",
             BuildError::InvalidPixels { .. } => "scnc::build::invalid_environment_pixels",
             BuildError::BlackEnvironment { .. } => "scnc::build::black_environment",
+            BuildError::LightFacesAway { .. } => "scnc::build::light_faces_away",
             BuildError::NoCamera { .. } => "scnc::build::no_camera",
         }
     }
@@ -144,7 +139,8 @@ impl BuildError {
             BuildError::SomeDegenerate { .. }
             | BuildError::EmptyMesh { .. }
             | BuildError::InvalidPixels { .. }
-            | BuildError::BlackEnvironment { .. } => Severity::Warning,
+            | BuildError::BlackEnvironment { .. }
+            | BuildError::LightFacesAway { .. } => Severity::Warning,
             _ => Severity::Error,
         }
     }
@@ -155,7 +151,6 @@ impl BuildError {
             | BuildError::Read { span, .. }
             | BuildError::CorruptObj { span, .. }
             | BuildError::IndexOutOfRange { span, .. }
-            | BuildError::NonFiniteVertex { span, .. }
             | BuildError::AllDegenerate { span, .. }
             | BuildError::SomeDegenerate { span, .. }
             | BuildError::EmptyMesh { span, .. }
@@ -164,7 +159,8 @@ impl BuildError {
             | BuildError::CorruptImage { span, .. }
             | BuildError::ImageTooLarge { span, .. }
             | BuildError::InvalidPixels { span, .. }
-            | BuildError::BlackEnvironment { span, .. } => Some(*span),
+            | BuildError::BlackEnvironment { span, .. }
+            | BuildError::LightFacesAway { span, .. } => Some(*span),
             BuildError::NoCamera { .. } => None,
         }
     }
@@ -173,7 +169,6 @@ impl BuildError {
         match self {
             BuildError::Missing { .. } | BuildError::Read { .. } => "this file",
             BuildError::CorruptObj { .. } | BuildError::IndexOutOfRange { .. } => "this OBJ file",
-            BuildError::NonFiniteVertex { .. } => "NaN or infinite coordinate in this mesh",
             BuildError::AllDegenerate { .. } => "no triangle of this mesh has an area",
             BuildError::SomeDegenerate { .. } => "some triangles of this mesh have no area",
             BuildError::EmptyMesh { .. } => "this mesh",
@@ -182,6 +177,7 @@ impl BuildError {
             BuildError::CorruptImage { .. } | BuildError::ImageTooLarge { .. } => "this image",
             BuildError::InvalidPixels { .. } => "this image has invalid pixels",
             BuildError::BlackEnvironment { .. } => "this image is black",
+            BuildError::LightFacesAway { .. } => "this light shines away from the scene",
             BuildError::NoCamera { .. } => "",
         }
     }
@@ -194,12 +190,9 @@ impl BuildError {
             BuildError::IndexOutOfRange { .. } => Some(
                 "OBJ indices are 1-based (negative ones count back from the last vertex)".into(),
             ),
-            BuildError::NonFiniteVertex { .. } => {
-                Some("re-export the mesh; every coordinate must be a finite number".into())
-            }
-            BuildError::AllDegenerate { .. } => {
-                Some("check the mesh's size or scale: all its corners are collinear".into())
-            }
+            BuildError::AllDegenerate { .. } => Some(
+                "check the mesh's size or scale (all its corners are collinear) and that every coordinate is a finite number".into(),
+            ),
             BuildError::Unsupported { help, .. } => Some(help.clone()),
             BuildError::NoCamera { .. } => Some("declare one: `camera main { ... }`".into()),
             BuildError::CorruptImage { .. } => {
@@ -211,6 +204,9 @@ impl BuildError {
             BuildError::BlackEnvironment { .. } => Some(
                 "check the file's exposure, or remove the light; a constant colour needs no image"
                     .into(),
+            ),
+            BuildError::LightFacesAway { .. } => Some(
+                "a one-sided light emits on the side its corners run counter-clockwise; reverse their order, turn the light around, or set `two_sided true`".into(),
             ),
             _ => None,
         }
@@ -267,12 +263,6 @@ mod tests {
                 span,
                 reason: s(),
             },
-            BuildError::NonFiniteVertex {
-                mesh: s(),
-                index: 0,
-                value: s(),
-                span,
-            },
             BuildError::AllDegenerate {
                 mesh: s(),
                 count: 1,
@@ -311,6 +301,7 @@ mod tests {
                 total: 2,
             },
             BuildError::BlackEnvironment { written: s(), span },
+            BuildError::LightFacesAway { light: s(), span },
             BuildError::NoCamera { which: s() },
         ];
         for e in &all {

@@ -74,6 +74,13 @@ impl AreaLight {
         })
     }
 
+    /// Heap memory of the world-space triangles, normals and area table.
+    pub fn bytes(&self) -> usize {
+        self.triangles.len() * std::mem::size_of::<[Vec3; 3]>()
+            + self.normals.len() * std::mem::size_of::<Vec3>()
+            + self.by_area.bytes()
+    }
+
     /// A point uniform by area over the whole mesh; its density is `1 / total_area`.
     pub fn sample(&self, u: Vec2) -> LightPoint {
         let (i, _, u0) = self.pick(u.x);

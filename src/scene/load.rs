@@ -75,12 +75,6 @@ pub fn load_mesh(
             span,
             reason: format!("triangle {triangle} uses vertex {index}"),
         },
-        MeshProblem::NonFinite { index, value } => BuildError::NonFiniteVertex {
-            mesh: name.clone(),
-            index,
-            value: format!("{value}"),
-            span,
-        },
         MeshProblem::AllDegenerate { count } => BuildError::AllDegenerate {
             mesh: name.clone(),
             count,

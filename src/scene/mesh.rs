@@ -2,8 +2,10 @@
 //!
 //! Every mesh source (`mesh m = obj("m.obj")`, `inline { ... }`, `quad`/`box`/`sphere`) ends up
 //! as a [`TriMesh`]. [`TriMesh::validate`] is the one gate between user data and the renderer:
-//! indices in range, positions finite, degenerate (zero-area) triangles dropped and counted,
-//! normals and UVs either one per position or absent.
+//! indices in range; degenerate triangles (zero or near-zero area, repeated vertices, a NaN or
+//! infinite corner) dropped and counted, never handed to the BVH; positions no triangle uses any
+//! more zeroed if not finite (so no bound or light table ever sees them); normals and UVs either
+//! one per position or absent.
 
 use glam::{Vec2, Vec3};
 
@@ -23,7 +25,6 @@ pub struct TriMesh {
 #[derive(Debug, Clone, PartialEq)]
 pub enum MeshProblem {
     IndexOutOfRange { triangle: usize, index: u32 },
-    NonFinite { index: usize, value: Vec3 },
     AllDegenerate { count: usize },
 }
 
@@ -52,14 +53,6 @@ impl TriMesh {
                 return Err(MeshProblem::IndexOutOfRange { triangle: t, index });
             }
         }
-        if let Some((index, &value)) = self
-            .positions
-            .iter()
-            .enumerate()
-            .find(|(_, p)| !p.is_finite())
-        {
-            return Err(MeshProblem::NonFinite { index, value });
-        }
         if self.normals.len() != n
             || self
                 .normals
@@ -83,6 +76,12 @@ impl TriMesh {
         let positions = &self.positions;
         self.triangles.retain(|t| !is_degenerate(positions, *t));
         let dropped = total - self.triangles.len();
+        // Every triangle left has finite corners; a non-finite position is now unused.
+        for p in &mut self.positions {
+            if !p.is_finite() {
+                *p = Vec3::ZERO;
+            }
+        }
         if total > 0 && self.triangles.is_empty() {
             return Err(MeshProblem::AllDegenerate { count: total });
         }
@@ -94,8 +93,9 @@ impl TriMesh {
     }
 }
 
-/// Zero area, or so close to it that the normal's direction is meaningless: the sine of the
-/// angle between the two edges is below f32 epsilon. Indices must be in range.
+/// Zero area, or so close to it that the normal's direction is meaningless (the sine of the
+/// angle between the two edges is below f32 epsilon), or a corner that is NaN or infinite (the
+/// cross product is then not finite). Indices must be in range.
 pub fn is_degenerate(positions: &[Vec3], [a, b, c]: [u32; 3]) -> bool {
     let p = |i: u32| positions[i as usize];
     let (e1, e2) = (p(b) - p(a), p(c) - p(a));
@@ -126,6 +126,24 @@ mod tests {
     }
 
     #[test]
+    fn nan_and_infinite_corners_are_dropped_and_zeroed() {
+        let m = tri_mesh(
+            vec![
+                Vec3::ZERO,
+                Vec3::X,
+                Vec3::Y,
+                Vec3::new(f32::NAN, 0.0, 0.0),
+                Vec3::new(0.0, f32::INFINITY, 0.0),
+            ],
+            vec![[0, 1, 2], [0, 1, 3], [4, 1, 2], [3, 4, 0]],
+        );
+        let v = m.validate().expect("one good triangle remains");
+        assert_eq!((v.dropped, v.total), (3, 4));
+        assert_eq!(v.mesh.triangles, vec![[0, 1, 2]]);
+        assert!(v.mesh.positions.iter().all(|p| p.is_finite()));
+    }
+
+    #[test]
     fn reports_bad_index_nan_and_all_degenerate() {
         let bad = tri_mesh(vec![Vec3::ZERO, Vec3::X, Vec3::Y], vec![[0, 1, 3]]);
         assert_eq!(
@@ -139,10 +157,10 @@ mod tests {
             vec![Vec3::ZERO, Vec3::new(f32::NAN, 0.0, 0.0), Vec3::Y],
             vec![[0, 1, 2]],
         );
-        assert!(matches!(
-            nan.validate(),
-            Err(MeshProblem::NonFinite { index: 1, .. })
-        ));
+        assert_eq!(
+            nan.validate().unwrap_err(),
+            MeshProblem::AllDegenerate { count: 1 }
+        );
         let flat = tri_mesh(vec![Vec3::ZERO, Vec3::X, 2.0 * Vec3::X], vec![[0, 1, 2]]);
         assert_eq!(
             flat.validate().unwrap_err(),

@@ -14,6 +14,8 @@ pub mod distribution2d;
 mod env_load;
 pub mod environment;
 mod error;
+mod facing;
+mod inventory;
 pub mod lights;
 mod load;
 pub mod mesh;
@@ -28,6 +30,7 @@ pub use build::{build, build_cached};
 pub use cache::{BuildCache, CacheReport};
 pub use environment::{EnvMap, EnvSample, Environment};
 pub use error::BuildError;
+pub use inventory::{Built, Features};
 pub use lights::{AreaLight, Light, Lights, Picked, PointLight};
 pub use mesh::TriMesh;
 pub use texture::{Texture, Textures};
@@ -91,6 +94,15 @@ pub struct SurfaceMaterial {
     pub specular: ir::ColorInput,
     pub shininess: ir::ScalarInput,
     pub ambient: Vec3,
+}
+
+impl SurfaceMaterial {
+    /// Whether shading it looks up any texture (else every input is a constant).
+    pub fn is_textured(&self) -> bool {
+        matches!(self.diffuse, ir::ColorInput::Texture(_))
+            || matches!(self.specular, ir::ColorInput::Texture(_))
+            || matches!(self.shininess, ir::ScalarInput::Texture(_))
+    }
 }
 
 /// How shading points sample triangles of area lights.

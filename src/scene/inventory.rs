@@ -1,0 +1,159 @@
+//! Stage 3 → `--stats`: what [`Scene`] built and the memory each structure holds.
+//!
+//! The build makes only what a scene uses (see `build`); this lists it, one line per kind of
+//! structure, so a user can see that a scene without textures, an environment or specular
+//! materials carries none of their tables. `tests/accuracy_model_only.rs` asserts it, together
+//! with the per-sample counters of `render::integrator::RayCounts`.
+//!
+//! No `.scn` syntax of its own.
+
+use std::mem::size_of;
+
+use glam::{Vec2, Vec3};
+
+use super::{Light, Scene, Texture};
+
+/// One kind of built structure.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Built {
+    /// Stable short name: `meshes`, `bvh`, `textures`, `light table`, `environment map`,
+    /// `environment table`.
+    pub what: &'static str,
+    /// Human-readable detail (counts, sizes, mip levels).
+    pub detail: String,
+    /// Heap memory, bytes.
+    pub bytes: usize,
+}
+
+/// Which optional features the scene's materials and lights use (decided at build time; the
+/// per-sample loop checks them through the same data, never more).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Features {
+    pub textures: bool,
+    pub specular: bool,
+    pub environment: bool,
+    pub area_lights: bool,
+}
+
+impl Scene {
+    /// The optional features this scene actually has.
+    pub fn features(&self) -> Features {
+        let used: Vec<&super::SurfaceMaterial> = self
+            .instances
+            .iter()
+            .filter_map(|i| match i.surface {
+                super::Surface::Material(m) => self.materials.get(m as usize),
+                super::Surface::Emitter(_) => None,
+            })
+            .collect();
+        Features {
+            textures: self.textures.slots.iter().any(Option::is_some),
+            specular: used.iter().any(
+                |m| !matches!(m.specular, crate::ir::ColorInput::Constant(c) if c == Vec3::ZERO),
+            ),
+            environment: self.lights.environment.is_some(),
+            area_lights: self.lights.has_emitters(),
+        }
+    }
+
+    /// Every structure the build made, with its memory. Kinds the scene does not use are absent.
+    pub fn inventory(&self) -> Vec<Built> {
+        let mut out = Vec::new();
+        let (mut tris, mut bytes) = (0, 0);
+        for m in &self.meshes {
+            tris += m.triangles.len();
+            bytes += m.positions.len() * size_of::<Vec3>()
+                + m.normals.len() * size_of::<Vec3>()
+                + m.uvs.len() * size_of::<Vec2>()
+                + m.triangles.len() * size_of::<[u32; 3]>();
+        }
+        if !self.meshes.is_empty() {
+            out.push(Built {
+                what: "meshes",
+                detail: format!(
+                    "{} meshes, {tris} triangles, {} instances",
+                    self.meshes.len(),
+                    self.instances.len()
+                ),
+                bytes,
+            });
+        }
+        if self.accel.is_some() {
+            let a = self.accel_stats();
+            out.push(Built {
+                what: "bvh",
+                detail: format!(
+                    "{} nodes, {} leaves, {} triangles",
+                    a.nodes, a.leaves, a.triangles
+                ),
+                bytes: a.bytes,
+            });
+        }
+        let textures: Vec<&Texture> = self.textures.slots.iter().flatten().collect();
+        if !textures.is_empty() {
+            let (mut constant, mut checker) = (0, 0);
+            for t in &textures {
+                match t {
+                    Texture::Constant(_) => constant += 1,
+                    Texture::Checker { .. } => checker += 1,
+                }
+            }
+            out.push(Built {
+                what: "textures",
+                detail: format!(
+                    "{} built ({constant} constant, {checker} procedural checker; no mip levels)",
+                    textures.len()
+                ),
+                bytes: textures.len() * size_of::<Texture>(),
+            });
+        }
+        if let Some(table) = &self.lights.by_power {
+            let (mut points, mut areas, mut area_tris, mut bytes) = (0, 0, 0, table.bytes());
+            for light in &self.lights.lights {
+                match light {
+                    Light::Point(_) => points += 1,
+                    Light::Area(a) => {
+                        areas += 1;
+                        area_tris += a.triangles.len();
+                        bytes += a.bytes();
+                    }
+                }
+            }
+            out.push(Built {
+                what: "light table",
+                detail: format!(
+                    "{} entries by power: {points} point, {areas} area ({area_tris} triangles){}",
+                    table.len(),
+                    if self.lights.pmf_environment() > 0.0 {
+                        ", environment"
+                    } else {
+                        ""
+                    }
+                ),
+                bytes,
+            });
+        }
+        if let Some(map) = self
+            .lights
+            .environment
+            .as_ref()
+            .and_then(|e| e.map.as_ref())
+        {
+            let (w, h) = map.size();
+            let (texels, table) = map.bytes();
+            out.push(Built {
+                what: "environment map",
+                detail: format!("{w}x{h} texels"),
+                bytes: texels,
+            });
+            if map.has_distribution() {
+                out.push(Built {
+                    what: "environment table",
+                    detail: format!("{w}x{h} luminance x sin(theta) distribution"),
+                    bytes: table,
+                });
+            }
+        }
+        out
+    }
+}

@@ -1,0 +1,192 @@
+//! "Model only what a scene requires" (issue 8): a scene without textures, environment or
+//! specular materials builds none of their structures (`Scene::inventory`, what `--stats`
+//! lists) and takes none of their code paths in the per-sample loop (the path counters of
+//! `RenderStats::counts`), while a scene with them builds and uses each one, so the counters
+//! are known to be live. Also the build's `light_faces_away` warning (issue 2): a one-sided area
+//! light with every piece of geometry behind it.
+
+mod render_common;
+
+use std::sync::atomic::AtomicBool;
+
+use glam::Vec3;
+use render_common::pfm_bytes;
+use scnc::assets::MemLoader;
+use scnc::compile::compile_source;
+use scnc::diag::Severity;
+use scnc::render::{render, RenderOptions, RenderStats};
+use scnc::scene::{build, BuildOptions, Features, Scene};
+
+fn build_src(src: &str, loader: &MemLoader) -> (Scene, scnc::source::SourceMap) {
+    let compiled = compile_source("scene.scn", src, loader);
+    assert!(!compiled.has_errors(), "{:#?}", compiled.diagnostics);
+    let desc = compiled.scene.expect("compiles");
+    let scene = build(&desc, &compiled.sources, loader, &BuildOptions::default())
+        .unwrap_or_else(|d| panic!("{d:#?}"));
+    (scene, compiled.sources)
+}
+
+fn render_small(scene: &Scene) -> RenderStats {
+    render(
+        scene,
+        &RenderOptions {
+            spp: Some(4),
+            threads: Some(2),
+        },
+        &|_| {},
+        &AtomicBool::new(false),
+    )
+    .expect("not cancelled")
+    .1
+}
+
+const PLAIN: &str = r#"scnc 1
+camera main { eye (0, 2, -5)  target (0, 0.5, 0)  fov 40deg }
+material white = phong { diffuse 0.8  specular 0 }
+material red = phong { diffuse rgb(0.7, 0.1, 0.1) }
+mesh floor = quad { size (6, 6) }
+mesh ball = sphere { radius 0.5  segments 16 }
+object floor { material white }
+object ball { material red  transform { translate (0, 0.5, 0) } }
+light bulb = point { position (2, 3, -2)  intensity 20 }
+light panel = area { quad (-1, 3, -1) (1, 3, -1) (1, 3, 1) (-1, 3, 1)  radiance 4 }
+render { resolution 24 x 16 }
+"#;
+
+const RICH: &str = r#"scnc 1
+camera main { eye (0, 2, -5)  target (0, 0.5, 0)  fov 40deg }
+texture board = checker { even #e8e8e8  odd #303030  scale 8 }
+material floor = phong { diffuse board  specular 0.1  shininess 16 }
+material chrome = phong { diffuse 0.1  specular 0.8  shininess 200 }
+mesh floor = quad { size (6, 6) }
+mesh ball = sphere { radius 0.5  segments 16 }
+object floor { material floor }
+object ball { material chrome  transform { translate (0, 0.5, 0) } }
+light bulb = point { position (2, 3, -2)  intensity 20 }
+light sky = environment { image("sky.pfm") }
+render { resolution 24 x 16 }
+"#;
+
+fn what_was_built(scene: &Scene) -> Vec<&'static str> {
+    scene.inventory().iter().map(|b| b.what).collect()
+}
+
+#[test]
+fn a_plain_scene_builds_and_runs_nothing_it_does_not_use() {
+    let (scene, _) = build_src(PLAIN, &MemLoader::new());
+    assert_eq!(
+        scene.features(),
+        Features {
+            textures: false,
+            specular: false,
+            environment: false,
+            area_lights: true,
+        }
+    );
+    assert_eq!(what_was_built(&scene), ["meshes", "bvh", "light table"]);
+    assert!(scene.textures.slots.iter().all(Option::is_none));
+    assert!(scene.lights.environment.is_none());
+    let stats = render_small(&scene);
+    let c = stats.counts;
+    assert!(c.shadow > 0 && c.brdf > 0, "{c:?}");
+    assert_eq!((c.textured, c.specular, c.environment), (0, 0, 0), "{c:?}");
+    assert_eq!(c.nonfinite, 0);
+}
+
+#[test]
+fn a_rich_scene_builds_and_uses_each_structure() {
+    let mut loader = MemLoader::new();
+    let texels: Vec<Vec3> = (0..32)
+        .map(|k| Vec3::splat(0.1 + k as f32 * 0.05))
+        .collect();
+    loader.insert("sky.pfm", pfm_bytes(8, 4, &texels));
+    let (scene, _) = build_src(RICH, &loader);
+    assert_eq!(
+        scene.features(),
+        Features {
+            textures: true,
+            specular: true,
+            environment: true,
+            area_lights: false,
+        }
+    );
+    assert_eq!(
+        what_was_built(&scene),
+        [
+            "meshes",
+            "bvh",
+            "textures",
+            "light table",
+            "environment map",
+            "environment table"
+        ]
+    );
+    for b in scene.inventory() {
+        assert!(b.bytes > 0, "{b:?}");
+    }
+    let c = render_small(&scene).counts;
+    assert!(
+        c.textured > 0 && c.specular > 0 && c.environment > 0,
+        "{c:?}"
+    );
+}
+
+#[test]
+fn an_environment_with_nothing_to_light_builds_no_sampling_table() {
+    let src = r#"scnc 1
+camera main { eye (0, 2, -5)  target (0, 0.5, 0)  fov 40deg }
+light sky = environment { image("sky.pfm") }
+render { resolution 8 x 8 }
+"#;
+    let mut loader = MemLoader::new();
+    loader.insert("sky.pfm", pfm_bytes(2, 1, &[Vec3::ONE, Vec3::splat(2.0)]));
+    let (scene, _) = build_src(src, &loader);
+    assert_eq!(what_was_built(&scene), ["environment map"]);
+    assert!(scene.accel.is_none());
+}
+
+#[test]
+fn a_one_sided_light_facing_away_from_everything_is_warned_about() {
+    let with_light = |light: &str| {
+        PLAIN
+            .replace(
+                "light panel = area { quad (-1, 3, -1) (1, 3, -1) (1, 3, 1) (-1, 3, 1)  radiance 4 }",
+                light,
+            )
+            .replace("light bulb = point { position (2, 3, -2)  intensity 20 }", "")
+    };
+    // Corners counter-clockwise seen from above: the front faces up, away from the scene.
+    let up = "light panel = area { quad (-1, 3, -1) (-1, 3, 1) (1, 3, 1) (1, 3, -1)  radiance 4 }";
+    let (scene, sources) = build_src(&with_light(up), &MemLoader::new());
+    let w: Vec<_> = scene
+        .warnings
+        .iter()
+        .filter(|d| d.code == "scnc::build::light_faces_away")
+        .collect();
+    assert_eq!(w.len(), 1, "{:#?}", scene.warnings);
+    assert_eq!(w[0].severity, Severity::Warning);
+    assert!(w[0].message.contains("`panel`"), "{}", w[0].message);
+    let label = w[0].primary.as_ref().expect("labelled at the light");
+    assert_eq!(sources.snippet(label.span), "panel");
+    assert!(w[0]
+        .help
+        .as_deref()
+        .is_some_and(|h| h.contains("two_sided")));
+
+    // Facing down (the file's own winding), two-sided, or with geometry above it: no warning.
+    let down =
+        "light panel = area { quad (-1, 3, -1) (1, 3, -1) (1, 3, 1) (-1, 3, 1)  radiance 4 }";
+    let two_sided = "light panel = area { quad (-1, 3, -1) (-1, 3, 1) (1, 3, 1) (1, 3, -1)  radiance 4  two_sided true }";
+    let low = "light panel = area { quad (-1, 0.7, -1) (-1, 0.7, 1) (1, 0.7, 1) (1, 0.7, -1)  radiance 4 }";
+    for light in [down, two_sided, low] {
+        let (scene, _) = build_src(&with_light(light), &MemLoader::new());
+        assert!(
+            scene
+                .warnings
+                .iter()
+                .all(|d| d.code != "scnc::build::light_faces_away"),
+            "{light}: {:#?}",
+            scene.warnings
+        );
+    }
+}
