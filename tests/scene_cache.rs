@@ -61,6 +61,7 @@ fn report(loaded: usize, reused: usize, accel_built: bool) -> CacheReport {
         meshes_reused: reused,
         accel_built,
         environment_loaded: false,
+        ..CacheReport::default()
     }
 }
 

@@ -8,8 +8,10 @@
 
 pub mod brdf;
 pub mod camera;
+pub mod footprint;
 pub mod integrator;
 mod mis;
+pub mod normal_map;
 pub mod pattern;
 pub mod rng;
 pub mod sampling;

@@ -33,6 +33,9 @@ pub struct SurfaceHit {
     /// Texture coordinates: interpolated, or the barycentrics (u, v) when the mesh has none.
     pub uv: Vec2,
     pub surface: Surface,
+    /// The accel's record (distance, barycentrics, instance, triangle), for the texture
+    /// footprint and normal mapping.
+    pub hit: Hit,
 }
 
 /// Rebuilds the hit from the scene's own data. `None` only if the accel returned an index the
@@ -88,6 +91,7 @@ pub fn surface_hit(scene: &Scene, hit: &Hit) -> Option<SurfaceHit> {
         ns,
         uv,
         surface: inst.surface,
+        hit: *hit,
     })
 }
 
