@@ -110,13 +110,29 @@ fn missing_obj_points_at_the_path() {
 #[test]
 fn corrupt_obj_bytes() {
     let fx = Fixture::new();
+    let d = fx.obj_error(b"v 1.0 banana 2\nf 1 2 3\n");
+    assert_eq!(d.code, "scnc::obj::bad_number");
+    // Both places: the OBJ's line with a snippet, and the path literal in the .scn.
+    let ext = &d.external[0];
     assert_eq!(
-        fx.obj_error(b"v 1.0 banana 2\nf 1 2 3\n").code,
-        "scnc::build::corrupt_obj"
+        (ext.file.as_str(), ext.line, ext.text.as_str()),
+        ("meshes/m.obj", 1, "v 1.0 banana 2")
     );
+    // A UTF-16 byte-order mark followed by junk: transcoded, nothing readable, warnings only.
+    let mut loader = MemLoader::new();
+    loader.insert(
+        "scenes/meshes/m.obj",
+        b"\xff\xfe\x00\x01binary junk".to_vec(),
+    );
+    let scene = fx.build_obj(&loader).expect("loads, with warnings");
+    let codes: Vec<&str> = scene.warnings.iter().map(|w| w.code).collect();
     assert_eq!(
-        fx.obj_error(b"\xff\xfe\x00\x01binary junk").code,
-        "scnc::build::corrupt_obj"
+        codes,
+        [
+            "scnc::obj::utf16",
+            "scnc::obj::unsupported_statement",
+            "scnc::build::empty_mesh"
+        ]
     );
 }
 
@@ -124,9 +140,10 @@ fn corrupt_obj_bytes() {
 fn obj_with_out_of_range_indices() {
     let fx = Fixture::new();
     let d = fx.obj_error(format!("{TRIANGLE}f 1 2 7\n").as_bytes());
-    assert_eq!(d.code, "scnc::build::index_out_of_range");
+    assert_eq!(d.code, "scnc::obj::index_out_of_range");
+    assert_eq!(d.external[0].line, 4);
     let d = fx.obj_error(format!("{TRIANGLE}f 1 2 -9\n").as_bytes());
-    assert_eq!(d.code, "scnc::build::index_out_of_range");
+    assert_eq!(d.code, "scnc::obj::index_out_of_range");
 }
 
 #[test]

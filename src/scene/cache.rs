@@ -199,12 +199,12 @@ impl BuildCache {
         &mut self,
         decl: &ir::Mesh,
         loader: &dyn Loader,
-    ) -> Result<(TriMesh, Option<BuildError>), BuildError> {
+    ) -> Result<(TriMesh, Vec<BuildError>), BuildError> {
         let key = MeshKey::of(&decl.source);
         if let Some(hit) = self.meshes.remove(&key) {
             self.report.meshes_reused += 1;
             self.current.push((key, hit.file_hash));
-            return Ok((hit.mesh, None));
+            return Ok((hit.mesh, Vec::new()));
         }
         let hashing = HashingLoader {
             inner: loader,

@@ -106,6 +106,11 @@ pub enum BuildError {
     #[error("area light `{light}` faces away from everything: all the scene's geometry is behind its one-sided front")]
     #[diagnostic(code(scnc::build::light_faces_away), severity(Warning))]
     LightFacesAway { light: String, span: Span },
+    /// A problem inside an OBJ or MTL file, already a diagnostic with both places: the line
+    /// of that file and the path literal in the `.scn` (its code is `scnc::obj::…`).
+    #[error("{}", .0.message)]
+    #[diagnostic(code(scnc::obj))]
+    Obj(Box<Diagnostic>),
     #[error("the scene has no camera {which}")]
     #[diagnostic(code(scnc::build::no_camera))]
     NoCamera { which: String },
@@ -130,6 +135,7 @@ impl BuildError {
             BuildError::BlackEnvironment { .. } => "scnc::build::black_environment",
             BuildError::LightFacesAway { .. } => "scnc::build::light_faces_away",
             BuildError::NoCamera { .. } => "scnc::build::no_camera",
+            BuildError::Obj(d) => d.code,
         }
     }
 
@@ -141,6 +147,7 @@ impl BuildError {
             | BuildError::InvalidPixels { .. }
             | BuildError::BlackEnvironment { .. }
             | BuildError::LightFacesAway { .. } => Severity::Warning,
+            BuildError::Obj(d) => d.severity,
             _ => Severity::Error,
         }
     }
@@ -161,7 +168,7 @@ impl BuildError {
             | BuildError::InvalidPixels { span, .. }
             | BuildError::BlackEnvironment { span, .. }
             | BuildError::LightFacesAway { span, .. } => Some(*span),
-            BuildError::NoCamera { .. } => None,
+            BuildError::NoCamera { .. } | BuildError::Obj(_) => None,
         }
     }
 
@@ -178,7 +185,7 @@ impl BuildError {
             BuildError::InvalidPixels { .. } => "this image has invalid pixels",
             BuildError::BlackEnvironment { .. } => "this image is black",
             BuildError::LightFacesAway { .. } => "this light shines away from the scene",
-            BuildError::NoCamera { .. } => "",
+            BuildError::NoCamera { .. } | BuildError::Obj(_) => "",
         }
     }
 
@@ -213,6 +220,9 @@ impl BuildError {
     }
 
     pub fn to_diagnostic(&self) -> Diagnostic {
+        if let BuildError::Obj(d) = self {
+            return (**d).clone();
+        }
         let mut d = match self.severity() {
             Severity::Error => Diagnostic::error(self.code(), self.to_string()),
             Severity::Warning => Diagnostic::warning(self.code(), self.to_string()),
