@@ -202,14 +202,23 @@ fn a_good_obj_loads_once_for_two_instances_and_renders() {
     assert_eq!(scene.meshes[0].uvs.len(), 4);
     // The BVH stores the shared mesh's triangles once, however many instances place it.
     assert_eq!(scene.accel_stats().triangles, 2);
-    assert!(scene.warnings.is_empty());
+    // Its MTL is absent: warnings at the OBJ's lines, the default material is used.
+    let codes: Vec<&str> = scene.warnings.iter().map(|w| w.code).collect();
+    assert_eq!(
+        codes,
+        ["scnc::obj::missing_mtl", "scnc::obj::unknown_material"]
+    );
+    assert_eq!(scene.warnings[0].external[0].line, 1);
     let (film, _) = render_with(&scene, 1);
     assert!(
         film.get(4, 4).x > 0.0,
         "the quad faces the camera and the light"
     );
-    // Only the OBJ was read: tobj did not go looking for the .mtl on its own.
-    assert_eq!(loader.recorded().len(), 1);
+    // The OBJ and the MTL it names were asked for (through the Loader: the watch set).
+    assert_eq!(
+        loader.recorded(),
+        ["scenes/meshes/m.mtl", "scenes/meshes/m.obj"].map(std::path::PathBuf::from)
+    );
 }
 
 #[test]

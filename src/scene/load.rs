@@ -36,7 +36,7 @@ pub fn load_mesh(
                     }
                 }
             })?;
-            let loaded = load_obj(&path.path, bytes.clone(), false, loader).map_err(|e| {
+            let loaded = load_obj(&path.path, bytes.clone(), true, loader).map_err(|e| {
                 BuildError::Obj(Box::new(report::error_diagnostic(
                     &e,
                     &path.written,

@@ -22,6 +22,7 @@ pub mod load;
 pub mod model;
 pub mod mtl;
 pub mod number;
+pub mod phong;
 pub mod polygon;
 pub mod report;
 
