@@ -189,6 +189,16 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         &BuildOptions { accel, camera },
     );
     let scene = match built {
+        Ok(mut scene) if args.diag.strict && !scene.warnings.is_empty() => {
+            super::report::promote_warnings(&mut scene.warnings);
+            print_diagnostic_list(
+                &scene.warnings,
+                &compiled.sources,
+                args.diag.diagnostic_format,
+                JsonTo::Stdout,
+            );
+            return ExitCode::FAILURE;
+        }
         Ok(scene) => scene,
         Err(diags) => {
             print_diagnostic_list(
