@@ -4,6 +4,7 @@
 //! Each subcommand lives in its own file with its own `Args` struct and `run` function; adding
 //! one means a new file, a variant in [`Command`] and an arm in [`run`].
 
+mod bench;
 mod check;
 mod ir;
 mod render;
@@ -16,6 +17,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+pub use bench::BenchArgs;
 pub use check::CheckArgs;
 pub use ir::IrArgs;
 pub use render::{AccelArg, RenderArgs};
@@ -43,6 +45,8 @@ pub enum Command {
     /// Render, then re-render on every change of the scene, its includes and assets, with a
     /// live preview page (Ctrl-C to stop).
     Watch(WatchArgs),
+    /// Measure the speed/accuracy curve: `scnc bench quality scene.scn [--out DIR]`.
+    Bench(BenchArgs),
 }
 
 /// Parses the process arguments and runs the chosen command.
@@ -56,5 +60,6 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Ir(args) => ir::run(&args),
         Command::Render(args) => render::run(&args),
         Command::Watch(args) => watch::run(&args),
+        Command::Bench(args) => bench::run(&args),
     }
 }
