@@ -120,22 +120,21 @@ impl MipLevel {
     pub fn bilinear(&self, uv: Vec2, wrap: WrapMode) -> Vec4 {
         let c = self.coords(uv) - Vec2::splat(0.5);
         let (x0, y0) = (floor_index(c.x), floor_index(c.y));
-        let fx = if c.x.is_finite() {
-            c.x - c.x.floor()
-        } else {
-            0.0
-        };
-        let fy = if c.y.is_finite() {
-            c.y - c.y.floor()
-        } else {
-            0.0
-        };
-        let t00 = self.texel(x0, y0, wrap);
-        let t10 = self.texel(x0 + 1, y0, wrap);
-        let t01 = self.texel(x0, y0 + 1, wrap);
-        let t11 = self.texel(x0 + 1, y0 + 1, wrap);
-        let top = t00 + (t10 - t00) * fx;
-        let bottom = t01 + (t11 - t01) * fx;
+        let fx = if c.x.is_finite() { c.x - c.x.floor() } else { 0.0 };
+        let fy = if c.y.is_finite() { c.y - c.y.floor() } else { 0.0 };
+        // Wrap each of the two columns and rows once (not once per texel).
+        let w = self.width as usize;
+        let (xa, xb) = (
+            wrap_index(x0, self.width, wrap),
+            wrap_index(x0 + 1, self.width, wrap),
+        );
+        let (ya, yb) = (
+            wrap_index(y0, self.height, wrap) * w,
+            wrap_index(y0 + 1, self.height, wrap) * w,
+        );
+        let t = &self.texels;
+        let top = t[ya + xa] + (t[ya + xb] - t[ya + xa]) * fx;
+        let bottom = t[yb + xa] + (t[yb + xb] - t[yb + xa]) * fx;
         top + (bottom - top) * fy
     }
 }
