@@ -120,8 +120,16 @@ impl MipLevel {
     pub fn bilinear(&self, uv: Vec2, wrap: WrapMode) -> Vec4 {
         let c = self.coords(uv) - Vec2::splat(0.5);
         let (x0, y0) = (floor_index(c.x), floor_index(c.y));
-        let fx = if c.x.is_finite() { c.x - c.x.floor() } else { 0.0 };
-        let fy = if c.y.is_finite() { c.y - c.y.floor() } else { 0.0 };
+        let fx = if c.x.is_finite() {
+            c.x - c.x.floor()
+        } else {
+            0.0
+        };
+        let fy = if c.y.is_finite() {
+            c.y - c.y.floor()
+        } else {
+            0.0
+        };
         // Wrap each of the two columns and rows once (not once per texel).
         let w = self.width as usize;
         let (xa, xb) = (
