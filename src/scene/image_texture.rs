@@ -325,6 +325,13 @@ mod tests {
         let l1 = img.levels[1].bilinear(uv, WrapMode::Repeat);
         let mid = img.lookup(uv, WrapMode::Repeat, Filter::Trilinear, 0.5);
         assert!((mid - (l0 + l1) / 2.0).abs().max_element() < 1e-5);
+        // Whole levels: a texel centre of level 1 returns that texel, for every wrap mode.
+        for wrap in [WrapMode::Repeat, WrapMode::Clamp, WrapMode::Mirror] {
+            let at = img.lookup(centre(1.0, 0.0, 2.0, 2.0), wrap, Filter::Trilinear, 1.0);
+            assert!((at - img.levels[1].texels[1]).abs().max_element() < 1e-5);
+            // (1.5, 0.5) is level 1's texel (1, 0): the mean of level 0's 2 × 2 block there.
+            assert!((at - Vec4::new(2.5, 0.5, 7.5, 1.0)).abs().max_element() < 1e-5);
+        }
         let top = img.levels[2].texels[0];
         assert_eq!(
             img.lookup(uv, WrapMode::Repeat, Filter::Trilinear, 99.0),
