@@ -110,13 +110,29 @@ fn missing_obj_points_at_the_path() {
 #[test]
 fn corrupt_obj_bytes() {
     let fx = Fixture::new();
+    let d = fx.obj_error(b"v 1.0 banana 2\nf 1 2 3\n");
+    assert_eq!(d.code, "scnc::obj::bad_number");
+    // Both places: the OBJ's line with a snippet, and the path literal in the .scn.
+    let ext = &d.external[0];
     assert_eq!(
-        fx.obj_error(b"v 1.0 banana 2\nf 1 2 3\n").code,
-        "scnc::build::corrupt_obj"
+        (ext.file.as_str(), ext.line, ext.text.as_str()),
+        ("meshes/m.obj", 1, "v 1.0 banana 2")
     );
+    // A UTF-16 byte-order mark followed by junk: transcoded, nothing readable, warnings only.
+    let mut loader = MemLoader::new();
+    loader.insert(
+        "scenes/meshes/m.obj",
+        b"\xff\xfe\x00\x01binary junk".to_vec(),
+    );
+    let scene = fx.build_obj(&loader).expect("loads, with warnings");
+    let codes: Vec<&str> = scene.warnings.iter().map(|w| w.code).collect();
     assert_eq!(
-        fx.obj_error(b"\xff\xfe\x00\x01binary junk").code,
-        "scnc::build::corrupt_obj"
+        codes,
+        [
+            "scnc::obj::utf16",
+            "scnc::obj::unsupported_statement",
+            "scnc::build::empty_mesh"
+        ]
     );
 }
 
@@ -124,9 +140,10 @@ fn corrupt_obj_bytes() {
 fn obj_with_out_of_range_indices() {
     let fx = Fixture::new();
     let d = fx.obj_error(format!("{TRIANGLE}f 1 2 7\n").as_bytes());
-    assert_eq!(d.code, "scnc::build::index_out_of_range");
+    assert_eq!(d.code, "scnc::obj::index_out_of_range");
+    assert_eq!(d.external[0].line, 4);
     let d = fx.obj_error(format!("{TRIANGLE}f 1 2 -9\n").as_bytes());
-    assert_eq!(d.code, "scnc::build::index_out_of_range");
+    assert_eq!(d.code, "scnc::obj::index_out_of_range");
 }
 
 #[test]
@@ -185,14 +202,23 @@ fn a_good_obj_loads_once_for_two_instances_and_renders() {
     assert_eq!(scene.meshes[0].uvs.len(), 4);
     // The BVH stores the shared mesh's triangles once, however many instances place it.
     assert_eq!(scene.accel_stats().triangles, 2);
-    assert!(scene.warnings.is_empty());
+    // Its MTL is absent: warnings at the OBJ's lines, the default material is used.
+    let codes: Vec<&str> = scene.warnings.iter().map(|w| w.code).collect();
+    assert_eq!(
+        codes,
+        ["scnc::obj::missing_mtl", "scnc::obj::unknown_material"]
+    );
+    assert_eq!(scene.warnings[0].external[0].line, 1);
     let (film, _) = render_with(&scene, 1);
     assert!(
         film.get(4, 4).x > 0.0,
         "the quad faces the camera and the light"
     );
-    // Only the OBJ was read: tobj did not go looking for the .mtl on its own.
-    assert_eq!(loader.recorded().len(), 1);
+    // The OBJ and the MTL it names were asked for (through the Loader: the watch set).
+    assert_eq!(
+        loader.recorded(),
+        ["scenes/meshes/m.mtl", "scenes/meshes/m.obj"].map(std::path::PathBuf::from)
+    );
 }
 
 #[test]

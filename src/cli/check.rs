@@ -3,6 +3,7 @@
 //! lights checked against the geometry; no acceleration structure, no pixels), and print every
 //! diagnostic of both stages in one list. Exit 1 on errors (warnings alone exit 0).
 //! `--compile-only` stops after the compile: no file but the scene and its includes is read.
+//! `--strict` makes every warning an error.
 
 use std::process::ExitCode;
 
@@ -39,6 +40,9 @@ pub fn run(args: &CheckArgs) -> ExitCode {
             Ok(scene) => diagnostics.extend(scene.warnings),
             Err(problems) => diagnostics.extend(problems),
         }
+    }
+    if args.diag.strict {
+        super::report::promote_warnings(&mut diagnostics);
     }
     match args.diag.diagnostic_format {
         // The JSON document is the command's output: printed even when it lists nothing.

@@ -5,6 +5,7 @@
 //! one means a new file, a variant in [`Command`] and an arm in [`run`].
 
 mod check;
+mod inspect;
 mod ir;
 mod render;
 pub mod report;
@@ -17,6 +18,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 pub use check::CheckArgs;
+pub use inspect::InspectArgs;
 pub use ir::IrArgs;
 pub use render::{AccelArg, RenderArgs};
 pub use report::{
@@ -43,6 +45,8 @@ pub enum Command {
     /// Render, then re-render on every change of the scene, its includes and assets, with a
     /// live preview page (Ctrl-C to stop).
     Watch(WatchArgs),
+    /// Show what scnc makes of an OBJ file: triangles, area, bounds, materials, warnings.
+    Inspect(InspectArgs),
 }
 
 /// Parses the process arguments and runs the chosen command.
@@ -56,5 +60,6 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Ir(args) => ir::run(&args),
         Command::Render(args) => render::run(&args),
         Command::Watch(args) => watch::run(&args),
+        Command::Inspect(args) => inspect::run(&args),
     }
 }

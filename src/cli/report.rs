@@ -28,6 +28,20 @@ pub struct DiagArgs {
     /// How to print errors and warnings.
     #[arg(long, value_enum, default_value_t = DiagnosticFormat::Human)]
     pub diagnostic_format: DiagnosticFormat,
+    /// Treat every warning as an error (exit 1), e.g. a missing MTL file or texture.
+    #[arg(long)]
+    pub strict: bool,
+}
+
+/// `--strict`: every warning becomes an error, saying why.
+pub fn promote_warnings(diags: &mut [Diagnostic]) {
+    for d in diags.iter_mut().filter(|d| !d.is_error()) {
+        d.severity = crate::diag::Severity::Error;
+        d.help = Some(match d.help.take() {
+            Some(h) => format!("{h} (an error because of --strict)"),
+            None => "an error because of --strict".into(),
+        });
+    }
 }
 
 /// The scene file argument.
@@ -49,7 +63,13 @@ pub enum JsonTo {
 /// Compiles `path` from disk and prints its diagnostics (human format: to stderr).
 pub fn compile_and_report(path: &Path, diag: &DiagArgs, json_to: JsonTo) -> Compiled {
     let loader = FsLoader::new();
-    let compiled = compile_file(path, &loader);
+    let mut compiled = compile_file(path, &loader);
+    if diag.strict {
+        promote_warnings(&mut compiled.diagnostics);
+        if compiled.has_errors() {
+            compiled.scene = None;
+        }
+    }
     print_diagnostics(&compiled, diag.diagnostic_format, json_to);
     compiled
 }

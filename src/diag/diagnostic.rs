@@ -18,6 +18,22 @@ pub struct Label {
     pub message: String,
 }
 
+/// A line of a file outside the [`SourceMap`](crate::source::SourceMap) (an OBJ or MTL file
+/// read as an asset): only the line is kept, so a diagnostic about a 100 MB mesh stays small.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ExternalLabel {
+    /// The file's name as shown (the path as written).
+    pub file: String,
+    /// 1-based line number.
+    pub line: u32,
+    /// The line's text (lossily decoded, without its line end).
+    pub text: String,
+    /// Byte range within `text` to underline.
+    pub start: u32,
+    pub end: u32,
+    pub message: String,
+}
+
 /// One problem found in the user's input.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Diagnostic {
@@ -34,6 +50,10 @@ pub struct Diagnostic {
     pub secondary: Vec<Label>,
     /// How to fix it, when known.
     pub help: Option<String>,
+    /// Where in an asset file (OBJ/MTL) it is wrong; shown before the `.scn` labels, which then
+    /// say where the scene referenced the file.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub external: Vec<ExternalLabel>,
 }
 
 impl Diagnostic {
@@ -45,6 +65,7 @@ impl Diagnostic {
             primary: None,
             secondary: Vec::new(),
             help: None,
+            external: Vec::new(),
         }
     }
 
@@ -70,6 +91,12 @@ impl Diagnostic {
             span,
             message: label.into(),
         });
+        self
+    }
+
+    /// Adds a label in an asset file's line.
+    pub fn in_file(mut self, label: ExternalLabel) -> Diagnostic {
+        self.external.push(label);
         self
     }
 

@@ -7,7 +7,10 @@
 use std::fmt;
 use std::sync::Arc;
 
-use miette::{GraphicalReportHandler, GraphicalTheme, LabeledSpan, NamedSource};
+use miette::{
+    GraphicalReportHandler, GraphicalTheme, LabeledSpan, MietteSpanContents, NamedSource,
+    SourceSpan, SpanContents,
+};
 
 use super::{Diagnostic, Severity};
 use crate::source::{FileId, SourceMap};
@@ -21,6 +24,8 @@ struct Report {
     source: Option<NamedSource<Arc<str>>>,
     labels: Vec<LabeledSpan>,
     related: Vec<Report>,
+    /// Instead of `source`: one line of an asset file.
+    line_source: Option<LineSource>,
 }
 
 impl fmt::Display for Report {
@@ -47,7 +52,10 @@ impl miette::Diagnostic for Report {
     }
 
     fn source_code(&self) -> Option<&dyn miette::SourceCode> {
-        self.source.as_ref().map(|s| s as &dyn miette::SourceCode)
+        match &self.line_source {
+            Some(l) => Some(l as &dyn miette::SourceCode),
+            None => self.source.as_ref().map(|s| s as &dyn miette::SourceCode),
+        }
     }
 
     fn labels(&self) -> Option<Box<dyn Iterator<Item = LabeledSpan> + '_>> {
@@ -60,7 +68,73 @@ impl miette::Diagnostic for Report {
     }
 }
 
+/// One line of an asset file as a miette source, numbered as in the file.
+#[derive(Debug)]
+struct LineSource {
+    name: String,
+    text: String,
+    line: usize,
+}
+
+impl miette::SourceCode for LineSource {
+    fn read_span<'a>(
+        &'a self,
+        span: &SourceSpan,
+        before: usize,
+        after: usize,
+    ) -> Result<Box<dyn SpanContents<'a> + 'a>, miette::MietteError> {
+        let inner = self.text.read_span(span, before, after)?;
+        Ok(Box::new(MietteSpanContents::new_named(
+            self.name.clone(),
+            inner.data(),
+            *inner.span(),
+            inner.line() + self.line.saturating_sub(1),
+            inner.column(),
+            inner.line_count(),
+        )))
+    }
+}
+
 fn to_report(d: &Diagnostic, sources: &SourceMap) -> Report {
+    let mut report = scn_report(d, sources);
+    if let Some(ext) = d.external.first() {
+        // The asset file's line is the problem; the .scn labels say where it was referenced.
+        let fresh = Report {
+            severity: report.severity,
+            code: report.code,
+            message: report.message.clone(),
+            help: report.help.clone(),
+            source: None,
+            labels: Vec::new(),
+            related: Vec::new(),
+            line_source: None,
+        };
+        let scn = std::mem::replace(&mut report, fresh);
+        let start = (ext.start as usize).min(ext.text.len());
+        let len = (ext.end as usize).clamp(start, ext.text.len()) - start;
+        report.line_source = Some(LineSource {
+            name: ext.file.clone(),
+            text: ext.text.clone(),
+            line: ext.line as usize,
+        });
+        report.labels.push(LabeledSpan::new_primary_with_span(
+            Some(ext.message.clone()),
+            SourceSpan::new(start.into(), len),
+        ));
+        if scn.source.is_some() {
+            report.related.push(Report {
+                severity: miette::Severity::Advice,
+                code: "",
+                message: "referenced here".into(),
+                help: None,
+                ..scn
+            });
+        }
+    }
+    report
+}
+
+fn scn_report(d: &Diagnostic, sources: &SourceMap) -> Report {
     let main_file: Option<FileId> = d.primary.as_ref().map(|l| l.span.file);
     let mut labels = Vec::new();
     let mut related = Vec::new();
@@ -84,6 +158,7 @@ fn to_report(d: &Diagnostic, sources: &SourceMap) -> Report {
                 source: Some(sources.named_source(l.span.file)),
                 labels: vec![span],
                 related: Vec::new(),
+                line_source: None,
             });
         }
     }
@@ -98,6 +173,7 @@ fn to_report(d: &Diagnostic, sources: &SourceMap) -> Report {
         source: main_file.map(|f| sources.named_source(f)),
         labels,
         related,
+        line_source: None,
     }
 }
 

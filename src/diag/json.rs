@@ -28,6 +28,9 @@ struct JsonDiagnostic<'a> {
     message: &'a str,
     help: Option<&'a str>,
     labels: Vec<JsonLabel<'a>>,
+    /// Lines of OBJ/MTL files (absent when there are none).
+    #[serde(skip_serializing_if = "<[_]>::is_empty")]
+    files: &'a [super::ExternalLabel],
 }
 
 #[derive(Serialize)]
@@ -68,6 +71,7 @@ pub fn render_json(diags: &[Diagnostic], sources: &SourceMap) -> String {
                     .map(|l| label(l, true, sources))
                     .chain(d.secondary.iter().map(|l| label(l, false, sources)))
                     .collect(),
+                files: &d.external,
             })
             .collect(),
         errors: diags.iter().filter(|d| d.is_error()).count(),

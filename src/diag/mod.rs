@@ -11,7 +11,7 @@ mod json;
 mod plain;
 pub mod suggest;
 
-pub use diagnostic::{Diagnostic, Label, Severity};
+pub use diagnostic::{Diagnostic, ExternalLabel, Label, Severity};
 pub use fancy::render_fancy;
 pub use json::render_json;
 pub use plain::{render_plain, render_plain_all, summary};

@@ -14,7 +14,7 @@
 
 use std::fmt::Write;
 
-use super::{Diagnostic, Label, Severity};
+use super::{Diagnostic, ExternalLabel, Label, Severity};
 use crate::source::SourceMap;
 
 /// Renders one diagnostic; source lines are cut to `width` columns.
@@ -25,6 +25,9 @@ pub fn render_plain(d: &Diagnostic, sources: &SourceMap, width: usize) -> String
         Severity::Warning => "warning",
     };
     let _ = writeln!(out, "{sev}[{}]: {}", d.code, d.message);
+    for ext in &d.external {
+        external_snippet(&mut out, ext, width);
+    }
     if let Some(primary) = &d.primary {
         snippet(&mut out, primary, sources, width, "-->");
     }
@@ -95,6 +98,34 @@ fn snippet(out: &mut String, label: &Label, sources: &SourceMap, width: usize, a
         " ".repeat(col0),
         "^".repeat(len),
         label.message
+    );
+}
+
+/// A line of an OBJ/MTL file: same shape as [`snippet`].
+fn external_snippet(out: &mut String, ext: &ExternalLabel, width: usize) {
+    let text = &ext.text;
+    let start = floor(text, ext.start as usize);
+    let end = floor(text, (ext.end as usize).max(start));
+    let col0 = text[..start].chars().count();
+    let _ = writeln!(out, "  --> {}:{}:{}", ext.file, ext.line, col0 + 1);
+    let gutter = ext.line.to_string();
+    let pad = " ".repeat(gutter.len());
+    let shown: String = text
+        .chars()
+        .map(|c| if c == '\t' { ' ' } else { c })
+        .take(width)
+        .collect();
+    let _ = writeln!(out, " {pad} |");
+    let _ = writeln!(out, " {gutter} | {}", shown.trim_end());
+    let len = text[start..end].chars().count().max(1);
+    let col0 = col0.min(width);
+    let len = len.min(width.saturating_sub(col0).max(1));
+    let _ = writeln!(
+        out,
+        " {pad} | {}{} {}",
+        " ".repeat(col0),
+        "^".repeat(len),
+        ext.message
     );
 }
 

@@ -21,7 +21,9 @@ pub use camera::Camera;
 pub use light::{AreaLight, EnvSource, EnvironmentLight, Light, PointLight};
 pub use material::{ColorInput, GreenConvention, Material, NormalMap, ScalarInput};
 pub use mesh::{AssetPath, BuiltinShape, InlineMesh, Mesh, MeshSource};
-pub use render_settings::{Output, OutputFormat, RenderSettings, SamplePattern, ToneMap};
+pub use render_settings::{
+    Output, OutputFormat, Quality, RenderSettings, SamplePattern, ToneMap, DEFAULT_MAX_SAMPLES,
+};
 pub use texture::{Filter, Texture, TextureEncoding, TextureSource, WrapMode};
 
 use glam::Mat4;

@@ -227,12 +227,12 @@ impl BuildCache {
         &mut self,
         decl: &ir::Mesh,
         loader: &dyn Loader,
-    ) -> Result<(TriMesh, Option<BuildError>), BuildError> {
+    ) -> Result<(TriMesh, Vec<BuildError>), BuildError> {
         let key = MeshKey::of(&decl.source);
         if let Some(hit) = self.meshes.remove(&key) {
             self.report.meshes_reused += 1;
             self.current.push((key, hit.file_hash));
-            return Ok((hit.mesh, None));
+            return Ok((hit.mesh, Vec::new()));
         }
         let hashing = HashingLoader {
             inner: loader,
@@ -347,7 +347,8 @@ impl BuildCache {
     }
 }
 
-/// Remembers the content hash of the last file read (a mesh or a map reads at most one file).
+/// Remembers the content hash of the first file read: the mesh's OBJ or the map (an OBJ's
+/// material libraries are read after it and do not change its geometry).
 struct HashingLoader<'a> {
     inner: &'a dyn Loader,
     last: Mutex<Option<u64>>,
@@ -357,7 +358,7 @@ impl Loader for HashingLoader<'_> {
     fn read(&self, path: &Path) -> std::io::Result<Arc<[u8]>> {
         let bytes = self.inner.read(path)?;
         if let Ok(mut last) = self.last.lock() {
-            *last = Some(content_hash(&bytes));
+            last.get_or_insert_with(|| content_hash(&bytes));
         }
         Ok(bytes)
     }

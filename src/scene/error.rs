@@ -113,6 +113,11 @@ pub enum BuildError {
         material: String,
         span: Span,
     },
+    /// A problem inside an OBJ or MTL file, already a diagnostic with both places: the line
+    /// of that file and the path literal in the `.scn` (its code is `scnc::obj::…`).
+    #[error("{}", .0.message)]
+    #[diagnostic(code(scnc::obj))]
+    Obj(Box<Diagnostic>),
     #[error("the scene has no camera {which}")]
     #[diagnostic(code(scnc::build::no_camera))]
     NoCamera { which: String },
@@ -138,6 +143,7 @@ impl BuildError {
             BuildError::LightFacesAway { .. } => "scnc::build::light_faces_away",
             BuildError::NoUvs { .. } => "scnc::build::no_uvs",
             BuildError::NoCamera { .. } => "scnc::build::no_camera",
+            BuildError::Obj(d) => d.code,
         }
     }
 
@@ -150,6 +156,7 @@ impl BuildError {
             | BuildError::BlackEnvironment { .. }
             | BuildError::LightFacesAway { .. }
             | BuildError::NoUvs { .. } => Severity::Warning,
+            BuildError::Obj(d) => d.severity,
             _ => Severity::Error,
         }
     }
@@ -171,7 +178,7 @@ impl BuildError {
             | BuildError::BlackEnvironment { span, .. }
             | BuildError::LightFacesAway { span, .. }
             | BuildError::NoUvs { span, .. } => Some(*span),
-            BuildError::NoCamera { .. } => None,
+            BuildError::NoCamera { .. } | BuildError::Obj(_) => None,
         }
     }
 
@@ -189,7 +196,7 @@ impl BuildError {
             BuildError::BlackEnvironment { .. } => "this image is black",
             BuildError::LightFacesAway { .. } => "this light shines away from the scene",
             BuildError::NoUvs { .. } => "this object",
-            BuildError::NoCamera { .. } => "",
+            BuildError::NoCamera { .. } | BuildError::Obj(_) => "",
         }
     }
 
@@ -227,6 +234,9 @@ impl BuildError {
     }
 
     pub fn to_diagnostic(&self) -> Diagnostic {
+        if let BuildError::Obj(d) = self {
+            return (**d).clone();
+        }
         let mut d = match self.severity() {
             Severity::Error => Diagnostic::error(self.code(), self.to_string()),
             Severity::Warning => Diagnostic::warning(self.code(), self.to_string()),

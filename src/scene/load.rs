@@ -5,16 +5,19 @@
 
 use super::mesh::{MeshProblem, TriMesh};
 use super::BuildError;
-use crate::assets::obj::{parse_obj, ObjError};
+use crate::assets::obj::{load_obj, report};
 use crate::assets::Loader;
 use crate::ir::{self, MeshSource};
 
-/// Loads and validates one mesh; on success also returns the warning to report, if any
-/// (degenerate triangles dropped, or no triangles at all).
+/// Loads and validates one mesh; on success also returns the warnings to report (the OBJ's
+/// own, degenerate triangles dropped, or no triangles at all).
 pub fn load_mesh(
     decl: &ir::Mesh,
     loader: &dyn Loader,
-) -> Result<(TriMesh, Option<BuildError>), BuildError> {
+) -> Result<(TriMesh, Vec<BuildError>), BuildError> {
+    let mut obj_warnings = Vec::new();
+    // Triangles the OBJ triangulation already dropped as degenerate: counted with the rest.
+    let mut pre_dropped = 0;
     let (raw, span, written) = match &decl.source {
         MeshSource::Obj(path) => {
             let bytes = loader.read(&path.path).map_err(|source| {
@@ -33,18 +36,20 @@ pub fn load_mesh(
                     }
                 }
             })?;
-            let obj = parse_obj(&bytes).map_err(|e| match e {
-                ObjError::Corrupt(reason) => BuildError::CorruptObj {
-                    written: path.written.clone(),
-                    span: path.span,
-                    reason,
-                },
-                ObjError::IndexOutOfRange(reason) => BuildError::IndexOutOfRange {
-                    written: path.written.clone(),
-                    span: path.span,
-                    reason,
-                },
+            let loaded = load_obj(&path.path, bytes.clone(), true, loader).map_err(|e| {
+                BuildError::Obj(Box::new(report::error_diagnostic(
+                    &e,
+                    &path.written,
+                    &bytes,
+                    Some(path.span),
+                )))
             })?;
+            obj_warnings = report::warning_diagnostics(&loaded, &path.written, Some(path.span))
+                .into_iter()
+                .map(|d| BuildError::Obj(Box::new(d)))
+                .collect();
+            let obj = loaded.model;
+            pre_dropped = obj.stats.degenerate_dropped;
             let mesh = TriMesh {
                 positions: obj.positions,
                 normals: obj.normals,
@@ -77,21 +82,30 @@ pub fn load_mesh(
         },
         MeshProblem::AllDegenerate { count } => BuildError::AllDegenerate {
             mesh: name.clone(),
-            count,
+            count: count + pre_dropped,
             span,
         },
     })?;
-    let warning = if v.total == 0 {
+    let (dropped, total) = (v.dropped + pre_dropped, v.total + pre_dropped);
+    if total > 0 && dropped == total {
+        return Err(BuildError::AllDegenerate {
+            mesh: name,
+            count: total,
+            span,
+        });
+    }
+    let warning = if total == 0 {
         Some(BuildError::EmptyMesh { mesh: name, span })
-    } else if v.dropped > 0 {
+    } else if dropped > 0 {
         Some(BuildError::SomeDegenerate {
             mesh: name,
-            count: v.dropped,
-            total: v.total,
+            count: dropped,
+            total,
             span,
         })
     } else {
         None
     };
-    Ok((v.mesh, warning))
+    obj_warnings.extend(warning);
+    Ok((v.mesh, obj_warnings))
 }

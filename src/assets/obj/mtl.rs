@@ -1,0 +1,267 @@
+//! MTL material libraries (stage 3, asset decoding): `newmtl`, `Kd`, `Ks`, `Ns`, `Ka`, `Ke`,
+//! `map_Kd`, `map_Ks`, `map_Ns`, `map_Bump`/`bump`/`norm` → [`MtlMaterial`]s. No `.scn` syntax
+//! (the `.scn` side is `mesh m = obj("m.obj") { … }`, see `check/mesh.rs`).
+//!
+//! MTL is a Phong format, so each statement maps onto scnc's Phong material (the mapping itself
+//! is in `scene/obj_materials.rs`). Statements scnc cannot honour (`d`, `Tr`, `Ni`, `Tf`,
+//! `illum` with reflection or refraction (3 and above), `map_d`, `refl`, PBR extensions …) are
+//! collected and reported once per file, with how often each occurs and its first line.
+//! Texture statements take options before the file name (`map_Kd -s 2 2 1 -bm 0.5 wood tex.png`):
+//! known options are skipped with their arguments (`-bm` is kept), and the rest of the line is the
+//! file name, spaces included.
+
+use glam::Vec3;
+
+use super::encoding::decode_name;
+use super::lexer::{keyword, strip_comment, tokens, Lines};
+use super::number::parse_f32;
+use super::{Note, Place};
+
+/// A texture named by an MTL statement.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TexRef {
+    /// The file name as written (relative to the MTL file's directory).
+    pub file: String,
+    /// `-bm` of bump maps (1 when absent).
+    pub bump_multiplier: f32,
+    pub at: Place,
+}
+
+/// How a bump statement was written: a height map (`bump`, `map_Bump`) or a normal map (`norm`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BumpKind {
+    Height,
+    Normal,
+}
+
+/// One `newmtl` block.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct MtlMaterial {
+    pub name: String,
+    /// The `newmtl` line.
+    pub at: Place,
+    pub kd: Option<Vec3>,
+    pub ks: Option<Vec3>,
+    pub ka: Option<Vec3>,
+    pub ke: Option<Vec3>,
+    pub ns: Option<f32>,
+    pub map_kd: Option<TexRef>,
+    pub map_ks: Option<TexRef>,
+    pub map_ns: Option<TexRef>,
+    pub bump: Option<(BumpKind, TexRef)>,
+}
+
+/// A parsed library and what it could not honour.
+#[derive(Debug, Clone, Default)]
+pub struct MtlLibrary {
+    pub materials: Vec<MtlMaterial>,
+    pub warnings: Vec<Note>,
+}
+
+/// Texture options and how many arguments each takes (`-o`, `-s`, `-t` take one to three).
+const TEX_OPTIONS: &[(&[u8], usize)] = &[
+    (b"-blendu", 1),
+    (b"-blendv", 1),
+    (b"-bm", 1),
+    (b"-boost", 1),
+    (b"-cc", 1),
+    (b"-clamp", 1),
+    (b"-imfchan", 1),
+    (b"-mm", 2),
+    (b"-o", 3),
+    (b"-s", 3),
+    (b"-t", 3),
+    (b"-texres", 1),
+    (b"-type", 1),
+];
+
+pub fn parse_mtl(text: &[u8]) -> MtlLibrary {
+    let mut lib = MtlLibrary::default();
+    let mut unsupported: Vec<(String, usize, Place)> = Vec::new();
+    let mut latin1: Option<Place> = None;
+    let mut bad: Vec<Note> = Vec::new();
+    for line in Lines::new(text) {
+        let body = strip_comment(line.text);
+        if body.is_empty() {
+            continue;
+        }
+        let at = Place::of_line(&line, body);
+        let (kw, rest) = keyword(body);
+        if kw == b"newmtl" {
+            let (name, was_latin1) = decode_name(rest);
+            if was_latin1 && latin1.is_none() {
+                latin1 = Some(at);
+            }
+            lib.materials.push(MtlMaterial {
+                name,
+                at,
+                ..MtlMaterial::default()
+            });
+            continue;
+        }
+        let Some(m) = lib.materials.last_mut() else {
+            bad.push(Note::warning(
+                "scnc::obj::mtl_outside_material",
+                "this statement comes before any `newmtl` and is ignored",
+                at,
+            ));
+            continue;
+        };
+        let color = |rest: &[u8]| -> Option<Vec3> {
+            let v: Vec<f32> = tokens(rest).map(parse_f32).collect::<Option<_>>()?;
+            match v[..] {
+                [r] => Some(Vec3::splat(r)),
+                [r, g, b] => Some(Vec3::new(r, g, b)),
+                _ => None,
+            }
+        };
+        let parsed = match kw {
+            b"Kd" => color(rest).map(|c| m.kd = Some(c)),
+            b"Ks" => color(rest).map(|c| m.ks = Some(c)),
+            b"Ka" => color(rest).map(|c| m.ka = Some(c)),
+            b"Ke" => color(rest).map(|c| m.ke = Some(c)),
+            b"Ns" => parse_f32(rest).map(|n| m.ns = Some(n)),
+            b"map_Kd" => texture(rest, at).map(|t| m.map_kd = Some(t)),
+            b"map_Ks" => texture(rest, at).map(|t| m.map_ks = Some(t)),
+            b"map_Ns" => texture(rest, at).map(|t| m.map_ns = Some(t)),
+            b"map_Bump" | b"map_bump" | b"bump" => {
+                texture(rest, at).map(|t| m.bump = Some((BumpKind::Height, t)))
+            }
+            b"norm" | b"map_norm" => {
+                texture(rest, at).map(|t| m.bump = Some((BumpKind::Normal, t)))
+            }
+            b"illum" if matches!(rest, b"0" | b"1" | b"2") => Some(()),
+            _ => {
+                let (word, _) = decode_name(kw);
+                let word = if kw == b"illum" {
+                    format!("illum {}", decode_name(rest).0)
+                } else {
+                    word
+                };
+                match unsupported.iter_mut().find(|(w, _, _)| *w == word) {
+                    Some((_, n, _)) => *n += 1,
+                    None => unsupported.push((word, 1, at)),
+                }
+                Some(())
+            }
+        };
+        if parsed.is_none() {
+            bad.push(
+                Note::warning(
+                    "scnc::obj::bad_mtl_statement",
+                    format!(
+                        "cannot read this `{}` statement; it is ignored",
+                        decode_name(kw).0
+                    ),
+                    at,
+                )
+                .help("colours are `Kd r g b` (or one grey value), `Ns` one number, maps `map_Kd [options] file`"),
+            );
+        }
+    }
+    if let Some(at) = latin1 {
+        lib.warnings.push(latin1_note(at));
+    }
+    lib.warnings.extend(bad);
+    if let Some((_, _, first)) = unsupported.first() {
+        let list: Vec<String> = unsupported
+            .iter()
+            .map(|(w, n, at)| match n {
+                1 => format!("`{w}` (line {})", at.line),
+                _ => format!("`{w}` ({n}×, first on line {})", at.line),
+            })
+            .collect();
+        lib.warnings.push(
+            Note::warning(
+                "scnc::obj::unsupported_mtl",
+                format!("MTL statements scnc does not render were ignored: {}", list.join(", ")),
+                *first,
+            )
+            .help("scnc renders Kd, Ks, Ns, Ka, Ke and their maps; transparency, refraction and mirror reflection are not modelled"),
+        );
+    }
+    lib
+}
+
+/// The note for names that were not UTF-8 and were read as Latin-1.
+pub fn latin1_note(at: Place) -> Note {
+    Note::warning(
+        "scnc::obj::not_utf8",
+        "this file is not valid UTF-8; its names were read as Latin-1",
+        at,
+    )
+    .help("re-save the file as UTF-8 if a name looks wrong")
+}
+
+/// `[options] file name with spaces` → the file and `-bm`.
+fn texture(rest: &[u8], at: Place) -> Option<TexRef> {
+    let mut bump_multiplier = 1.0;
+    let mut r = rest;
+    loop {
+        let (word, after) = keyword(r);
+        let Some(&(_, max)) = TEX_OPTIONS.iter().find(|(o, _)| *o == word) else {
+            break;
+        };
+        r = after;
+        for k in 0..max {
+            let (arg, after) = keyword(r);
+            // `-o`, `-s`, `-t` take one to three numbers; `-clamp on`, `-imfchan r` take a word.
+            let numeric = parse_f32(arg).is_some();
+            if arg.is_empty() || (k > 0 && !numeric) {
+                break;
+            }
+            if word == b"-bm" {
+                bump_multiplier = parse_f32(arg).unwrap_or(1.0);
+            }
+            r = after;
+        }
+    }
+    if r.is_empty() {
+        return None;
+    }
+    Some(TexRef {
+        file: decode_name(r).0,
+        bump_multiplier,
+        at,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn phong_statements_and_maps() {
+        let lib = parse_mtl(
+            b"# c\nnewmtl roof tiles\nKd 0.5 0.25 1\nKs 0.1\nNs 32\nKe 0 0 0\n\
+              map_Kd -s 2 2 1 -clamp on my tex.png\nbump -bm 0.3 h.png\nd 0.5\nd 1\nillum 2\nillum 4\n",
+        );
+        let m = &lib.materials[0];
+        assert_eq!(m.name, "roof tiles");
+        assert_eq!(m.kd, Some(Vec3::new(0.5, 0.25, 1.0)));
+        assert_eq!(m.ks, Some(Vec3::splat(0.1)));
+        assert_eq!(m.ns, Some(32.0));
+        assert_eq!(
+            m.map_kd.as_ref().map(|t| t.file.as_str()),
+            Some("my tex.png")
+        );
+        let (kind, bump) = m.bump.clone().expect("bump");
+        assert_eq!(
+            (kind, bump.bump_multiplier, bump.file.as_str()),
+            (BumpKind::Height, 0.3, "h.png")
+        );
+        assert_eq!(lib.warnings.len(), 1, "{:?}", lib.warnings);
+        let w = &lib.warnings[0].message;
+        assert!(
+            w.contains("`d` (2×, first on line 9)") && w.contains("`illum 4` (line 12)"),
+            "{w}"
+        );
+    }
+
+    #[test]
+    fn bad_and_orphan_statements_warn_at_their_line() {
+        let lib = parse_mtl(b"Kd 1 1 1\nnewmtl a\nKd x y z\nmap_Kd\n");
+        let lines: Vec<u32> = lib.warnings.iter().map(|w| w.at.line).collect();
+        assert_eq!(lines, vec![1, 3, 4]);
+    }
+}
