@@ -133,7 +133,7 @@ fn parse_variance_path(s: &str) -> Result<PathBuf, String> {
 /// Largest side accepted by `--resolution`, as in the scene language.
 const MAX_SIDE: u32 = 16384;
 
-fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
+pub(super) fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
         .ok_or_else(|| format!("expected WIDTHxHEIGHT such as 320x240, got `{s}`"))?;

@@ -288,10 +288,25 @@ impl Job<'_> {
         counts: &mut RayCounts,
     ) {
         let count = offsets.len() as u32;
+        let seed = self.scene.settings.seed;
+        // Each batch's pattern is shifted (toroidally, which keeps the rotated grid's one
+        // sample per row and column) by its own random offset per pixel (Cranley–Patterson
+        // rotation). A fixed pattern would be a fixed quadrature of the pixel's footprint: its
+        // error at edges never averages out, whatever the seed, and adaptive batches would
+        // sample the same positions again and again.
+        // A single sample stays at the pixel centre: a 1-spp render is a point-sampled image
+        // (sharp, and what closed-form tests of one pixel expect).
+        let shift = if count > 1 {
+            let bits = Sampler::for_batch_sample(seed, x, y, batch, 0, count)
+                .pixel_bits(rng::STREAM_SUBPIXEL);
+            Vec2::new(rng::unit(bits), rng::unit(bits << 24))
+        } else {
+            Vec2::ZERO
+        };
         for (s, offset) in offsets.iter().enumerate() {
-            let ray = self.camera.ray(Vec2::new(x as f32, y as f32) + *offset);
-            let mut sampler =
-                Sampler::for_batch_sample(self.scene.settings.seed, x, y, batch, s as u32, count);
+            let o = (*offset + shift).fract();
+            let ray = self.camera.ray(Vec2::new(x as f32, y as f32) + o);
+            let mut sampler = Sampler::for_batch_sample(seed, x, y, batch, s as u32, count);
             let l = radiance(self.scene, &ray, &mut sampler, counts);
             // A non-finite sample (a degenerate configuration the guards missed) must not
             // poison the pixel; it is counted for `--stats` instead (and as black in the mean).

@@ -105,6 +105,14 @@ fn sample_key(seed: u64, px: u32, py: u32, sample: u32) -> u64 {
     mix64(mix64(mix64(seed) ^ pixel) ^ (sample as u64).wrapping_add(0x9e37_79b9))
 }
 
+/// The per-pixel stream of adaptive batches' sub-pixel shifts (far from the integrator's).
+pub const STREAM_SUBPIXEL: u64 = 1 << 40;
+
+/// The top 24 bits of `h` as a value in [0, 1).
+pub fn unit(h: u64) -> f32 {
+    to_unit(h)
+}
+
 fn to_unit(h: u64) -> f32 {
     (h >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
 }
