@@ -167,6 +167,30 @@ mod tests {
     }
 
     #[test]
+    fn jpeg_and_radiance_hdr_decode() {
+        let img = DynamicImage::ImageRgb8(image::RgbImage::from_pixel(8, 8, Rgb([200, 100, 50])));
+        let t = decode_texture(&encode(img, ImageFormat::Jpeg), false).expect("decodes");
+        assert_eq!((t.width, t.height, t.texels.len()), (8, 8, 64));
+        assert!(
+            (t.texels[0].x - 200.0 / 255.0).abs() < 0.03,
+            "{}",
+            t.texels[0]
+        );
+        let hdr = DynamicImage::ImageRgb32F(image::ImageBuffer::from_pixel(
+            2,
+            2,
+            Rgb([4.0f32, 1.0, 0.25]),
+        ));
+        let t = decode_texture(&encode(hdr, ImageFormat::Hdr), true).expect("decodes");
+        assert!(
+            (t.texels[3] - Vec4::new(4.0, 1.0, 0.25, 1.0))
+                .abs()
+                .max_element()
+                < 0.05
+        );
+    }
+
+    #[test]
     fn garbage_truncated_and_oversized_are_errors() {
         assert!(matches!(
             decode_texture(b"hello", true),

@@ -11,6 +11,11 @@
 //! distribution no BRDF ray can hit) keep pure light sampling. [`DirectStrategy`] switches to
 //! one strategy alone for tests and measurements.
 //!
+//! Textured materials look their inputs up with the pixel's ray-cone footprint (`footprint`,
+//! which picks the mip level); a normal map replaces the shading normal (`normal_map`, bent by
+//! the Iray reflection fix where it faces away from the viewer). Untextured materials skip both
+//! behind one branch.
+//!
 //! Every random choice is stratified over all the samples of the pixel, not just within one
 //! pixel sample: sample `s` of `S` uses points `s·m … s·m + m − 1` of one set of `S·m` scrambled
 //! Hammersley points per pixel and stream (`Sampler::stratified_2d`), so 16 pixel samples with

@@ -130,12 +130,19 @@ impl MipLevel {
         } else {
             0.0
         };
-        let t00 = self.texel(x0, y0, wrap);
-        let t10 = self.texel(x0 + 1, y0, wrap);
-        let t01 = self.texel(x0, y0 + 1, wrap);
-        let t11 = self.texel(x0 + 1, y0 + 1, wrap);
-        let top = t00 + (t10 - t00) * fx;
-        let bottom = t01 + (t11 - t01) * fx;
+        // Wrap each of the two columns and rows once (not once per texel).
+        let w = self.width as usize;
+        let (xa, xb) = (
+            wrap_index(x0, self.width, wrap),
+            wrap_index(x0 + 1, self.width, wrap),
+        );
+        let (ya, yb) = (
+            wrap_index(y0, self.height, wrap) * w,
+            wrap_index(y0 + 1, self.height, wrap) * w,
+        );
+        let t = &self.texels;
+        let top = t[ya + xa] + (t[ya + xb] - t[ya + xa]) * fx;
+        let bottom = t[yb + xa] + (t[yb + xb] - t[yb + xa]) * fx;
         top + (bottom - top) * fy
     }
 }
@@ -318,6 +325,13 @@ mod tests {
         let l1 = img.levels[1].bilinear(uv, WrapMode::Repeat);
         let mid = img.lookup(uv, WrapMode::Repeat, Filter::Trilinear, 0.5);
         assert!((mid - (l0 + l1) / 2.0).abs().max_element() < 1e-5);
+        // Whole levels: a texel centre of level 1 returns that texel, for every wrap mode.
+        for wrap in [WrapMode::Repeat, WrapMode::Clamp, WrapMode::Mirror] {
+            let at = img.lookup(centre(1.0, 0.0, 2.0, 2.0), wrap, Filter::Trilinear, 1.0);
+            assert!((at - img.levels[1].texels[1]).abs().max_element() < 1e-5);
+            // (1.5, 0.5) is level 1's texel (1, 0): the mean of level 0's 2 × 2 block there.
+            assert!((at - Vec4::new(2.5, 0.5, 7.5, 1.0)).abs().max_element() < 1e-5);
+        }
         let top = img.levels[2].texels[0];
         assert_eq!(
             img.lookup(uv, WrapMode::Repeat, Filter::Trilinear, 99.0),
