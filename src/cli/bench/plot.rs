@@ -41,6 +41,8 @@ pub fn svg(name: &str, rows: &[Row]) -> Result<String, String> {
             .configure_mesh()
             .x_desc("render time (s)")
             .y_desc("relative RMS error")
+            .x_label_formatter(&|v| format!("{v:.3}"))
+            .y_label_formatter(&|v| format!("{v:.3}"))
             .draw()
             .map_err(msg)?;
         let series = [
