@@ -137,7 +137,7 @@ pub fn surface_hit(scene: &Scene, hit: &Hit) -> Option<SurfaceHit> {
         ng,
         ns,
         uv,
-        surface: inst.surface,
+        surface: scene.surface_of(inst, mesh, hit.prim),
         bulge,
     })
 }

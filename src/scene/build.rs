@@ -20,6 +20,7 @@ use super::facing::{faces_away, world_boxes};
 use super::lights::{AreaLight, Light, Lights, PointLight};
 use super::load::load_mesh;
 use super::mesh::TriMesh;
+use super::obj_parts::PartTables;
 use super::texture::{Texture, Textures};
 use super::{
     BuildError, BuildOptions, BuildTimings, Scene, SceneInstance, Surface, SurfaceMaterial,
@@ -83,7 +84,8 @@ fn build_with(
         });
     }
 
-    let (materials, textures) = b.materials();
+    let (mut materials, textures) = b.materials();
+    let mut parts = PartTables::default();
     let environment = b.environment();
 
     let assets_start = Instant::now();
@@ -95,15 +97,22 @@ fn build_with(
         if let Some((world_from_object, normal_from_object)) =
             b.transform(object.world_from_object, object.span)
         {
+            let part_base = parts.place(
+                &b.meshes[mesh as usize],
+                object.material,
+                world_from_object,
+                &mut materials,
+            );
             instances.push(SceneInstance {
                 mesh,
                 surface: Surface::Material(object.material),
                 world_from_object,
                 normal_from_object,
+                part_base,
             });
         }
     }
-    let lights = b.lights(&mut instances, environment);
+    let lights = b.lights(&mut instances, environment, &mut parts);
     let asset_load = assets_start.elapsed();
 
     let mut diags: Vec<Diagnostic> = b.problems.iter().map(BuildError::to_diagnostic).collect();
@@ -145,6 +154,7 @@ fn build_with(
         instances,
         accel,
         materials,
+        part_surfaces: parts.surfaces,
         textures,
         lights,
         light_sampling: Default::default(),
@@ -309,6 +319,7 @@ impl Builder<'_> {
         &mut self,
         instances: &mut Vec<SceneInstance>,
         mut env: Option<Environment>,
+        parts: &mut PartTables,
     ) -> Lights {
         let boxes = world_boxes(&self.meshes, instances);
         let mut lights = Vec::new();
@@ -347,6 +358,7 @@ impl Builder<'_> {
                             surface: Surface::Emitter(lights.len() as u32),
                             world_from_object,
                             normal_from_object,
+                            part_base: super::obj_parts::NO_PARTS,
                         });
                         lights.push(Light::Area(area));
                     }
@@ -354,6 +366,7 @@ impl Builder<'_> {
                 ir::Light::Environment(_) => {}
             }
         }
+        parts.attach(&mut lights);
         let mut radius = 0.0;
         if let Some(e) = env.as_mut().filter(|_| !instances.is_empty()) {
             e.prepare_sampling();

@@ -48,6 +48,9 @@ pub fn load_mesh(
                 .into_iter()
                 .map(|d| BuildError::Obj(Box::new(d)))
                 .collect();
+            let (parts, part_of, map_warnings) =
+                super::obj_parts::parts_of(&loaded, &path.written, path.span);
+            obj_warnings.extend(map_warnings);
             let obj = loaded.model;
             pre_dropped = obj.stats.degenerate_dropped;
             let mesh = TriMesh {
@@ -55,6 +58,8 @@ pub fn load_mesh(
                 normals: obj.normals,
                 uvs: obj.uvs,
                 triangles: obj.triangles,
+                parts,
+                part_of,
             };
             (mesh, path.span, path.written.clone())
         }
@@ -64,6 +69,7 @@ pub fn load_mesh(
                 normals: m.normals.clone(),
                 uvs: m.uvs.clone(),
                 triangles: m.indices.clone(),
+                ..TriMesh::default()
             };
             (mesh, decl.span, decl.name.clone())
         }
