@@ -99,6 +99,7 @@ fn build_with(
         {
             let part_base = parts.place(
                 &b.meshes[mesh as usize],
+                &desc.meshes[object.mesh as usize].obj,
                 object.material,
                 world_from_object,
                 &mut materials,
@@ -113,6 +114,7 @@ fn build_with(
         }
     }
     let lights = b.lights(&mut instances, environment, &mut parts);
+    b.problems.append(&mut parts.unknown);
     let asset_load = assets_start.elapsed();
 
     let mut diags: Vec<Diagnostic> = b.problems.iter().map(BuildError::to_diagnostic).collect();

@@ -36,14 +36,15 @@ pub fn load_mesh(
                     }
                 }
             })?;
-            let loaded = load_obj(&path.path, bytes.clone(), true, loader).map_err(|e| {
-                BuildError::Obj(Box::new(report::error_diagnostic(
-                    &e,
-                    &path.written,
-                    &bytes,
-                    Some(path.span),
-                )))
-            })?;
+            let loaded = load_obj(&path.path, bytes.clone(), !decl.obj.ignore_mtl, loader)
+                .map_err(|e| {
+                    BuildError::Obj(Box::new(report::error_diagnostic(
+                        &e,
+                        &path.written,
+                        &bytes,
+                        Some(path.span),
+                    )))
+                })?;
             obj_warnings = report::warning_diagnostics(&loaded, &path.written, Some(path.span))
                 .into_iter()
                 .map(|d| BuildError::Obj(Box::new(d)))

@@ -2,7 +2,8 @@
 //! say `usemtl`). Each `usemtl` name is a [`MeshPart`]; its MTL material becomes a Phong
 //! material of the scene, or, with `Ke` > 0, an area light over that part's triangles (per
 //! placement). Faces with no material, or one no library defines, use the placing `object`'s
-//! material. The renderer asks [`Scene::surface_of`] which surface a triangle has.
+//! material; `mesh m = obj("m.obj") { material "roof tiles" slate }` replaces an OBJ material
+//! by a scene material (by `usemtl` name), `mtl false` skips the libraries altogether. The renderer asks [`Scene::surface_of`] which surface a triangle has.
 
 use glam::{Affine3A, Vec3};
 
@@ -13,7 +14,7 @@ use crate::assets::obj::phong::{phong_of, texture_hook};
 use crate::assets::obj::report::{line_label, mtl_display_name};
 use crate::assets::obj::LoadedObj;
 use crate::diag::Diagnostic;
-use crate::ir::{ColorInput, ScalarInput};
+use crate::ir::{ColorInput, ObjOptions, ScalarInput};
 use crate::source::Span;
 
 /// `SceneInstance::part_base` of an instance whose mesh has no parts.
@@ -64,7 +65,7 @@ pub(super) fn parts_of(
         };
         run_part.push(index as u32);
     }
-    if parts.iter().all(|p| p.phong.is_none()) {
+    if parts.iter().all(|p| p.name.is_none()) {
         return (Vec::new(), Vec::new(), warnings);
     }
     let mut part_of = Vec::new();
@@ -85,25 +86,62 @@ pub(super) struct PartTables {
     pub surfaces: Vec<Surface>,
     /// (index into `surfaces`, the light): numbered once every other light is known.
     pending: Vec<(usize, AreaLight)>,
+    /// `.scn` overrides naming no `usemtl` of their OBJ (each reported once).
+    pub unknown: Vec<BuildError>,
 }
 
 impl PartTables {
     /// Surfaces for one placement of `mesh`; returns its `part_base` ([`NO_PARTS`] if none).
+    /// `options` are the mesh's `.scn` overrides (`obj("f.obj") { material NAME mat }`).
     pub fn place(
         &mut self,
         mesh: &TriMesh,
+        options: &ObjOptions,
         object_material: u32,
         world_from_object: Affine3A,
         materials: &mut Vec<SurfaceMaterial>,
     ) -> u32 {
-        if mesh.parts.is_empty() {
+        for o in &options.materials {
+            let known = mesh
+                .parts
+                .iter()
+                .any(|p| p.name.as_deref() == Some(&o.obj_name));
+            if !known && !self.unknown.iter().any(|u| matches!(u, BuildError::Obj(d) if d.primary.as_ref().is_some_and(|l| l.span == o.span))) {
+                let names: Vec<String> = mesh.parts.iter().filter_map(|p| p.name.clone()).map(|n| format!("`{n}`")).collect();
+                self.unknown.push(BuildError::Obj(Box::new(
+                    Diagnostic::warning(
+                        "scnc::obj::unknown_override",
+                        format!("the OBJ has no material `{}` to replace", o.obj_name),
+                    )
+                    .at(o.span, "no `usemtl` of this name")
+                    .help(if names.is_empty() {
+                        "the OBJ uses no `usemtl` at all".to_string()
+                    } else {
+                        format!("its materials are {}", names.join(", "))
+                    }),
+                )));
+            }
+        }
+        let overridden = |p: &MeshPart| {
+            options
+                .materials
+                .iter()
+                .find(|o| p.name.as_deref() == Some(&o.obj_name))
+                .map(|o| o.material)
+        };
+        if mesh
+            .parts
+            .iter()
+            .all(|p| p.phong.is_none() && overridden(p).is_none())
+        {
             return NO_PARTS;
         }
         let base = self.surfaces.len() as u32;
         for (i, part) in mesh.parts.iter().enumerate() {
-            let surface = match &part.phong {
-                None => Surface::Material(object_material),
-                Some(p) if p.is_emitter() => {
+            let surface = match (&part.phong, overridden(part)) {
+                (_, Some(m)) => Surface::Material(m),
+                (None, None) => Surface::Material(object_material),
+                (Some(p), None) if p.is_emitter() => {
                     let world: Vec<[Vec3; 3]> = mesh
                         .triangles
                         .iter()
@@ -123,7 +161,7 @@ impl PartTables {
                         None => Surface::Material(object_material),
                     }
                 }
-                Some(p) => {
+                (Some(p), None) => {
                     materials.push(SurfaceMaterial {
                         diffuse: ColorInput::Constant(p.diffuse),
                         specular: ColorInput::Constant(p.specular),
