@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use scnc::assets::{FsLoader, MemLoader};
+use scnc::assets::{FsLoader, Loader, MemLoader};
 use scnc::compile::compile_file;
 use scnc::scene::{build, BuildOptions, Light, Surface};
 
@@ -84,4 +84,32 @@ fn scn_overrides_replace_obj_materials_by_name_and_mtl_false_skips_the_library()
     assert_eq!(scene.surface_of(inst, mesh, 0), Surface::Material(0));
     assert_eq!(scene.surface_of(inst, mesh, 1), Surface::Material(gold));
     assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+}
+
+#[test]
+fn mtl_texture_maps_warn_at_the_mtl_line_missing_or_not() {
+    let mut loader = MemLoader::new();
+    let scn = format!("{HEAD}mesh o = obj(\"m.obj\")\nobject o {{ material m }}\n");
+    loader.insert("s.scn", scn.into_bytes());
+    loader.insert("m.obj", OBJ.as_bytes().to_vec());
+    loader.insert("m.mtl", b"newmtl my red\nKd 1 0 0\nmap_Kd -s 2 2 1 red tex.png\nnewmtl lamp\nKe 1 1 1\nmap_Ks gone.png\n".to_vec());
+    loader.insert("red tex.png", b"not really a png".to_vec());
+    let compiled = compile_file(Path::new("s.scn"), &loader);
+    let desc = compiled.scene.expect("compiles");
+    let scene = build(&desc, &compiled.sources, &loader, &BuildOptions::default()).expect("builds");
+    let got: Vec<(&str, u32)> = scene
+        .warnings
+        .iter()
+        .map(|w| (w.code, w.external.first().map_or(0, |e| e.line)))
+        .collect();
+    assert_eq!(
+        got,
+        [
+            ("scnc::obj::texture_not_rendered", 3),
+            ("scnc::obj::missing_texture", 6)
+        ]
+    );
+    assert!(loader
+        .recorded()
+        .contains(&std::path::PathBuf::from("gone.png")));
 }

@@ -50,7 +50,7 @@ pub fn load_mesh(
                 .map(|d| BuildError::Obj(Box::new(d)))
                 .collect();
             let (parts, part_of, map_warnings) =
-                super::obj_parts::parts_of(&loaded, &path.written, path.span);
+                super::obj_parts::parts_of(&loaded, &path.written, path.span, loader);
             obj_warnings.extend(map_warnings);
             let obj = loaded.model;
             pre_dropped = obj.stats.degenerate_dropped;

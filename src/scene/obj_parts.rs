@@ -13,6 +13,7 @@ use super::{BuildError, Scene, SceneInstance, Surface, SurfaceMaterial};
 use crate::assets::obj::phong::{phong_of, texture_hook};
 use crate::assets::obj::report::{line_label, mtl_display_name};
 use crate::assets::obj::LoadedObj;
+use crate::assets::Loader;
 use crate::diag::Diagnostic;
 use crate::ir::{ColorInput, ObjOptions, ScalarInput};
 use crate::source::Span;
@@ -26,6 +27,7 @@ pub(super) fn parts_of(
     obj: &LoadedObj,
     written: &str,
     span: Span,
+    loader: &dyn Loader,
 ) -> (Vec<MeshPart>, Vec<u32>, Vec<BuildError>) {
     let m = &obj.model;
     let mut parts: Vec<MeshPart> = Vec::new();
@@ -41,18 +43,26 @@ pub(super) fn parts_of(
                     let mat = &src.library.materials[i];
                     let phong = phong_of(mat);
                     for (key, tex) in &phong.maps {
-                        if !texture_hook(key, tex) {
-                            let file = mtl_display_name(written, &src.written);
-                            warnings.push(BuildError::Obj(Box::new(
-                                Diagnostic::warning(
-                                    "scnc::obj::texture_not_rendered",
-                                    format!("`{key} {}` of material `{}` is not rendered yet; its constant colour is used", tex.file, mat.name),
-                                    )
-                                    .in_file(line_label(&file, &src.text, tex.at, "this map"))
-                                    .at(span, "the OBJ file named here")
-                                    .help("image textures arrive with issue 4"),
-                            )));
-                        }
+                        let file = mtl_display_name(written, &src.written);
+                        // Read through the Loader, so `scnc watch` watches it too.
+                        let dir = src.path.parent().unwrap_or(std::path::Path::new(""));
+                        let d = match loader.read(&dir.join(&tex.file)) {
+                            Err(e) => Diagnostic::warning(
+                                "scnc::obj::missing_texture",
+                                format!("cannot read the texture `{}` of material `{}` ({e}); its constant colour is used", tex.file, mat.name),
+                            )
+                            .help("texture paths in an MTL are relative to the MTL file"),
+                            Ok(_) if texture_hook(key, tex) => continue,
+                            Ok(_) => Diagnostic::warning(
+                                "scnc::obj::texture_not_rendered",
+                                format!("`{key} {}` of material `{}` is not rendered yet; its constant colour is used", tex.file, mat.name),
+                            )
+                            .help("image textures arrive with issue 4"),
+                        };
+                        warnings.push(BuildError::Obj(Box::new(
+                            d.in_file(line_label(&file, &src.text, tex.at, "this map"))
+                                .at(span, "the OBJ file named here"),
+                        )));
                     }
                     phong
                 });
