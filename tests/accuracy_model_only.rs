@@ -15,7 +15,7 @@ use scnc::assets::MemLoader;
 use scnc::compile::compile_source;
 use scnc::diag::Severity;
 use scnc::render::{render, RenderOptions, RenderStats};
-use scnc::scene::{build, BuildOptions, Features, Scene};
+use scnc::scene::{build, BuildOptions, Features, Scene, Texture};
 
 fn build_src(src: &str, loader: &MemLoader) -> (Scene, scnc::source::SourceMap) {
     let compiled = compile_source("scene.scn", src, loader);
@@ -85,6 +85,10 @@ fn a_plain_scene_builds_and_runs_nothing_it_does_not_use() {
     );
     assert_eq!(what_was_built(&scene), ["meshes", "bvh", "light table"]);
     assert!(scene.textures.slots.iter().all(Option::is_none));
+    assert!(
+        scene.tangents.iter().all(Vec::is_empty),
+        "no normal map, no tangents"
+    );
     assert!(scene.lights.environment.is_none());
     let stats = render_small(&scene);
     let c = stats.counts;
@@ -128,6 +132,84 @@ fn a_rich_scene_builds_and_uses_each_structure() {
     assert!(
         c.textured > 0 && c.specular > 0 && c.environment > 0,
         "{c:?}"
+    );
+}
+
+/// A 4 × 2 grey PNG.
+fn png() -> Vec<u8> {
+    let img = image::GrayImage::from_fn(4, 2, |x, _| image::Luma([40 * x as u8 + 30]));
+    let mut out = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut out, image::ImageFormat::Png)
+        .expect("encodes");
+    out.into_inner()
+}
+
+#[test]
+fn image_textures_are_built_only_when_used_and_mipmapped_only_for_trilinear() {
+    let scene_with = |floor: &str| {
+        format!(
+            r#"scnc 1
+camera main {{ eye (0, 2, -5)  target (0, 0.5, 0)  fov 40deg }}
+texture near = image("a.png") {{ filter nearest }}
+texture tri = image("b.png") {{ filter trilinear }}
+texture unused = image("missing.png")
+texture bumps = image("a.png") {{ encoding data  filter bilinear }}
+material floor = phong {{ {floor}  specular 0 }}
+mesh floor = quad {{ size (6, 6) }}
+object floor {{ material floor }}
+light bulb = point {{ position (2, 3, -2)  intensity 20 }}
+render {{ resolution 24 x 16 }}
+"#
+        )
+    };
+    let mut loader = MemLoader::new();
+    loader.insert("a.png", png());
+    loader.insert("b.png", png());
+    // Nearest only: one image, one level; the trilinear texture is not used, not loaded.
+    let (scene, _) = build_src(&scene_with("diffuse near"), &loader);
+    let images: Vec<usize> = scene
+        .textures
+        .slots
+        .iter()
+        .flatten()
+        .filter_map(|t| match t {
+            Texture::Image { data, .. } => Some(data.levels.len()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(images, [1]);
+    let detail = |scene: &Scene| {
+        scene
+            .inventory()
+            .into_iter()
+            .find(|b| b.what == "textures")
+            .expect("textures listed")
+            .detail
+    };
+    assert!(
+        detail(&scene).ends_with("4x2 1 mip level"),
+        "{}",
+        detail(&scene)
+    );
+    assert!(scene.tangents.iter().all(Vec::is_empty));
+    assert!(render_small(&scene).counts.textured > 0);
+    // Trilinear: the pyramid 4x2, 2x1, 1x1; a normal map (data: a second decode of a.png)
+    // brings tangents for the floor.
+    let (scene, _) = build_src(&scene_with("diffuse tri  normal_map bumps"), &loader);
+    let d = detail(&scene);
+    assert!(d.contains("2 image from 2 files"), "{d}");
+    assert!(
+        d.contains("4x2 3 mip levels") && d.contains("4x2 1 mip level"),
+        "{d}"
+    );
+    assert_eq!(
+        what_was_built(&scene),
+        ["meshes", "bvh", "textures", "tangents", "light table"]
+    );
+    let files: Vec<_> = scnc::assets::Loader::recorded(&loader);
+    assert!(
+        !files.iter().any(|p| p.ends_with("missing.png")),
+        "{files:?}"
     );
 }
 

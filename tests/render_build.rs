@@ -223,7 +223,7 @@ fn a_good_obj_loads_once_for_two_instances_and_renders() {
 }
 
 #[test]
-fn image_textures_are_unsupported_and_a_missing_environment_map_is_missing_at_their_paths() {
+fn a_missing_image_texture_and_environment_map_are_missing_at_their_paths() {
     let fx = Fixture::new();
     let mut desc = empty_desc(
         camera(Vec3::new(0.0, 0.0, -3.0), Vec3::ZERO, Vec3::Y, 40.0),
@@ -258,7 +258,7 @@ fn image_textures_are_unsupported_and_a_missing_environment_map_is_missing_at_th
         &MemLoader::new(),
         &BuildOptions::default(),
     )
-    .expect_err("unsupported");
+    .expect_err("missing files");
     let mut labelled: Vec<(&str, &str)> = diags
         .iter()
         .map(|d| {
@@ -274,7 +274,7 @@ fn image_textures_are_unsupported_and_a_missing_environment_map_is_missing_at_th
         labelled,
         [
             ("\"sky.hdr\"", "scnc::build::missing_file"),
-            ("\"wood.png\"", "scnc::build::unsupported")
+            ("\"wood.png\"", "scnc::build::missing_file")
         ]
     );
 }

@@ -61,6 +61,7 @@ fn report(loaded: usize, reused: usize, accel_built: bool) -> CacheReport {
         meshes_reused: reused,
         accel_built,
         environment_loaded: false,
+        ..CacheReport::default()
     }
 }
 
@@ -220,4 +221,93 @@ fn an_environment_map_is_read_once_while_its_file_and_settings_stay() {
         image(&s),
         image(&build(&sky_scene(1.0, 1.0), &brighter, None))
     );
+}
+
+/// A 4 × 4 PNG with one grey level everywhere.
+fn grey_png(level: u8) -> Vec<u8> {
+    let img = image::GrayImage::from_pixel(4, 4, image::Luma([level]));
+    let mut out = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut out, image::ImageFormat::Png)
+        .expect("encodes");
+    out.into_inner()
+}
+
+fn textured_scene(diffuse_texture: &str, specular: f32) -> String {
+    format!(
+        "scnc 1
+camera main {{ eye (0, 1, -4)  target (0, 0, 0)  up (0, 1, 0)  fov 40deg }}
+texture wood = image(\"wood.png\") {{ filter trilinear }}
+texture wood_flat = image(\"wood.png\") {{ filter nearest  wrap clamp }}
+texture other = image(\"other.png\") {{ filter bilinear }}
+material a = phong {{ diffuse {diffuse_texture}  specular {specular} }}
+material b = phong {{ diffuse wood_flat  specular 0  shininess other }}
+mesh ball = sphere {{ radius 1  segments 12 }}
+object ball {{ material a }}
+object ball {{ material b  transform {{ translate (2, 0, 0) }} }}
+light key = point {{ position (2, 4, -3)  intensity 30 }}
+render {{ resolution 24 x 16  samples 1 }}
+"
+    )
+}
+
+#[test]
+fn textures_are_loaded_once_and_a_material_edit_does_not_reload_them() {
+    let files = |wood: u8| {
+        let mut l = MemLoader::new();
+        l.insert("wood.png", grey_png(wood));
+        l.insert("other.png", grey_png(10));
+        l
+    };
+    let mut cache = BuildCache::new();
+    // `wood.png` is named by two textures (one trilinear): one load, with its pyramid.
+    let s = build(&textured_scene("wood", 0.0), &files(200), Some(&mut cache));
+    assert_eq!(cache.report().textures_loaded, 2);
+    assert!(cache.report().rebuilt().contains(&"textures"));
+    let first = image(&s);
+    let mut files_in_use = cache.files_in_use();
+    files_in_use.sort();
+    let (wood, other) = (content_hash(&grey_png(200)), content_hash(&grey_png(10)));
+    assert_eq!(
+        files_in_use,
+        [("other.png".into(), other), ("wood.png".into(), wood)]
+    );
+    cache.recycle(s);
+
+    // A material edit: both textures come from the cache; no image file is read.
+    cache.retain_current(|p| Some(if p.ends_with("wood.png") { wood } else { other }));
+    let fresh = files(200);
+    let s = build(&textured_scene("wood", 0.3), &fresh, Some(&mut cache));
+    assert_eq!(
+        (
+            cache.report().textures_loaded,
+            cache.report().textures_reused
+        ),
+        (0, 2)
+    );
+    assert!(!scnc::assets::Loader::recorded(&fresh)
+        .iter()
+        .any(|p| p.extension().is_some_and(|e| e == "png")));
+    let plain = build(&textured_scene("wood", 0.3), &fresh, None);
+    assert_eq!(image(&s), image(&plain));
+    cache.recycle(s);
+
+    // The image changed on disk: it alone is reloaded, and the picture follows it.
+    let darker = content_hash(&grey_png(60));
+    cache.retain_current(|p| {
+        Some(if p.ends_with("wood.png") {
+            darker
+        } else {
+            other
+        })
+    });
+    let s = build(&textured_scene("wood", 0.0), &files(60), Some(&mut cache));
+    assert_eq!(
+        (
+            cache.report().textures_loaded,
+            cache.report().textures_reused
+        ),
+        (1, 1)
+    );
+    assert_ne!(image(&s), first);
+    cache.recycle(s);
 }

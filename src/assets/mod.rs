@@ -5,10 +5,12 @@
 //! for, found or not: that record is exactly the set of files `scnc watch` must watch.
 //! [`MemLoader`] serves files from memory so that every stage is testable without a disk.
 //! [`obj`] decodes OBJ bytes (read through a `Loader`) into triangles; [`hdr_image`] decodes
-//! environment maps (HDR, EXR, PFM) into linear float RGB.
+//! environment maps (HDR, EXR, PFM) into linear float RGB; [`texture_image`] decodes material
+//! textures (PNG, JPEG, HDR, EXR) into linear RGBA texels.
 
 pub mod hdr_image;
 mod loader;
 pub mod obj;
+pub mod texture_image;
 
 pub use loader::{FsLoader, Loader, MemLoader};

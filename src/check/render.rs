@@ -6,6 +6,11 @@
 //! decides), the first camera. Resolution 1..=16384 per side; samples a perfect square up to
 //! 65536 with pattern `rgss` (rotated grid) or `grid`; light_samples 1..=1024; `output` may be
 //! repeated, the format follows the extension (.png .exr .hdr .pfm).
+//!
+//! `quality draft|preview|final` picks a preset's samples and light_samples; an explicit
+//! `samples` or `light_samples` in the same block wins whatever the order. `noise 0.01` turns on
+//! adaptive sampling (relative standard error target, 0.0001..=1) with `max_samples N`
+//! (16..=1048576, default 4096).
 
 use super::names::Namespace;
 use super::Checker;
@@ -29,20 +34,43 @@ impl Checker<'_> {
             exposure: 0.0,
             tonemap: ir::ToneMap::Filmic,
             outputs: Vec::new(),
+            quality: None,
+            noise: None,
+            max_samples: None,
         };
         let Some((block, _)) = block else {
             return Some(s);
         };
         let props = self.split(block, "render settings", KEYS, &["output"], &[]);
         let mut ok = true;
+        let (mut explicit_samples, mut explicit_light_samples) = (None, None);
         for p in &props.props {
             ok &= match p.key {
                 "resolution" => self.resolution(p, &mut s).is_some(),
-                "samples" => self.samples(p, &mut s).is_some(),
+                "samples" => self
+                    .samples(p, &mut s)
+                    .map(|()| explicit_samples = Some(s.samples_per_pixel))
+                    .is_some(),
+                "quality" => self
+                    .one(p, "quality preview")
+                    .and_then(|e| self.word(e, super::vocabulary::QUALITY_WORDS, "quality preset"))
+                    .and_then(ir::Quality::from_name)
+                    .map(|q| s.quality = Some(q))
+                    .is_some(),
+                "noise" => self
+                    .one(p, "noise 0.01")
+                    .and_then(|e| self.num_in(e, 1e-4, 1.0, "noise"))
+                    .map(|x| s.noise = Some(x as f32))
+                    .is_some(),
+                "max_samples" => self
+                    .one(p, "max_samples 4096")
+                    .and_then(|e| self.int_in(e, 16, 1 << 20, "max_samples"))
+                    .map(|n| s.max_samples = Some(n as u32))
+                    .is_some(),
                 "light_samples" => self
                     .one(p, "light_samples 1")
                     .and_then(|e| self.int_in(e, 1, 1024, "light_samples"))
-                    .map(|n| s.light_samples = n as u32)
+                    .map(|n| explicit_light_samples = Some(n as u32))
                     .is_some(),
                 "seed" => self
                     .one(p, "seed 0")
@@ -79,6 +107,15 @@ impl Checker<'_> {
                     })
                     .is_some(),
             };
+        }
+        if let Some(q) = s.quality {
+            s.apply_quality(q);
+        }
+        if let Some(n) = explicit_samples {
+            s.samples_per_pixel = n;
+        }
+        if let Some(n) = explicit_light_samples {
+            s.light_samples = n;
         }
         ok.then_some(s)
     }

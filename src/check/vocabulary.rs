@@ -53,9 +53,14 @@ pub const RENDER_KEYS: &[&str] = &[
     "output",
     "exposure",
     "tonemap",
+    "quality",
+    "noise",
+    "max_samples",
 ];
 pub const TONEMAP_WORDS: &[&str] = &["clamp", "reinhard", "filmic"];
 pub const SAMPLE_PATTERN_WORDS: &[&str] = &["rgss", "grid"];
+/// `render { quality preview }`: the presets (`ir::Quality`).
+pub const QUALITY_WORDS: &[&str] = crate::ir::Quality::NAMES;
 
 /// Every block's property keys (a key may belong to several blocks).
 pub const PROPERTY_KEYS: &[&[&str]] = &[
@@ -86,4 +91,5 @@ pub const WORDS: &[&[&str]] = &[
     ENCODING_WORDS,
     TONEMAP_WORDS,
     SAMPLE_PATTERN_WORDS,
+    QUALITY_WORDS,
 ];

@@ -4,6 +4,7 @@
 //! Each subcommand lives in its own file with its own `Args` struct and `run` function; adding
 //! one means a new file, a variant in [`Command`] and an arm in [`run`].
 
+mod bench;
 mod check;
 mod inspect;
 mod ir;
@@ -17,6 +18,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+pub use bench::BenchArgs;
 pub use check::CheckArgs;
 pub use inspect::InspectArgs;
 pub use ir::IrArgs;
@@ -47,6 +49,8 @@ pub enum Command {
     Watch(WatchArgs),
     /// Show what scnc makes of an OBJ file: triangles, area, bounds, materials, warnings.
     Inspect(InspectArgs),
+    /// Measure the speed/accuracy curve: `scnc bench quality scene.scn [--out DIR]`.
+    Bench(BenchArgs),
 }
 
 /// Parses the process arguments and runs the chosen command.
@@ -61,5 +65,6 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Render(args) => render::run(&args),
         Command::Watch(args) => watch::run(&args),
         Command::Inspect(args) => inspect::run(&args),
+        Command::Bench(args) => bench::run(&args),
     }
 }

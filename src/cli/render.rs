@@ -1,5 +1,12 @@
-//! `scnc render FILE [-o out.png] [--spp N] [--threads N] [--camera NAME] [--accel bvh|none]
+//! `scnc render FILE [-o out.png] [--quality draft|preview|final] [--spp N] [--noise E
+//! [--max-samples N]] [--variance-out FILE] [--threads N] [--camera NAME] [--accel bvh|none]
 //! [--resolution WxH] [--stats]`: the whole pipeline once, from `.scn` to image file.
+//!
+//! Precedence of the sample count: a command-line flag beats the scene; at each level an
+//! explicit count beats a preset. So `--spp` > `--quality` > `render { samples }` >
+//! `render { quality }` > the default (and likewise for `light_samples`, which only presets set
+//! from the command line). `--noise` (or the scene's `noise`) samples adaptively; `--spp` on the
+//! command line turns the scene's adaptive sampling off.
 //!
 //! Compiles (printing every diagnostic as `scnc check` does), builds the scene, renders with a
 //! progress bar when stderr is a terminal, and writes each output atomically. Ctrl-C cancels the
@@ -20,6 +27,7 @@ use crate::assets::FsLoader;
 use crate::bvh::AccelKind;
 use crate::cli::targets::{camera_index, output_targets};
 use crate::film::{self, WriteSettings};
+use crate::ir::{self, Quality};
 use crate::render::{self, RenderOptions};
 use crate::scene::{self, BuildOptions};
 
@@ -41,9 +49,25 @@ pub struct RenderArgs {
     /// scene's `output`s, or the scene file's name with `.png` in the current directory.
     #[arg(short, long, value_name = "FILE")]
     pub output: Option<PathBuf>,
-    /// Samples per pixel (rounded up to a square N×N pattern).
-    #[arg(long, value_name = "N")]
+    /// Samples per pixel, 1..=65536 (rounded up to a square N×N pattern). Beats `--quality`
+    /// and the scene's `samples`.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=65536))]
     pub spp: Option<u32>,
+    /// A quality preset: draft (1 spp, 4 light samples), preview (16 spp), final (256 spp).
+    /// Beats the scene's `quality` and `samples`.
+    #[arg(long, value_enum, value_name = "PRESET")]
+    pub quality: Option<QualityArg>,
+    /// Adaptive sampling: sample each pixel until the relative standard error of its mean is
+    /// below this (e.g. 0.01 for 1%), or `--max-samples` is reached.
+    #[arg(long, value_name = "E", value_parser = parse_noise, conflicts_with = "spp")]
+    pub noise: Option<f32>,
+    /// The cap of adaptive sampling per pixel (16..=1048576; default 4096).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(16..=1_048_576))]
+    pub max_samples: Option<u32>,
+    /// Also write each pixel's standard error of the mean (linear RGB) to this file (.exr or
+    /// .pfm), atomically like the image.
+    #[arg(long, value_name = "FILE", value_parser = parse_variance_path)]
+    pub variance_out: Option<PathBuf>,
     /// Worker threads (default: every core). The image is the same for any count.
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
@@ -63,10 +87,53 @@ pub struct RenderArgs {
     pub diag: DiagArgs,
 }
 
+/// `--quality`: the presets of `render { quality … }`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum QualityArg {
+    Draft,
+    Preview,
+    Final,
+}
+
+impl QualityArg {
+    pub fn preset(self) -> Quality {
+        match self {
+            QualityArg::Draft => Quality::Draft,
+            QualityArg::Preview => Quality::Preview,
+            QualityArg::Final => Quality::Final,
+        }
+    }
+}
+
+/// `--noise`: a relative standard error in 0.0001..=1, as in the scene language.
+pub fn parse_noise(s: &str) -> Result<f32, String> {
+    let x: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{s}` is not a number (try 0.01 for 1%)"))?;
+    if (1e-4..=1.0).contains(&x) {
+        Ok(x as f32)
+    } else {
+        Err(format!(
+            "the noise target is a relative error in 0.0001..=1 (0.01 is 1%), got {s}"
+        ))
+    }
+}
+
+fn parse_variance_path(s: &str) -> Result<PathBuf, String> {
+    let path = PathBuf::from(s);
+    match film::format_for_path(&path) {
+        Some(ir::OutputFormat::Exr | ir::OutputFormat::Pfm) => Ok(path),
+        _ => Err(format!(
+            "the variance image is linear float: give a .exr or .pfm file, got `{s}`"
+        )),
+    }
+}
+
 /// Largest side accepted by `--resolution`, as in the scene language.
 const MAX_SIDE: u32 = 16384;
 
-fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
+pub(super) fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
         .ok_or_else(|| format!("expected WIDTHxHEIGHT such as 320x240, got `{s}`"))?;
@@ -109,6 +176,7 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         desc.render.width = w;
         desc.render.height = h;
     }
+    apply_sampling_flags(args, &mut desc.render);
     let accel = match args.accel {
         AccelArg::Bvh => AccelKind::Bvh,
         AccelArg::None => AccelKind::None,
@@ -168,11 +236,15 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             bar.set_position((f * 1000.0) as u64);
         }
     };
-    let rendered = render::render(&scene, &options, &progress, &cancel);
+    let rendered = render::render_with_error(&scene, &options, &progress, &cancel);
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
-    let (film, render_stats) = match rendered {
+    let render::Rendered {
+        film,
+        std_error,
+        stats: render_stats,
+    } = match rendered {
         Ok(r) => r,
         Err(render::Cancelled) => {
             eprintln!("render cancelled; no image written");
@@ -199,7 +271,25 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             }
         }
     }
+    if let Some(path) = &args.variance_out {
+        // Float formats store the values as they are: the settings only matter for PNG.
+        match film::write(&std_error, path, &WriteSettings::default()) {
+            Ok(()) => eprintln!("wrote {} (standard error of each pixel)", path.display()),
+            Err(e) => {
+                failed = true;
+                print_diagnostic_list(
+                    &[e.to_diagnostic(None)],
+                    &compiled.sources,
+                    args.diag.diagnostic_format,
+                    JsonTo::Stdout,
+                );
+            }
+        }
+    }
     phases.write = t.elapsed();
+    if render_stats.noise.target.is_some() {
+        eprintln!("{}", render_stats.noise.summary());
+    }
     if args.stats {
         eprintln!("{}", phases.report(&scene, &render_stats));
     }
@@ -207,6 +297,23 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         ExitCode::FAILURE
     } else {
         ExitCode::SUCCESS
+    }
+}
+
+/// `--quality`, `--noise`, `--max-samples` into the scene's settings (`--spp` stays a render
+/// option: `scnc watch` overrides the count per pass the same way).
+fn apply_sampling_flags(args: &RenderArgs, settings: &mut ir::RenderSettings) {
+    if let Some(q) = args.quality {
+        settings.apply_quality(q.preset());
+    }
+    if args.spp.is_some() {
+        settings.noise = None;
+    }
+    if let Some(e) = args.noise {
+        settings.noise = Some(e);
+    }
+    if let Some(n) = args.max_samples {
+        settings.max_samples = Some(n);
     }
 }
 

@@ -62,6 +62,7 @@ impl PhaseStats {
             "sample paths   {} textured, {} specular, {} environment; {} NaN/inf samples dropped",
             c.textured, c.specular, c.environment, c.nonfinite
         );
+        let _ = writeln!(s, "{}", render.noise.summary());
         let _ = writeln!(s, "built");
         for b in scene.inventory() {
             let _ = writeln!(

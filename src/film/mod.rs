@@ -5,6 +5,7 @@
 //! (linear float OpenEXR), `.hdr` (Radiance RGBE), `.pfm` (portable float map). Writes are
 //! atomic: a temporary file in the target's directory, fsync, rename over the target.
 
+pub mod compare;
 mod encode;
 pub mod tonemap;
 mod write;

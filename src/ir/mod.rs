@@ -23,7 +23,9 @@ pub use material::{ColorInput, GreenConvention, Material, NormalMap, ScalarInput
 pub use mesh::{
     AssetPath, BuiltinShape, InlineMesh, Mesh, MeshSource, ObjMaterialOverride, ObjOptions,
 };
-pub use render_settings::{Output, OutputFormat, RenderSettings, SamplePattern, ToneMap};
+pub use render_settings::{
+    Output, OutputFormat, Quality, RenderSettings, SamplePattern, ToneMap, DEFAULT_MAX_SAMPLES,
+};
 pub use texture::{Filter, Texture, TextureEncoding, TextureSource, WrapMode};
 
 use glam::Mat4;

@@ -3,7 +3,8 @@
 //! Syntax:
 //! ```text
 //! render { resolution 512 x 512  samples rgss 4  light_samples 1  seed 0
-//!          camera main  output "cornell.png"  exposure 0  tonemap filmic }
+//!          camera main  output "cornell.png"  exposure 0  tonemap filmic
+//!          quality preview  noise 0.01  max_samples 4096 }
 //! ```
 
 use serde::Serialize;
@@ -19,6 +20,56 @@ pub enum SamplePattern {
     /// N×N points at the centres of an axis-aligned grid.
     Grid,
 }
+
+/// A named point on the speed/accuracy curve: `render { quality draft }` or `--quality draft`.
+/// Each preset is a sample count and a light-sample count (measured in docs/quality.md).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum Quality {
+    /// 1 sample per pixel, 4 light samples: a noisy but complete picture in milliseconds.
+    Draft,
+    /// 16 samples per pixel, 1 light sample.
+    Preview,
+    /// 256 samples per pixel, 1 light sample.
+    Final,
+}
+
+impl Quality {
+    /// The preset names in the language and on the command line, in order of cost.
+    pub const NAMES: &'static [&'static str] = &["draft", "preview", "final"];
+    pub const ALL: [Quality; 3] = [Quality::Draft, Quality::Preview, Quality::Final];
+
+    pub fn from_name(name: &str) -> Option<Quality> {
+        Quality::ALL.into_iter().find(|q| q.name() == name)
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Quality::Draft => "draft",
+            Quality::Preview => "preview",
+            Quality::Final => "final",
+        }
+    }
+
+    /// Samples per pixel (a perfect square).
+    pub fn samples_per_pixel(self) -> u32 {
+        match self {
+            Quality::Draft => 1,
+            Quality::Preview => 16,
+            Quality::Final => 256,
+        }
+    }
+
+    /// The scene's `light_samples`.
+    pub fn light_samples(self) -> u32 {
+        match self {
+            Quality::Draft => 4,
+            Quality::Preview | Quality::Final => 1,
+        }
+    }
+}
+
+/// Default `max_samples` of adaptive sampling.
+pub const DEFAULT_MAX_SAMPLES: u32 = 4096;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub enum ToneMap {
@@ -63,4 +114,24 @@ pub struct RenderSettings {
     pub tonemap: ToneMap,
     /// Output files; empty means the CLI decides (`-o`, or the scene's name with `.png`).
     pub outputs: Vec<Output>,
+    /// The preset that chose `samples_per_pixel` and `light_samples` (an explicit `samples` or
+    /// `light_samples` beside it wins over the preset's value).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub quality: Option<Quality>,
+    /// Adaptive sampling: keep sampling each pixel until the relative standard error of its
+    /// mean is below this (e.g. 0.01), up to `max_samples`. `None`: a fixed sample count.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub noise: Option<f32>,
+    /// The cap of adaptive sampling; `None` is [`DEFAULT_MAX_SAMPLES`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_samples: Option<u32>,
+}
+
+impl RenderSettings {
+    /// Applies a preset: its sample and light-sample counts.
+    pub fn apply_quality(&mut self, q: Quality) {
+        self.quality = Some(q);
+        self.samples_per_pixel = q.samples_per_pixel();
+        self.light_samples = q.light_samples();
+    }
 }

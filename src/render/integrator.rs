@@ -11,6 +11,11 @@
 //! distribution no BRDF ray can hit) keep pure light sampling. [`DirectStrategy`] switches to
 //! one strategy alone for tests and measurements.
 //!
+//! Textured materials look their inputs up with the pixel's ray-cone footprint (`footprint`,
+//! which picks the mip level); a normal map replaces the shading normal (`normal_map`, bent by
+//! the Iray reflection fix where it faces away from the viewer). Untextured materials skip both
+//! behind one branch.
+//!
 //! Every random choice is stratified over all the samples of the pixel, not just within one
 //! pixel sample: sample `s` of `S` uses points `s·m … s·m + m − 1` of one set of `S·m` scrambled
 //! Hammersley points per pixel and stream (`Sampler::stratified_2d`), so 16 pixel samples with
@@ -27,6 +32,8 @@
 use glam::{Vec2, Vec3};
 
 use super::brdf::Phong;
+use super::footprint;
+use super::normal_map;
 use super::rng::Sampler;
 use super::spherical;
 use super::surface::{offset_origin, surface_hit, SurfaceHit};
@@ -107,39 +114,48 @@ pub fn radiance(scene: &Scene, ray: &Ray, sampler: &mut Sampler, counts: &mut Ra
             Some(Light::Area(a)) if a.two_sided || hit.ng.dot(wo) > 0.0 => a.radiance,
             _ => Vec3::ZERO,
         },
-        Surface::Material(m) => shade(scene, &hit, m, wo, sampler, counts),
+        Surface::Material(m) => shade(scene, &hit, m, -wo, sampler, counts),
     }
 }
 
+/// `dir` is the unit direction of the camera ray that found `hit`.
 fn shade(
     scene: &Scene,
     hit: &SurfaceHit,
     material: u32,
-    wo: Vec3,
+    dir: Vec3,
     sampler: &mut Sampler,
     counts: &mut RayCounts,
 ) -> Vec3 {
     let Some(mat) = scene.materials.get(material as usize) else {
         return Vec3::ZERO;
     };
+    let wo = -dir;
     let ng = if hit.ng.dot(wo) < 0.0 {
         -hit.ng
     } else {
         hit.ng
     };
-    let ns = if hit.ns.dot(ng) < 0.0 {
-        -hit.ns
-    } else {
-        hit.ns
-    };
-    if mat.is_textured() {
+    let flip = hit.ns.dot(ng) < 0.0;
+    let mut ns = if flip { -hit.ns } else { hit.ns };
+    // Only textured materials pay for the footprint (and normal-mapped ones for the map).
+    let footprint = if mat.is_textured() {
         counts.textured += 1;
+        footprint::uv_footprint(scene, hit, dir)
+    } else {
+        0.0
+    };
+    if let Some(map) = &mat.normal_map {
+        if let Some(mapped) = normal_map::mapped_normal(scene, hit, map, footprint) {
+            let mapped = if flip { -mapped } else { mapped };
+            ns = normal_map::ensure_valid_reflection(ng, wo, mapped);
+        }
     }
     let t = &scene.textures;
     let phong = Phong {
-        diffuse: t.color(mat.diffuse, hit.uv),
-        specular: t.color(mat.specular, hit.uv),
-        shininess: t.scalar(mat.shininess, hit.uv),
+        diffuse: t.color(mat.diffuse, hit.uv, footprint),
+        specular: t.color(mat.specular, hit.uv, footprint),
+        shininess: t.scalar(mat.shininess, hit.uv, footprint),
     };
     if phong.specular != Vec3::ZERO {
         counts.specular += 1;

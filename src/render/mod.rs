@@ -5,11 +5,18 @@
 //! each pixel's value depends only on its own samples (sub-pixel positions from
 //! [`pattern`], random numbers hashed from pixel, sample and seed in [`rng`]), so the image is
 //! bit-identical for any thread count. Cancellation is checked before every tile.
+//!
+//! `render { noise 0.01  max_samples 4096 }` samples each pixel adaptively, in batches, until
+//! the relative standard error of its mean is below the target (see [`estimate`]); every render
+//! also estimates each pixel's standard error ([`render_with_error`]) for `--variance-out`.
 
 pub mod brdf;
 pub mod camera;
+pub mod estimate;
+pub mod footprint;
 pub mod integrator;
 mod mis;
+pub mod normal_map;
 pub mod pattern;
 pub mod rng;
 pub mod sampling;
@@ -19,10 +26,11 @@ pub mod surface;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
-use glam::{Vec2, Vec3};
+use glam::Vec2;
 use rayon::prelude::*;
 
 use self::camera::PinholeCamera;
+use self::estimate::{Accumulator, NoiseStats, PixelEstimate};
 use self::integrator::{radiance, RayCounts};
 use self::rng::Sampler;
 use crate::film::Film;
@@ -57,6 +65,18 @@ pub struct RenderStats {
     pub samples_per_pixel: u32,
     /// Rays by kind, optional feature paths taken, and samples dropped as NaN or infinite.
     pub counts: RayCounts,
+    /// Estimated error of the image, and how adaptive sampling went.
+    pub noise: NoiseStats,
+}
+
+/// A render with its per-pixel error estimate.
+#[derive(Debug, Clone)]
+pub struct Rendered {
+    /// Linear radiance.
+    pub film: Film,
+    /// Standard error of each pixel's mean, per channel (linear RGB).
+    pub std_error: Film,
+    pub stats: RenderStats,
 }
 
 impl RenderStats {
@@ -91,10 +111,34 @@ pub fn render(
     progress: &(dyn Fn(f32) + Sync),
     cancel: &AtomicBool,
 ) -> Result<(Film, RenderStats), Cancelled> {
+    render_with_error(scene, options, progress, cancel).map(|r| (r.film, r.stats))
+}
+
+/// [`render`], also returning each pixel's standard error. Adaptive when the scene's
+/// `noise` is set and `options.spp` is not (an explicit count is a fixed count).
+pub fn render_with_error(
+    scene: &Scene,
+    options: &RenderOptions,
+    progress: &(dyn Fn(f32) + Sync),
+    cancel: &AtomicBool,
+) -> Result<Rendered, Cancelled> {
     let start = Instant::now();
     let (width, height) = (scene.settings.width, scene.settings.height);
     let side = pattern::side_for(options.spp.unwrap_or(scene.settings.samples_per_pixel));
     let offsets = pattern::offsets(side, scene.settings.pattern);
+    let batch_offsets = pattern::offsets(estimate::BATCH_SIDE, scene.settings.pattern);
+    let max_samples = scene
+        .settings
+        .max_samples
+        .unwrap_or(crate::ir::DEFAULT_MAX_SAMPLES);
+    let adaptive = match (scene.settings.noise, options.spp) {
+        (Some(target), None) => Some(Adaptive {
+            target: target as f64,
+            batches: estimate::batches_for(max_samples),
+            offsets: &batch_offsets,
+        }),
+        _ => None,
+    };
     let camera = PinholeCamera::new(&scene.camera, width, height);
     let tiles = tiles(width, height);
     let done = AtomicUsize::new(0);
@@ -102,6 +146,7 @@ pub fn render(
         scene,
         camera,
         offsets: &offsets,
+        adaptive,
     };
     let run_tile = |tile: &Tile| {
         if cancel.load(Ordering::Relaxed) {
@@ -113,7 +158,7 @@ pub fn render(
         Some(out)
     };
     let threads = options.threads.unwrap_or(0);
-    let results: Vec<Option<(Vec<Vec3>, RayCounts)>> =
+    let results: Vec<Option<(Vec<PixelEstimate>, RayCounts)>> =
         match rayon::ThreadPoolBuilder::new().num_threads(threads).build() {
             Ok(pool) => pool.install(|| tiles.par_iter().map(run_tile).collect()),
             // No threads to be had: render on this one (same image, by construction).
@@ -127,25 +172,47 @@ pub fn render(
         return Err(Cancelled);
     }
     let mut film = Film::new(width, height);
+    let mut std_error = Film::new(width, height);
     let mut counts = RayCounts::default();
+    let mut noise = NoiseStats {
+        target: job.adaptive.as_ref().map(|a| a.target as f32),
+        max_samples: job
+            .adaptive
+            .as_ref()
+            .map_or(side * side, |a| a.batches * estimate::BATCH),
+        ..NoiseStats::default()
+    };
     for (tile, result) in tiles.iter().zip(results) {
         let (pixels, c) = result.ok_or(Cancelled)?;
         counts.add(&c);
         let tw = (tile.x1 - tile.x0) as usize;
-        for (k, value) in pixels.into_iter().enumerate() {
-            film.set(tile.x0 + (k % tw) as u32, tile.y0 + (k / tw) as u32, value);
+        for (k, p) in pixels.iter().enumerate() {
+            let (x, y) = (tile.x0 + (k % tw) as u32, tile.y0 + (k / tw) as u32);
+            film.set(x, y, p.mean);
+            std_error.set(x, y, p.std_error);
+            noise.add(p);
         }
     }
+    noise.finish();
+    let samples_per_pixel = match job.adaptive {
+        Some(_) => noise.mean_samples().round() as u32,
+        None => side * side,
+    };
     let stats = RenderStats {
         camera_rays: counts.camera,
         shadow_rays: counts.shadow,
         brdf_rays: counts.brdf,
         wall: start.elapsed(),
         threads: used_threads,
-        samples_per_pixel: side * side,
+        samples_per_pixel,
         counts,
+        noise,
     };
-    Ok((film, stats))
+    Ok(Rendered {
+        film,
+        std_error,
+        stats,
+    })
 }
 
 fn tiles(width: u32, height: u32) -> Vec<Tile> {
@@ -163,14 +230,23 @@ fn tiles(width: u32, height: u32) -> Vec<Tile> {
     out
 }
 
+/// Adaptive sampling's settings for the pixel loop.
+struct Adaptive<'a> {
+    target: f64,
+    batches: u32,
+    /// One batch's sub-pixel positions (a 4×4 pattern).
+    offsets: &'a [Vec2],
+}
+
 struct Job<'a> {
     scene: &'a Scene,
     camera: PinholeCamera,
     offsets: &'a [Vec2],
+    adaptive: Option<Adaptive<'a>>,
 }
 
 impl Job<'_> {
-    fn tile(&self, t: Tile) -> (Vec<Vec3>, RayCounts) {
+    fn tile(&self, t: Tile) -> (Vec<PixelEstimate>, RayCounts) {
         let mut counts = RayCounts::default();
         let mut pixels = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
         for y in t.y0..t.y1 {
@@ -181,23 +257,64 @@ impl Job<'_> {
         (pixels, counts)
     }
 
-    /// Box filter: the plain mean of the pixel's samples.
-    pub fn pixel(&self, x: u32, y: u32, counts: &mut RayCounts) -> Vec3 {
-        let mut sum = Vec3::ZERO;
-        for (s, offset) in self.offsets.iter().enumerate() {
-            let ray = self.camera.ray(Vec2::new(x as f32, y as f32) + *offset);
-            let count = self.offsets.len() as u32;
-            let mut sampler =
-                Sampler::for_pixel_sample(self.scene.settings.seed, x, y, s as u32, count);
+    /// Box filter: the plain mean of the pixel's samples; adaptive batches until its relative
+    /// error reaches the target (decided from this pixel's samples alone).
+    fn pixel(&self, x: u32, y: u32, counts: &mut RayCounts) -> PixelEstimate {
+        let mut acc = Accumulator::default();
+        let Some(a) = &self.adaptive else {
+            self.batch(x, y, 0, self.offsets, &mut acc, counts);
+            return acc.finish(self.offsets.len() as u32, false);
+        };
+        let mut taken = 0;
+        for b in 0..a.batches {
+            self.batch(x, y, b, a.offsets, &mut acc, counts);
+            taken += a.offsets.len() as u32;
+            if b + 1 >= estimate::MIN_BATCHES && acc.relative_error() <= a.target {
+                return acc.finish(taken, false);
+            }
+        }
+        acc.finish(taken, true)
+    }
+
+    /// Batch `batch` of the pixel: one sample at each of `offsets`, with its own
+    /// stratification sets (batch 0 is a fixed-count render's only batch).
+    fn batch(
+        &self,
+        x: u32,
+        y: u32,
+        batch: u32,
+        offsets: &[Vec2],
+        acc: &mut Accumulator,
+        counts: &mut RayCounts,
+    ) {
+        let count = offsets.len() as u32;
+        let seed = self.scene.settings.seed;
+        // Each batch's pattern is shifted (toroidally, which keeps the rotated grid's one
+        // sample per row and column) by its own random offset per pixel (Cranley–Patterson
+        // rotation). A fixed pattern would be a fixed quadrature of the pixel's footprint: its
+        // error at edges never averages out, whatever the seed, and adaptive batches would
+        // sample the same positions again and again.
+        // A single sample stays at the pixel centre: a 1-spp render is a point-sampled image
+        // (sharp, and what closed-form tests of one pixel expect).
+        let shift = if count > 1 {
+            let bits = Sampler::for_batch_sample(seed, x, y, batch, 0, count)
+                .pixel_bits(rng::STREAM_SUBPIXEL);
+            Vec2::new(rng::unit(bits), rng::unit(bits << 24))
+        } else {
+            Vec2::ZERO
+        };
+        for (s, offset) in offsets.iter().enumerate() {
+            let o = (*offset + shift).fract();
+            let ray = self.camera.ray(Vec2::new(x as f32, y as f32) + o);
+            let mut sampler = Sampler::for_batch_sample(seed, x, y, batch, s as u32, count);
             let l = radiance(self.scene, &ray, &mut sampler, counts);
             // A non-finite sample (a degenerate configuration the guards missed) must not
-            // poison the pixel; it is counted for `--stats` instead.
+            // poison the pixel; it is counted for `--stats` instead (and as black in the mean).
             if l.is_finite() {
-                sum += l;
+                acc.add(l);
             } else {
                 counts.nonfinite += 1;
             }
         }
-        sum / self.offsets.len() as f32
     }
 }

@@ -41,12 +41,28 @@ impl Sampler {
 
     /// Sample `index` of the `count` samples of pixel (`px`, `py`).
     pub fn for_pixel_sample(seed: u64, px: u32, py: u32, index: u32, count: u32) -> Sampler {
+        Sampler::for_batch_sample(seed, px, py, 0, index, count)
+    }
+
+    /// Sample `index` of the `count` samples of batch `batch` of pixel (`px`, `py`): each batch
+    /// of adaptive sampling is stratified on its own (its own per-pixel stream), and its sample
+    /// keys follow the previous batches' (batch 0 is [`Sampler::for_pixel_sample`]).
+    pub fn for_batch_sample(
+        seed: u64,
+        px: u32,
+        py: u32,
+        batch: u32,
+        index: u32,
+        count: u32,
+    ) -> Sampler {
+        let count = count.max(1);
+        let global = batch.wrapping_mul(count).wrapping_add(index);
         Sampler {
-            key: sample_key(seed, px, py, index),
+            key: sample_key(seed, px, py, global),
             dim: 0,
-            pixel_key: mix64(sample_key(seed, px, py, u32::MAX) ^ 0x5851_f42d_4c95_7f2d),
-            index: index.min(count.max(1) - 1),
-            count: count.max(1),
+            pixel_key: mix64(sample_key(seed, px, py, u32::MAX - batch) ^ 0x5851_f42d_4c95_7f2d),
+            index: index.min(count - 1),
+            count,
         }
     }
 
@@ -87,6 +103,14 @@ impl Sampler {
 fn sample_key(seed: u64, px: u32, py: u32, sample: u32) -> u64 {
     let pixel = ((py as u64) << 32) | px as u64;
     mix64(mix64(mix64(seed) ^ pixel) ^ (sample as u64).wrapping_add(0x9e37_79b9))
+}
+
+/// The per-pixel stream of adaptive batches' sub-pixel shifts (far from the integrator's).
+pub const STREAM_SUBPIXEL: u64 = 1 << 40;
+
+/// The top 24 bits of `h` as a value in [0, 1).
+pub fn unit(h: u64) -> f32 {
+    to_unit(h)
 }
 
 fn to_unit(h: u64) -> f32 {

@@ -33,6 +33,9 @@ pub struct SurfaceHit {
     /// Texture coordinates: interpolated, or the barycentrics (u, v) when the mesh has none.
     pub uv: Vec2,
     pub surface: Surface,
+    /// The accel's record (distance, barycentrics, instance, triangle), for the texture
+    /// footprint and normal mapping.
+    pub hit: Hit,
     /// Shadow-terminator offsets (world space) for rays leaving on the front (`ng` side) and
     /// the back; zero without vertex normals. See [`terminator_offsets`].
     pub bulge: [Vec3; 2],
@@ -139,6 +142,7 @@ pub fn surface_hit(scene: &Scene, hit: &Hit) -> Option<SurfaceHit> {
         uv,
         surface: scene.surface_of(inst, mesh, hit.prim),
         bulge,
+        hit: *hit,
     })
 }
 

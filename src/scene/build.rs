@@ -8,10 +8,11 @@
 //! to light (see `environment`), and no acceleration structure at all when there are no
 //! triangles.
 
-use std::collections::BTreeSet;
+mod materials;
+
 use std::time::Instant;
 
-use glam::{Affine3A, Mat3, Vec3};
+use glam::{Affine3A, Mat3, Vec3, Vec4};
 
 use super::cache::BuildCache;
 use super::env_load::load_env_map;
@@ -21,15 +22,13 @@ use super::lights::{AreaLight, Light, Lights, PointLight};
 use super::load::load_mesh;
 use super::mesh::TriMesh;
 use super::obj_parts::PartTables;
-use super::texture::{Texture, Textures};
-use super::{
-    BuildError, BuildOptions, BuildTimings, Scene, SceneInstance, Surface, SurfaceMaterial,
-};
+use super::tangents::vertex_tangents;
+use super::{BuildError, BuildOptions, BuildTimings, Scene, SceneInstance, Surface};
 
 use crate::assets::Loader;
 use crate::bvh::{Accel, Instance, MeshRef};
 use crate::diag::{Diagnostic, Severity};
-use crate::ir::{self, ColorInput, EnvSource, ScalarInput, TextureSource};
+use crate::ir::{self, EnvSource};
 use crate::source::{SourceMap, Span};
 
 /// Builds the scene. `_sources` holds the `.scn` files every span points into (diagnostics are
@@ -115,6 +114,7 @@ fn build_with(
     }
     let lights = b.lights(&mut instances, environment, &mut parts);
     b.problems.append(&mut parts.unknown);
+    let tangents = b.uvs_and_tangents();
     let asset_load = assets_start.elapsed();
 
     let mut diags: Vec<Diagnostic> = b.problems.iter().map(BuildError::to_diagnostic).collect();
@@ -158,6 +158,7 @@ fn build_with(
         materials,
         part_surfaces: parts.surfaces,
         textures,
+        tangents,
         lights,
         light_sampling: Default::default(),
         strategy: Default::default(),
@@ -181,86 +182,33 @@ struct Builder<'a> {
 }
 
 impl Builder<'_> {
-    fn materials(&mut self) -> (Vec<SurfaceMaterial>, Textures) {
-        let used: BTreeSet<u32> = self.desc.objects.iter().map(|o| o.material).collect();
-        let mut textures = Textures {
-            slots: vec![None; self.desc.textures.len()],
-        };
-        let mut visited = vec![false; self.desc.textures.len()];
-        for &id in &used {
-            let Some(m) = self.desc.materials.get(id as usize) else {
+    /// Warns about textured objects whose mesh has no UVs, and derives per-vertex tangents for
+    /// the meshes (with UVs) that normal-mapped objects use; empty for every other mesh.
+    fn uvs_and_tangents(&mut self) -> Vec<Vec<Vec4>> {
+        let mut tangents = vec![Vec::new(); self.meshes.len()];
+        for object in &self.desc.objects {
+            let (Some(Some(Some(mesh))), Some(material)) = (
+                self.mesh_slots.get(object.mesh as usize),
+                self.desc.materials.get(object.material as usize),
+            ) else {
                 continue;
             };
-            let mut roots = Vec::new();
-            for input in [m.diffuse, m.specular] {
-                if let ColorInput::Texture(t) = input {
-                    roots.push(t);
-                }
+            let mesh = *mesh as usize;
+            if materials::texture_roots(material).is_empty() {
+                continue;
             }
-            if let ScalarInput::Texture(t) = m.shininess {
-                roots.push(t);
-            }
-            for t in roots {
-                self.texture(t, &mut textures, &mut visited);
-            }
-            if m.normal_map.is_some() {
-                self.problems.push(BuildError::Unsupported {
-                    what: format!("the normal map of material `{}`", m.name),
-                    span: m.span,
-                    help: "normal maps arrive with image textures (issue 4); remove it for now"
-                        .into(),
+            if self.meshes[mesh].uvs.is_empty() {
+                let name = self.desc.meshes.get(object.mesh as usize);
+                self.problems.push(BuildError::NoUvs {
+                    mesh: name.map(|m| m.name.clone()).unwrap_or_default(),
+                    material: material.name.clone(),
+                    span: object.span,
                 });
+            } else if material.normal_map.is_some() && tangents[mesh].is_empty() {
+                tangents[mesh] = vertex_tangents(&self.meshes[mesh]);
             }
         }
-        let materials = self
-            .desc
-            .materials
-            .iter()
-            .map(|m| SurfaceMaterial {
-                diffuse: m.diffuse,
-                specular: m.specular,
-                shininess: m.shininess,
-                ambient: m.ambient,
-            })
-            .collect();
-        (materials, textures)
-    }
-
-    fn texture(&mut self, id: ir::TextureId, out: &mut Textures, visited: &mut [bool]) {
-        let Some(seen) = visited.get_mut(id as usize) else {
-            return;
-        };
-        if std::mem::replace(seen, true) {
-            return;
-        }
-        let Some(t) = self.desc.textures.get(id as usize) else {
-            return;
-        };
-        let resolved = match &t.source {
-            TextureSource::Constant(c) => Texture::Constant(*c),
-            TextureSource::Checker { even, odd, scale } => {
-                for input in [even, odd] {
-                    if let ColorInput::Texture(inner) = input {
-                        self.texture(*inner, out, visited);
-                    }
-                }
-                Texture::Checker {
-                    even: *even,
-                    odd: *odd,
-                    scale: *scale,
-                }
-            }
-            TextureSource::Image { file, .. } => {
-                self.problems.push(BuildError::Unsupported {
-                    what: format!("the image texture `{}`", file.written),
-                    span: file.span,
-                    help: "image textures arrive with issue 4; use a checker or a colour for now"
-                        .into(),
-                });
-                return;
-            }
-        };
-        out.slots[id as usize] = Some(resolved);
+        tangents
     }
 
     /// Constant environments add up; the first image is loaded (a second is an error).

@@ -13,6 +13,10 @@
 //! - the environment map (`light … = environment { image(…) }`), decoded, cleaned, scaled and
 //!   with its sampling table, keyed by path, intensity and rotation and by the content hash of
 //!   the file: an edit elsewhere neither re-reads the image nor rebuilds its table.
+//! - image textures (`texture t = image(…)`), decoded and with their mip pyramid, keyed by
+//!   path, encoding and whether the pyramid was built, and by the content hash of the file: a
+//!   material edit does not reload them. They are shared (`Arc`), so the cache keeps its own
+//!   handle and nothing needs recycling.
 //!
 //! Entries are moved into the new scene (no copy of a 1M-triangle mesh or its BVH); hand the
 //! scene back with [`BuildCache::recycle`] when it is no longer rendered.
@@ -26,12 +30,14 @@ use std::sync::{Arc, Mutex};
 
 use super::env_load::load_env_map;
 use super::environment::EnvMap;
+use super::image_texture::ImageData;
 use super::load::load_mesh;
 use super::mesh::TriMesh;
+use super::texture_load::load_image_texture;
 use super::{BuildError, Scene, SceneInstance};
 use crate::assets::Loader;
 use crate::bvh::{Accel, AccelKind, Instance, MeshRef};
-use crate::ir::{self, AssetPath, MeshSource};
+use crate::ir::{self, AssetPath, MeshSource, TextureEncoding};
 
 /// A hash of file contents (64-bit SipHash with fixed keys: stable within and across runs of
 /// one build of scnc, which is all a cache needs).
@@ -74,6 +80,10 @@ pub struct CacheReport {
     pub accel_built: bool,
     /// Whether an environment map was read and decoded (false: reused or none).
     pub environment_loaded: bool,
+    /// Image textures read and decoded in this build.
+    pub textures_loaded: usize,
+    /// Image textures taken from the cache.
+    pub textures_reused: usize,
 }
 
 impl CacheReport {
@@ -88,6 +98,9 @@ impl CacheReport {
         }
         if self.environment_loaded {
             out.push("environment");
+        }
+        if self.textures_loaded > 0 {
+            out.push("textures");
         }
         out
     }
@@ -109,6 +122,9 @@ struct CachedEnvMap {
     file_hash: Option<u64>,
 }
 
+/// An image texture's file, whether it is sRGB-decoded, and whether it has its pyramid.
+type TextureKey = (PathBuf, bool, bool);
+
 /// Per instance: the mesh, the content hash of its file, and the transform's bits.
 type AccelKey = (AccelKind, Vec<(MeshKey, Option<u64>, [u32; 12])>);
 
@@ -125,6 +141,10 @@ pub struct BuildCache {
     env_map: Option<(EnvKey, CachedEnvMap)>,
     /// The key and file hash of the environment map of the scene built last.
     current_env: Option<(EnvKey, Option<u64>)>,
+    /// Decoded image textures and the content hash of their file.
+    textures: HashMap<TextureKey, (Option<u64>, Arc<ImageData>)>,
+    /// The textures (and file hashes) of the scene built last.
+    current_textures: Vec<(PathBuf, Option<u64>)>,
     report: CacheReport,
 }
 
@@ -145,6 +165,8 @@ impl BuildCache {
                 self.env_map = None;
             }
         }
+        self.textures
+            .retain(|(path, _, _), (h, _)| h.is_some() && hash_of(path) == *h);
     }
 
     /// The files (and their content hashes) of the meshes of the scene built last: the watch
@@ -160,6 +182,11 @@ impl BuildCache {
                 self.current_env
                     .iter()
                     .filter_map(|((p, _, _), h)| Some((p.clone(), (*h)?))),
+            )
+            .chain(
+                self.current_textures
+                    .iter()
+                    .filter_map(|(p, h)| Some((p.clone(), (*h)?))),
             )
             .collect()
     }
@@ -181,6 +208,7 @@ impl BuildCache {
     pub(super) fn begin(&mut self) {
         self.current.clear();
         self.current_env = None;
+        self.current_textures.clear();
         self.last_accel_key = None;
         self.report = CacheReport::default();
     }
@@ -248,6 +276,38 @@ impl BuildCache {
         let file_hash = hashing.last.lock().ok().and_then(|h| *h);
         self.current_env = Some((key, file_hash));
         loaded
+    }
+
+    /// [`load_image_texture`] through the cache: the same file content with the same encoding
+    /// (and pyramid) as in an earlier build is not read again.
+    pub(super) fn load_texture(
+        &mut self,
+        file: &AssetPath,
+        encoding: TextureEncoding,
+        mipmaps: bool,
+        loader: &dyn Loader,
+    ) -> Result<Arc<ImageData>, BuildError> {
+        let key: TextureKey = (
+            file.path.clone(),
+            encoding == TextureEncoding::Srgb,
+            mipmaps,
+        );
+        if let Some((hash, data)) = self.textures.get(&key) {
+            self.report.textures_reused += 1;
+            self.current_textures.push((key.0, *hash));
+            return Ok(data.clone());
+        }
+        let hashing = HashingLoader {
+            inner: loader,
+            last: Mutex::new(None),
+        };
+        let loaded = load_image_texture(file, encoding, mipmaps, &hashing);
+        let file_hash = hashing.last.lock().ok().and_then(|h| *h);
+        self.report.textures_loaded += 1;
+        self.current_textures.push((key.0.clone(), file_hash));
+        let data = loaded?;
+        self.textures.insert(key, (file_hash, data.clone()));
+        Ok(data)
     }
 
     /// The acceleration structure for `instances` over `meshes` (loaded by this build), reused

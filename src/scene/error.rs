@@ -106,6 +106,13 @@ pub enum BuildError {
     #[error("area light `{light}` faces away from everything: all the scene's geometry is behind its one-sided front")]
     #[diagnostic(code(scnc::build::light_faces_away), severity(Warning))]
     LightFacesAway { light: String, span: Span },
+    #[error("mesh `{mesh}` has no UV coordinates, but its material `{material}` is textured")]
+    #[diagnostic(code(scnc::build::no_uvs), severity(Warning))]
+    NoUvs {
+        mesh: String,
+        material: String,
+        span: Span,
+    },
     /// A problem inside an OBJ or MTL file, already a diagnostic with both places: the line
     /// of that file and the path literal in the `.scn` (its code is `scnc::obj::…`).
     #[error("{}", .0.message)]
@@ -134,6 +141,7 @@ impl BuildError {
             BuildError::InvalidPixels { .. } => "scnc::build::invalid_environment_pixels",
             BuildError::BlackEnvironment { .. } => "scnc::build::black_environment",
             BuildError::LightFacesAway { .. } => "scnc::build::light_faces_away",
+            BuildError::NoUvs { .. } => "scnc::build::no_uvs",
             BuildError::NoCamera { .. } => "scnc::build::no_camera",
             BuildError::Obj(d) => d.code,
         }
@@ -146,7 +154,8 @@ impl BuildError {
             | BuildError::EmptyMesh { .. }
             | BuildError::InvalidPixels { .. }
             | BuildError::BlackEnvironment { .. }
-            | BuildError::LightFacesAway { .. } => Severity::Warning,
+            | BuildError::LightFacesAway { .. }
+            | BuildError::NoUvs { .. } => Severity::Warning,
             BuildError::Obj(d) => d.severity,
             _ => Severity::Error,
         }
@@ -167,7 +176,8 @@ impl BuildError {
             | BuildError::ImageTooLarge { span, .. }
             | BuildError::InvalidPixels { span, .. }
             | BuildError::BlackEnvironment { span, .. }
-            | BuildError::LightFacesAway { span, .. } => Some(*span),
+            | BuildError::LightFacesAway { span, .. }
+            | BuildError::NoUvs { span, .. } => Some(*span),
             BuildError::NoCamera { .. } | BuildError::Obj(_) => None,
         }
     }
@@ -185,6 +195,7 @@ impl BuildError {
             BuildError::InvalidPixels { .. } => "this image has invalid pixels",
             BuildError::BlackEnvironment { .. } => "this image is black",
             BuildError::LightFacesAway { .. } => "this light shines away from the scene",
+            BuildError::NoUvs { .. } => "this object",
             BuildError::NoCamera { .. } | BuildError::Obj(_) => "",
         }
     }
@@ -203,11 +214,14 @@ impl BuildError {
             BuildError::Unsupported { help, .. } => Some(help.clone()),
             BuildError::NoCamera { .. } => Some("declare one: `camera main { ... }`".into()),
             BuildError::CorruptImage { .. } => {
-                Some("environment maps are Radiance .hdr, OpenEXR or PFM files".into())
+                Some("images are PNG, JPEG, Radiance .hdr or OpenEXR files (environment maps may also be PFM)".into())
             }
             BuildError::ImageTooLarge { .. } => {
-                Some("downsample the map; texels are looked up without filtering anyway".into())
+                Some("downsample the image; a texture that large costs gigabytes of memory".into())
             }
+            BuildError::NoUvs { .. } => Some(
+                "texture lookups use each triangle's barycentric coordinates instead and a normal map is ignored; give the mesh UVs (`vt` in OBJ files, `uvs [...]` inline) or use a built-in shape".into(),
+            ),
             BuildError::BlackEnvironment { .. } => Some(
                 "check the file's exposure, or remove the light; a constant colour needs no image"
                     .into(),
@@ -312,6 +326,11 @@ mod tests {
             },
             BuildError::BlackEnvironment { written: s(), span },
             BuildError::LightFacesAway { light: s(), span },
+            BuildError::NoUvs {
+                mesh: s(),
+                material: s(),
+                span,
+            },
             BuildError::NoCamera { which: s() },
         ];
         for e in &all {

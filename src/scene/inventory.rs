@@ -8,15 +8,17 @@
 //! No `.scn` syntax of its own.
 
 use std::mem::size_of;
+use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 
+use super::image_texture::ImageData;
 use super::{Light, Scene, Texture};
 
 /// One kind of built structure.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Built {
-    /// Stable short name: `meshes`, `bvh`, `textures`, `light table`, `environment map`,
+    /// Stable short name: `meshes`, `bvh`, `textures`, `tangents`, `light table`, `environment map`,
     /// `environment table`.
     pub what: &'static str,
     /// Human-readable detail (counts, sizes, mip levels).
@@ -91,20 +93,54 @@ impl Scene {
         }
         let textures: Vec<&Texture> = self.textures.slots.iter().flatten().collect();
         if !textures.is_empty() {
-            let (mut constant, mut checker) = (0, 0);
+            let (mut constant, mut checker, mut image) = (0, 0, 0);
+            let mut bytes = textures.len() * size_of::<Texture>();
+            // Images shared by several textures are counted once.
+            let mut seen: Vec<*const ImageData> = Vec::new();
+            let mut images = Vec::new();
             for t in &textures {
                 match t {
                     Texture::Constant(_) => constant += 1,
                     Texture::Checker { .. } => checker += 1,
+                    Texture::Image { data, .. } => {
+                        image += 1;
+                        let ptr = Arc::as_ptr(data);
+                        if !seen.contains(&ptr) {
+                            seen.push(ptr);
+                            bytes += data.bytes();
+                            images.push(format!(
+                                "{}x{} {} mip level{}",
+                                data.width(),
+                                data.height(),
+                                data.levels.len(),
+                                if data.levels.len() == 1 { "" } else { "s" }
+                            ));
+                        }
+                    }
                 }
             }
+            let files = if images.is_empty() {
+                String::new()
+            } else {
+                format!(": {}", images.join(", "))
+            };
             out.push(Built {
                 what: "textures",
                 detail: format!(
-                    "{} built ({constant} constant, {checker} procedural checker; no mip levels)",
-                    textures.len()
+                    "{} built ({constant} constant, {checker} procedural checker, {image} image from {} file{}){files}",
+                    textures.len(),
+                    seen.len(),
+                    if seen.len() == 1 { "" } else { "s" }
                 ),
-                bytes: textures.len() * size_of::<Texture>(),
+                bytes,
+            });
+        }
+        let tangents: usize = self.tangents.iter().map(Vec::len).sum();
+        if tangents > 0 {
+            out.push(Built {
+                what: "tangents",
+                detail: format!("{tangents} per-vertex tangents for normal maps"),
+                bytes: tangents * size_of::<glam::Vec4>(),
             });
         }
         if let Some(table) = &self.lights.by_power {

@@ -4,7 +4,7 @@
 //!
 //! Input syntax this stage gives meaning to: `mesh … = obj(…) | inline {…} | quad | box |
 //! sphere`, `object … { mesh m  material p  transform {…} }`, `light … = point | area |
-//! environment`, `texture … = checker | constant`. Errors are [`BuildError`]s converted to
+//! environment`, `texture … = image | checker | constant`, `normal_map`. Errors are [`BuildError`]s converted to
 //! diagnostics labelled at the path literal or declaration in the `.scn`.
 
 mod build;
@@ -15,17 +15,20 @@ mod env_load;
 pub mod environment;
 mod error;
 mod facing;
+pub mod image_texture;
 mod inventory;
 pub mod lights;
 mod load;
 pub mod mesh;
 mod obj_parts;
 pub mod shapes;
+pub mod tangents;
 pub mod texture;
+mod texture_load;
 
 use std::time::Duration;
 
-use glam::{Affine3A, Mat3, Vec3};
+use glam::{Affine3A, Mat3, Vec3, Vec4};
 
 pub use build::{build, build_cached};
 pub use cache::{BuildCache, CacheReport};
@@ -98,12 +101,16 @@ pub struct SurfaceMaterial {
     pub specular: ir::ColorInput,
     pub shininess: ir::ScalarInput,
     pub ambient: Vec3,
+    /// A tangent-space normal map (applied where the mesh has UVs, hence tangents).
+    pub normal_map: Option<ir::NormalMap>,
 }
 
 impl SurfaceMaterial {
-    /// Whether shading it looks up any texture (else every input is a constant).
+    /// Whether shading it looks up any texture, its normal map included (else every input is a
+    /// constant).
     pub fn is_textured(&self) -> bool {
-        matches!(self.diffuse, ir::ColorInput::Texture(_))
+        self.normal_map.is_some()
+            || matches!(self.diffuse, ir::ColorInput::Texture(_))
             || matches!(self.specular, ir::ColorInput::Texture(_))
             || matches!(self.shininess, ir::ScalarInput::Texture(_))
     }
@@ -147,6 +154,9 @@ pub struct Scene {
     /// Surfaces of OBJ material parts, per placement (see `SceneInstance::part_base`).
     pub part_surfaces: Vec<Surface>,
     pub textures: Textures,
+    /// Per mesh: per-vertex tangents (xyz, and the bitangent's sign in w), derived from UVs
+    /// only for meshes that normal-mapped objects use; empty otherwise.
+    pub tangents: Vec<Vec<Vec4>>,
     pub lights: Lights,
     pub light_sampling: LightSampling,
     /// How direct light from area lights and the environment is sampled (tests switch it).

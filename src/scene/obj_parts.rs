@@ -57,7 +57,7 @@ pub(super) fn parts_of(
                                 "scnc::obj::texture_not_rendered",
                                 format!("`{key} {}` of material `{}` is not rendered yet; its constant colour is used", tex.file, mat.name),
                             )
-                            .help("image textures arrive with issue 4"),
+                            .help("MTL maps are not yet connected to scnc's image textures (`phong::texture_hook`); declare a `texture … = image(…)` material and replace this one with `material NAME mat` in the mesh's block"),
                         };
                         warnings.push(BuildError::Obj(Box::new(
                             d.in_file(line_label(&file, &src.text, tex.at, "this map"))
@@ -177,6 +177,7 @@ impl PartTables {
                         specular: ColorInput::Constant(p.specular),
                         shininess: ScalarInput::Constant(p.shininess),
                         ambient: Vec3::ZERO,
+                        normal_map: None,
                     });
                     Surface::Material(materials.len() as u32 - 1)
                 }

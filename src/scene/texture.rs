@@ -1,12 +1,19 @@
 //! Stage 3/4: material inputs evaluated at a hit's UV.
 //!
-//! Syntax: `texture board = checker { even #ffffff  odd #202020  scale 8 }`, constants, and
-//! `phong { diffuse board  specular 0.4  shininess 64 }`. Image textures (`image("wood.png")`)
-//! are rejected at build time until issue 4 implements them.
+//! Syntax: `texture board = checker { even #ffffff  odd #202020  scale 8 }`, constants,
+//! `texture wood = image("wood.png") { wrap repeat  filter trilinear }` (see `image_texture`),
+//! and `phong { diffuse board  specular 0.4  shininess 64 }`.
+//!
+//! A lookup takes the hit's UV and its footprint: the width of the pixel's ray cone on the
+//! surface, measured in UV units (see `render::footprint`). A trilinear image texture turns it
+//! into a mip level `log2(footprint · √(w·h))`; other textures ignore it.
+
+use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 
-use crate::ir::{ColorInput, ScalarInput};
+use super::image_texture::ImageData;
+use crate::ir::{ColorInput, Filter, ScalarInput, WrapMode};
 
 /// A texture the renderer can evaluate.
 #[derive(Debug, Clone)]
@@ -18,6 +25,13 @@ pub enum Texture {
         even: ColorInput,
         odd: ColorInput,
         scale: f32,
+    },
+    /// An image file's texels, shared (one decode per file and encoding) by every texture
+    /// that names it.
+    Image {
+        data: Arc<ImageData>,
+        wrap: WrapMode,
+        filter: Filter,
     },
 }
 
@@ -32,19 +46,23 @@ pub struct Textures {
 const MAX_NESTING: u32 = 16;
 
 impl Textures {
-    pub fn color(&self, input: ColorInput, uv: Vec2) -> Vec3 {
-        self.color_at_depth(input, uv, 0)
+    /// The colour of `input` at `uv`; `footprint` is the pixel's width in UV units.
+    pub fn color(&self, input: ColorInput, uv: Vec2, footprint: f32) -> Vec3 {
+        self.color_at_depth(input, uv, footprint, 0)
     }
 
     /// A scalar input: a constant, or the red channel of a texture.
-    pub fn scalar(&self, input: ScalarInput, uv: Vec2) -> f32 {
+    pub fn scalar(&self, input: ScalarInput, uv: Vec2, footprint: f32) -> f32 {
         match input {
             ScalarInput::Constant(v) => v,
-            ScalarInput::Texture(id) => self.color_at_depth(ColorInput::Texture(id), uv, 0).x,
+            ScalarInput::Texture(id) => {
+                self.color_at_depth(ColorInput::Texture(id), uv, footprint, 0)
+                    .x
+            }
         }
     }
 
-    fn color_at_depth(&self, input: ColorInput, uv: Vec2, depth: u32) -> Vec3 {
+    fn color_at_depth(&self, input: ColorInput, uv: Vec2, footprint: f32, depth: u32) -> Vec3 {
         let id = match input {
             ColorInput::Constant(c) => return c,
             ColorInput::Texture(id) => id,
@@ -58,7 +76,11 @@ impl Textures {
                 let cell = (uv * *scale).floor();
                 let parity = (cell.x + cell.y).rem_euclid(2.0);
                 let pick = if parity < 0.5 { *even } else { *odd };
-                self.color_at_depth(pick, uv, depth + 1)
+                self.color_at_depth(pick, uv, footprint, depth + 1)
+            }
+            Some(Texture::Image { data, wrap, filter }) => {
+                let lod = footprint.log2() + data.log2_size();
+                data.lookup(uv, *wrap, *filter, lod).truncate()
             }
             None => Vec3::ZERO,
         }
@@ -78,12 +100,15 @@ mod tests {
                 scale: 2.0,
             })],
         };
-        let at = |u, v| t.color(ColorInput::Texture(0), Vec2::new(u, v)).x;
+        let at = |u, v| t.color(ColorInput::Texture(0), Vec2::new(u, v), 0.0).x;
         assert_eq!(at(0.1, 0.1), 1.0);
         assert_eq!(at(0.6, 0.1), 0.0);
         assert_eq!(at(0.6, 0.6), 1.0);
         assert_eq!(at(-0.1, 0.1), 0.0);
-        assert_eq!(t.scalar(ScalarInput::Texture(0), Vec2::new(0.1, 0.6)), 0.0);
+        assert_eq!(
+            t.scalar(ScalarInput::Texture(0), Vec2::new(0.1, 0.6), 0.0),
+            0.0
+        );
     }
 
     #[test]
@@ -95,6 +120,6 @@ mod tests {
                 scale: 1.0,
             })],
         };
-        assert_eq!(t.color(ColorInput::Texture(0), Vec2::ZERO), Vec3::ZERO);
+        assert_eq!(t.color(ColorInput::Texture(0), Vec2::ZERO, 0.0), Vec3::ZERO);
     }
 }

@@ -44,6 +44,9 @@ pub fn settings(width: u32, height: u32, spp: u32) -> RenderSettings {
         exposure: 0.0,
         tonemap: ToneMap::Clamp,
         outputs: Vec::new(),
+        quality: None,
+        noise: None,
+        max_samples: None,
     }
 }
 

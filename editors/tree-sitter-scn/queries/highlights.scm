@@ -59,7 +59,7 @@
 ((block (identifier) @property)
   (#any-of? @property
     "ambient" "camera" "color" "diffuse" "encoding" "even" "exposure" "eye"
-    "filter" "fov" "image" "indices" "intensity" "light_samples" "look_at" "material"
+    "filter" "fov" "image" "indices" "intensity" "light_samples" "look_at" "max_samples" "noise" "quality" "max_samples" "noise" "quality" "material"
     "matrix" "mesh" "mtl" "normal_green" "normal_map" "normal_strength" "normals" "odd" "output"
     "position" "positions" "quad" "radiance" "radius" "resolution" "rotate" "samples"
     "scale" "seed" "segments" "shininess" "size" "specular" "target" "tonemap"
@@ -67,18 +67,18 @@
 ((block (identifier) @constant.builtin)
   (#any-of? @constant.builtin
     "bilinear" "clamp" "data" "directx" "filmic" "grid" "mirror" "nearest"
-    "opengl" "reinhard" "repeat" "rgss" "srgb" "trilinear"))
+    "opengl" "reinhard" "draft" "preview" "final" "draft" "preview" "final" "repeat" "rgss" "srgb" "trilinear"))
 ((identifier) @boolean
   (#any-of? @boolean "true" "false"))
 ((block (identifier) @variable)
   (#not-any-of? @variable
     "ambient" "camera" "color" "diffuse" "encoding" "even" "exposure" "eye"
-    "filter" "fov" "image" "indices" "intensity" "light_samples" "look_at" "material"
+    "filter" "fov" "image" "indices" "intensity" "light_samples" "look_at" "max_samples" "noise" "quality" "max_samples" "noise" "quality" "material"
     "matrix" "mesh" "mtl" "normal_green" "normal_map" "normal_strength" "normals" "odd" "output"
     "position" "positions" "quad" "radiance" "radius" "resolution" "rotate" "samples"
     "scale" "seed" "segments" "shininess" "size" "specular" "target" "tonemap"
     "translate" "two_sided" "up" "uvs" "visible" "wrap" "bilinear" "clamp"
-    "data" "directx" "filmic" "grid" "mirror" "nearest" "opengl" "reinhard"
+    "data" "directx" "filmic" "grid" "mirror" "nearest" "opengl" "reinhard" "draft" "preview" "final" "draft" "preview" "final"
     "repeat" "rgss" "srgb" "trilinear" "true" "false"))
 ((binary_expression (identifier) @variable)
   (#not-any-of? @variable "true" "false"))
