@@ -63,6 +63,7 @@ fn inline_mesh(positions: Vec<Vec3>, indices: Vec<[u32; 3]>) -> Mesh {
             indices,
         }),
         span: span(),
+        obj: Default::default(),
     }
 }
 

@@ -54,6 +54,7 @@ impl Fixture {
             name: "m".into(),
             source: MeshSource::Obj(self.asset("meshes/m.obj")),
             span: self.literal("meshes/m.obj"),
+            obj: Default::default(),
         }];
         desc.materials = vec![phong("grey", Vec3::splat(0.5), 0.0, 1.0)];
         desc.objects = vec![

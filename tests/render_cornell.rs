@@ -20,6 +20,7 @@ fn inline(name: &str, positions: &[[f32; 3]], indices: &[[u32; 3]]) -> Mesh {
             indices: indices.to_vec(),
         }),
         span: span(),
+        obj: Default::default(),
     }
 }
 

@@ -48,6 +48,7 @@ fn flat_sphere() -> Mesh {
             indices: m.triangles,
         }),
         span: span(),
+        obj: Default::default(),
     }
 }
 

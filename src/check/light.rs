@@ -122,6 +122,7 @@ impl Checker<'_> {
                         indices: vec![[0, 1, 2], [0, 2, 3]],
                     }),
                     span: q.key_span,
+                    obj: ir::ObjOptions::default(),
                 }));
                 Some(id)
             }),

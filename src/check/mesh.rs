@@ -24,9 +24,10 @@ impl Checker<'_> {
             span: d.span,
         };
         let body = d.body.as_ref().unwrap_or(&empty);
+        let mut obj = ir::ObjOptions::default();
         let source = match (d.ctor.name.name.as_str(), &d.ctor.args) {
             ("obj", Some(args)) => {
-                self.split(body, "an obj mesh", &[], &[], &[]);
+                obj = self.obj_options(body);
                 match args.as_slice() {
                     [one] => ir::MeshSource::Obj(self.asset_path(one)?),
                     _ => {
@@ -112,7 +113,53 @@ impl Checker<'_> {
             name: d.name.name.clone(),
             source,
             span: d.name.span,
+            obj,
         })
+    }
+
+    /// `{ material "name in the OBJ" SCN_MATERIAL ...  mtl false }` of an `obj(...)` mesh.
+    fn obj_options(&mut self, body: &Block) -> ir::ObjOptions {
+        let props = self.split(
+            body,
+            "an obj mesh",
+            super::vocabulary::OBJ_MESH_KEYS,
+            &["material"],
+            &[],
+        );
+        let mut out = ir::ObjOptions::default();
+        for p in props.props.iter().filter(|p| p.key == "material") {
+            let Some(v) = self.arity(p, 2, "material \"name in the OBJ\" NAME") else {
+                continue;
+            };
+            let obj_name = match &v[0].kind {
+                ExprKind::Str(s) => s.clone(),
+                ExprKind::Name(n) => n.clone(),
+                _ => {
+                    self.error(
+                        Diagnostic::error(
+                            "scnc::check::expected_name",
+                            "expected the OBJ's material name (`usemtl` name)",
+                        )
+                        .at(v[0].span, "not a name")
+                        .help("quote names with spaces: `material \"roof tiles\" slate`"),
+                    );
+                    continue;
+                }
+            };
+            if let Some(m) = self.resolve(super::names::Namespace::Material, v[1]) {
+                out.materials.push(ir::ObjMaterialOverride {
+                    obj_name,
+                    material: m as u32,
+                    span: p.span(),
+                });
+            }
+        }
+        if let Some(p) = props.get("mtl") {
+            if let Some(b) = self.one(p, "mtl false").and_then(|e| self.boolean(e)) {
+                out.ignore_mtl = !b;
+            }
+        }
+        out
     }
 
     fn positive_size(&mut self, e: &Expr, min: f64) -> Option<()> {

@@ -131,7 +131,17 @@ impl Checker<'_> {
 
     /// Drops unused declarations (with a warning each), remaps indices, builds the IR.
     pub(super) fn finish(&mut self, render: Option<ir::RenderSettings>) -> Option<ir::SceneDesc> {
-        // Materials: used if an object uses them.
+        // Materials: used if an object uses them, or a used OBJ mesh replaces one of its own.
+        for (i, m) in self.meshes.iter().enumerate() {
+            if !self.used_meshes.get(i).copied().unwrap_or(true) {
+                continue;
+            }
+            for o in m.iter().flat_map(|m| &m.obj.materials) {
+                if let Some(u) = self.used_materials.get_mut(o.material as usize) {
+                    *u = true;
+                }
+            }
+        }
         let mut material_map = vec![None; self.materials.len()];
         let mut used_textures = vec![false; self.textures.len()];
         for i in 0..self.materials.len() {
@@ -180,7 +190,10 @@ impl Checker<'_> {
                 self.warn_unused(Namespace::Mesh, i);
                 continue;
             }
-            if let Some(m) = self.meshes[i].take() {
+            if let Some(mut m) = self.meshes[i].take() {
+                for o in &mut m.obj.materials {
+                    o.material = material_map[o.material as usize].unwrap_or(0);
+                }
                 *slot = Some(meshes.len() as u32);
                 meshes.push(m);
             }

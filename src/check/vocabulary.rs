@@ -39,6 +39,7 @@ pub const SPHERE_KEYS: &[&str] = &["radius", "segments"];
 pub const QUAD_KEYS: &[&str] = &["size"];
 pub const BOX_KEYS: &[&str] = &["size"];
 pub const OBJECT_KEYS: &[&str] = &["material"];
+pub const OBJ_MESH_KEYS: &[&str] = &["material", "mtl"];
 pub const LIGHT_KINDS: &[&str] = &["point", "area", "environment"];
 pub const POINT_LIGHT_KEYS: &[&str] = &["position", "intensity"];
 pub const AREA_LIGHT_KEYS: &[&str] = &["quad", "mesh", "radiance", "two_sided", "samples"];
@@ -74,6 +75,7 @@ pub const PROPERTY_KEYS: &[&[&str]] = &[
     QUAD_KEYS,
     BOX_KEYS,
     OBJECT_KEYS,
+    OBJ_MESH_KEYS,
     POINT_LIGHT_KEYS,
     AREA_LIGHT_KEYS,
     ENVIRONMENT_LIGHT_KEYS,

@@ -3,6 +3,7 @@
 //! Syntax:
 //! ```text
 //! mesh tall  = obj("meshes/tall.obj")
+//! mesh house = obj("house.obj") { material "roof tiles" slate  material glass clear  mtl false }
 //! mesh tri   = inline { positions [(0,0,0) (1,0,0) (0,1,0)]  indices [0 1 2] }
 //! mesh ball  = sphere { radius 1  segments 48 }
 //! mesh floor = quad { size (2, 2) }
@@ -32,6 +33,31 @@ pub struct Mesh {
     pub name: String,
     pub source: MeshSource,
     pub span: Span,
+    /// Options of an `obj(...)` mesh (default for every other kind).
+    #[serde(skip_serializing_if = "ObjOptions::is_default")]
+    pub obj: ObjOptions,
+}
+
+/// `obj("f.obj") { material OBJ_NAME SCN_MATERIAL ...  mtl false }`.
+#[derive(Debug, Clone, Serialize, Default, PartialEq)]
+pub struct ObjOptions {
+    /// `mtl false`: the OBJ's material libraries are not read.
+    pub ignore_mtl: bool,
+    /// Faces whose `usemtl` is `obj_name` use the scene's material instead of the MTL's.
+    pub materials: Vec<ObjMaterialOverride>,
+}
+
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct ObjMaterialOverride {
+    pub obj_name: String,
+    pub material: super::MaterialId,
+    pub span: Span,
+}
+
+impl ObjOptions {
+    pub fn is_default(&self) -> bool {
+        *self == ObjOptions::default()
+    }
 }
 
 #[derive(Debug, Clone, Serialize)]

@@ -20,7 +20,9 @@ mod texture;
 pub use camera::Camera;
 pub use light::{AreaLight, EnvSource, EnvironmentLight, Light, PointLight};
 pub use material::{ColorInput, GreenConvention, Material, NormalMap, ScalarInput};
-pub use mesh::{AssetPath, BuiltinShape, InlineMesh, Mesh, MeshSource};
+pub use mesh::{
+    AssetPath, BuiltinShape, InlineMesh, Mesh, MeshSource, ObjMaterialOverride, ObjOptions,
+};
 pub use render_settings::{
     Output, OutputFormat, Quality, RenderSettings, SamplePattern, ToneMap, DEFAULT_MAX_SAMPLES,
 };

@@ -341,7 +341,7 @@ impl Shading<'_> {
             return None;
         }
         counts.shadow += 1;
-        let origin = offset_origin(self.hit.p, self.hit.p_error, self.ng, wi);
+        let origin = self.hit.ray_origin(self.ng, wi);
         let ray = Ray::segment(origin, target - origin, 1.0 - shorten);
         let blocked = self.scene.accel.as_ref().is_some_and(|a| a.any_hit(&ray));
         (!blocked).then_some(cos)

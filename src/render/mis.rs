@@ -25,7 +25,6 @@ use super::integrator::{RayCounts, Shading, STREAM_BRDF, STREAM_ENVIRONMENT};
 use super::rng::Sampler;
 use super::sampling::power_heuristic;
 use super::spherical;
-use super::surface::offset_origin;
 use crate::geom::Ray;
 use crate::scene::{AreaLight, DirectStrategy, Environment, Light, LightSampling, Surface};
 
@@ -72,7 +71,7 @@ impl Shading<'_> {
     /// Whether anything lies in direction `wi` (unit) from the shading point.
     fn blocked(&self, wi: Vec3, counts: &mut RayCounts) -> bool {
         counts.shadow += 1;
-        let origin = offset_origin(self.hit.p, self.hit.p_error, self.ng, wi);
+        let origin = self.hit.ray_origin(self.ng, wi);
         let ray = Ray::new(origin, wi);
         self.scene.accel.as_ref().is_some_and(|a| a.any_hit(&ray))
     }
@@ -108,7 +107,7 @@ impl Shading<'_> {
                 continue;
             }
             counts.brdf += 1;
-            let origin = offset_origin(self.hit.p, self.hit.p_error, self.ng, wi);
+            let origin = self.hit.ray_origin(self.ng, wi);
             let ray = Ray::new(origin, wi);
             let hit = self.scene.accel.as_ref().and_then(|a| a.closest_hit(&ray));
             let (radiance, light_density) = match hit {

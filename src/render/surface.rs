@@ -36,6 +36,53 @@ pub struct SurfaceHit {
     /// The accel's record (distance, barycentrics, instance, triangle), for the texture
     /// footprint and normal mapping.
     pub hit: Hit,
+    /// Shadow-terminator offsets (world space) for rays leaving on the front (`ng` side) and
+    /// the back; zero without vertex normals. See [`terminator_offsets`].
+    pub bulge: [Vec3; 2],
+}
+
+impl SurfaceHit {
+    /// Where a ray leaving in direction `w` starts: the hit point moved onto the smooth surface
+    /// the vertex normals describe (on `w`'s side), then offset by the rounding bound along
+    /// `n` (the geometric normal, possibly flipped to face the viewer).
+    pub fn ray_origin(&self, n: Vec3, w: Vec3) -> Vec3 {
+        let bulge = if w.dot(self.ng) >= 0.0 {
+            self.bulge[0]
+        } else {
+            self.bulge[1]
+        };
+        let p = self.p + bulge;
+        offset_origin(p, self.p_error + gamma(4) * p.abs(), n, w)
+    }
+}
+
+/// Hanika, "Hacking the Shadow Terminator" (Ray Tracing Gems II, 2021, ch. 4): a low-poly mesh
+/// with interpolated normals is shaded as if smooth, but shadow rays leave the flat triangle,
+/// so points near the terminator are shadowed by the neighbouring faces (the blocky
+/// terminator). Moving the ray origin to the barycentric mean of the hit projected onto each
+/// vertex's tangent plane (only where it lies below that plane) puts it on the smooth surface
+/// the normals describe: `p' = p − Σ bᵢ·min(0, (p − pᵢ)·nᵢ)·nᵢ`. Flat meshes (all `nᵢ = ng`)
+/// get zero. Returns the offsets for the front (normals as given) and the back (negated).
+pub fn terminator_offsets(
+    p: Vec3,
+    b: [f32; 3],
+    corners: [Vec3; 3],
+    normals: [Vec3; 3],
+) -> [Vec3; 2] {
+    let side = |sign: f32| {
+        let mut off = Vec3::ZERO;
+        for i in 0..3 {
+            let n = sign * normals[i];
+            let d = (p - corners[i]).dot(n).min(0.0);
+            off -= b[i] * d * n;
+        }
+        if off.is_finite() {
+            off
+        } else {
+            Vec3::ZERO
+        }
+    };
+    [side(1.0), side(-1.0)]
 }
 
 /// Rebuilds the hit from the scene's own data. `None` only if the accel returned an index the
@@ -66,12 +113,15 @@ pub fn surface_hit(scene: &Scene, hit: &Hit) -> Option<SurfaceHit> {
     let ng = (world[1] - world[0])
         .cross(world[2] - world[0])
         .normalize_or_zero();
+    let mut bulge = [Vec3::ZERO; 2];
     let ns = if mesh.normals.is_empty() {
         ng
     } else {
         let n = tri.map(|i| mesh.normals[i as usize]);
         let n_obj = b[0] * n[0] + b[1] * n[1] + b[2] * n[2];
         let n_world = (inst.normal_from_object * n_obj).normalize_or_zero();
+        let corner_normals = n.map(|v| (inst.normal_from_object * v).normalize_or_zero());
+        bulge = terminator_offsets(p, b, world, corner_normals);
         if n_world == Vec3::ZERO {
             ng
         } else {
@@ -90,7 +140,8 @@ pub fn surface_hit(scene: &Scene, hit: &Hit) -> Option<SurfaceHit> {
         ng,
         ns,
         uv,
-        surface: inst.surface,
+        surface: scene.surface_of(inst, mesh, hit.prim),
+        bulge,
         hit: *hit,
     })
 }
@@ -137,6 +188,22 @@ mod tests {
         assert!(next_down(1.0) < 1.0);
         assert!(next_up(0.0) > 0.0 && next_up(-0.0) > 0.0);
         assert!(next_up(-1.0) > -1.0);
+    }
+
+    #[test]
+    fn terminator_offset_is_zero_when_flat_and_lifts_onto_the_smooth_surface() {
+        let c = [Vec3::ZERO, Vec3::X, Vec3::Y];
+        let b = [1.0 / 3.0; 3];
+        let p = (c[0] + c[1] + c[2]) / 3.0;
+        assert_eq!(terminator_offsets(p, b, c, [Vec3::Z; 3]), [Vec3::ZERO; 2]);
+        // Normals splayed outwards, as on a coarse sphere: the point moves out, mostly along +z.
+        let n = c.map(|q| (q - p + Vec3::Z).normalize());
+        let [front, back] = terminator_offsets(p, b, c, n);
+        assert!(
+            front.z > 0.01 && front.z > 2.0 * front.truncate().length(),
+            "{front}"
+        );
+        assert_eq!(back, Vec3::ZERO);
     }
 
     #[test]

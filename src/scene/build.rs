@@ -21,6 +21,7 @@ use super::facing::{faces_away, world_boxes};
 use super::lights::{AreaLight, Light, Lights, PointLight};
 use super::load::load_mesh;
 use super::mesh::TriMesh;
+use super::obj_parts::PartTables;
 use super::tangents::vertex_tangents;
 use super::{BuildError, BuildOptions, BuildTimings, Scene, SceneInstance, Surface};
 
@@ -82,7 +83,8 @@ fn build_with(
         });
     }
 
-    let (materials, textures) = b.materials();
+    let (mut materials, textures) = b.materials();
+    let mut parts = PartTables::default();
     let environment = b.environment();
 
     let assets_start = Instant::now();
@@ -94,15 +96,24 @@ fn build_with(
         if let Some((world_from_object, normal_from_object)) =
             b.transform(object.world_from_object, object.span)
         {
+            let part_base = parts.place(
+                &b.meshes[mesh as usize],
+                &desc.meshes[object.mesh as usize].obj,
+                object.material,
+                world_from_object,
+                &mut materials,
+            );
             instances.push(SceneInstance {
                 mesh,
                 surface: Surface::Material(object.material),
                 world_from_object,
                 normal_from_object,
+                part_base,
             });
         }
     }
-    let lights = b.lights(&mut instances, environment);
+    let lights = b.lights(&mut instances, environment, &mut parts);
+    b.problems.append(&mut parts.unknown);
     let tangents = b.uvs_and_tangents();
     let asset_load = assets_start.elapsed();
 
@@ -145,6 +156,7 @@ fn build_with(
         instances,
         accel,
         materials,
+        part_surfaces: parts.surfaces,
         textures,
         tangents,
         lights,
@@ -257,6 +269,7 @@ impl Builder<'_> {
         &mut self,
         instances: &mut Vec<SceneInstance>,
         mut env: Option<Environment>,
+        parts: &mut PartTables,
     ) -> Lights {
         let boxes = world_boxes(&self.meshes, instances);
         let mut lights = Vec::new();
@@ -295,6 +308,7 @@ impl Builder<'_> {
                             surface: Surface::Emitter(lights.len() as u32),
                             world_from_object,
                             normal_from_object,
+                            part_base: super::obj_parts::NO_PARTS,
                         });
                         lights.push(Light::Area(area));
                     }
@@ -302,6 +316,7 @@ impl Builder<'_> {
                 ir::Light::Environment(_) => {}
             }
         }
+        parts.attach(&mut lights);
         let mut radius = 0.0;
         if let Some(e) = env.as_mut().filter(|_| !instances.is_empty()) {
             e.prepare_sampling();

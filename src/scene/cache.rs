@@ -51,15 +51,16 @@ pub fn content_hash(bytes: &[u8]) -> u64 {
 /// What a mesh was made from, without its span (moving a declaration is not a change).
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
 pub enum MeshKey {
-    Obj(PathBuf),
+    /// The OBJ's path, and whether its MTL libraries were skipped (`mtl false`).
+    Obj(PathBuf, bool),
     /// Hash of the serialised inline arrays or built-in shape parameters.
     Data(u64),
 }
 
 impl MeshKey {
-    pub fn of(source: &MeshSource) -> MeshKey {
+    pub fn of(source: &MeshSource, obj: &crate::ir::ObjOptions) -> MeshKey {
         let json = match source {
-            MeshSource::Obj(path) => return MeshKey::Obj(path.path.clone()),
+            MeshSource::Obj(path) => return MeshKey::Obj(path.path.clone(), obj.ignore_mtl),
             MeshSource::Inline(m) => serde_json::to_vec(m),
             MeshSource::Builtin(shape) => serde_json::to_vec(shape),
         };
@@ -156,7 +157,7 @@ impl BuildCache {
     /// unknown) differs from the one it was loaded from.
     pub fn retain_current(&mut self, hash_of: impl Fn(&Path) -> Option<u64>) {
         self.meshes.retain(|key, m| match key {
-            MeshKey::Obj(path) => m.file_hash.is_some() && hash_of(path) == m.file_hash,
+            MeshKey::Obj(path, _) => m.file_hash.is_some() && hash_of(path) == m.file_hash,
             MeshKey::Data(_) => true,
         });
         if let Some(((path, _, _), cached)) = &self.env_map {
@@ -174,7 +175,7 @@ impl BuildCache {
         self.current
             .iter()
             .filter_map(|(k, h)| match (k, h) {
-                (MeshKey::Obj(p), Some(h)) => Some((p.clone(), *h)),
+                (MeshKey::Obj(p, _), Some(h)) => Some((p.clone(), *h)),
                 _ => None,
             })
             .chain(
@@ -228,7 +229,7 @@ impl BuildCache {
         decl: &ir::Mesh,
         loader: &dyn Loader,
     ) -> Result<(TriMesh, Vec<BuildError>), BuildError> {
-        let key = MeshKey::of(&decl.source);
+        let key = MeshKey::of(&decl.source, &decl.obj);
         if let Some(hit) = self.meshes.remove(&key) {
             self.report.meshes_reused += 1;
             self.current.push((key, hit.file_hash));

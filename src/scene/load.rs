@@ -36,18 +36,22 @@ pub fn load_mesh(
                     }
                 }
             })?;
-            let loaded = load_obj(&path.path, bytes.clone(), true, loader).map_err(|e| {
-                BuildError::Obj(Box::new(report::error_diagnostic(
-                    &e,
-                    &path.written,
-                    &bytes,
-                    Some(path.span),
-                )))
-            })?;
+            let loaded = load_obj(&path.path, bytes.clone(), !decl.obj.ignore_mtl, loader)
+                .map_err(|e| {
+                    BuildError::Obj(Box::new(report::error_diagnostic(
+                        &e,
+                        &path.written,
+                        &bytes,
+                        Some(path.span),
+                    )))
+                })?;
             obj_warnings = report::warning_diagnostics(&loaded, &path.written, Some(path.span))
                 .into_iter()
                 .map(|d| BuildError::Obj(Box::new(d)))
                 .collect();
+            let (parts, part_of, map_warnings) =
+                super::obj_parts::parts_of(&loaded, &path.written, path.span, loader);
+            obj_warnings.extend(map_warnings);
             let obj = loaded.model;
             pre_dropped = obj.stats.degenerate_dropped;
             let mesh = TriMesh {
@@ -55,6 +59,8 @@ pub fn load_mesh(
                 normals: obj.normals,
                 uvs: obj.uvs,
                 triangles: obj.triangles,
+                parts,
+                part_of,
             };
             (mesh, path.span, path.written.clone())
         }
@@ -64,6 +70,7 @@ pub fn load_mesh(
                 normals: m.normals.clone(),
                 uvs: m.uvs.clone(),
                 triangles: m.indices.clone(),
+                ..TriMesh::default()
             };
             (mesh, decl.span, decl.name.clone())
         }

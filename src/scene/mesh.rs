@@ -18,6 +18,18 @@ pub struct TriMesh {
     pub normals: Vec<Vec3>,
     pub uvs: Vec<Vec2>,
     pub triangles: Vec<[u32; 3]>,
+    /// Material parts of an OBJ mesh (its `usemtl` names): empty for every other mesh.
+    pub parts: Vec<MeshPart>,
+    /// Per triangle, its index into `parts` (empty: every triangle is part 0).
+    pub part_of: Vec<u32>,
+}
+
+/// One material of an OBJ mesh: its MTL material mapped to Phong, or `None` to use the
+/// placing `object`'s material (faces before any `usemtl`, or a name no library defines).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshPart {
+    pub name: Option<String>,
+    pub phong: Option<crate::assets::obj::phong::ObjPhong>,
 }
 
 /// Why a mesh cannot be rendered (converted into a `BuildError` by the caller, who knows the
@@ -74,7 +86,21 @@ impl TriMesh {
         }
         let total = self.triangles.len();
         let positions = &self.positions;
-        self.triangles.retain(|t| !is_degenerate(positions, *t));
+        if self.part_of.len() == total {
+            let mut kept = 0;
+            for i in 0..total {
+                if !is_degenerate(positions, self.triangles[i]) {
+                    self.triangles[kept] = self.triangles[i];
+                    self.part_of[kept] = self.part_of[i];
+                    kept += 1;
+                }
+            }
+            self.triangles.truncate(kept);
+            self.part_of.truncate(kept);
+        } else {
+            self.part_of.clear();
+            self.triangles.retain(|t| !is_degenerate(positions, *t));
+        }
         let dropped = total - self.triangles.len();
         // Every triangle left has finite corners; a non-finite position is now unused.
         for p in &mut self.positions {

@@ -20,6 +20,7 @@ mod inventory;
 pub mod lights;
 mod load;
 pub mod mesh;
+mod obj_parts;
 pub mod shapes;
 pub mod tangents;
 pub mod texture;
@@ -35,7 +36,7 @@ pub use environment::{EnvMap, EnvSample, Environment};
 pub use error::BuildError;
 pub use inventory::{Built, Features};
 pub use lights::{AreaLight, Light, Lights, Picked, PointLight};
-pub use mesh::TriMesh;
+pub use mesh::{MeshPart, TriMesh};
 pub use texture::{Texture, Textures};
 
 use crate::bvh::{Accel, AccelKind, AccelStats};
@@ -88,6 +89,9 @@ pub struct SceneInstance {
     pub world_from_object: Affine3A,
     /// The inverse transpose of the linear part: maps object normals to world normals.
     pub normal_from_object: Mat3,
+    /// Where this placement's OBJ part surfaces start in `Scene::part_surfaces`
+    /// (`u32::MAX`: the mesh has no parts; every triangle is `surface`).
+    pub part_base: u32,
 }
 
 /// The material model the renderer evaluates (`ir::Material` without what is not supported).
@@ -147,6 +151,8 @@ pub struct Scene {
     /// `None` when the scene has no triangles: every ray misses without any work.
     pub accel: Option<Accel>,
     pub materials: Vec<SurfaceMaterial>,
+    /// Surfaces of OBJ material parts, per placement (see `SceneInstance::part_base`).
+    pub part_surfaces: Vec<Surface>,
     pub textures: Textures,
     /// Per mesh: per-vertex tangents (xyz, and the bitangent's sign in w), derived from UVs
     /// only for meshes that normal-mapped objects use; empty otherwise.

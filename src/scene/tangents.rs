@@ -122,6 +122,7 @@ mod tests {
             normals: vec![Vec3::Y; 4],
             uvs: vec![Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y],
             triangles: vec![[0, 2, 1], [0, 3, 2]],
+            ..TriMesh::default()
         };
         for t in vertex_tangents(&mesh) {
             assert!((t - Vec4::new(1.0, 0.0, 0.0, 1.0)).length() < 1e-6, "{t}");
@@ -158,6 +159,7 @@ mod tests {
             normals: Vec::new(),
             uvs: vec![Vec2::ZERO; 3],
             triangles: vec![[0, 1, 2]],
+            ..TriMesh::default()
         };
         for t in vertex_tangents(&mesh) {
             assert!(t.is_finite() && (t.truncate().length() - 1.0).abs() < 1e-5);

@@ -67,6 +67,7 @@ pub fn builtin(name: &str, shape: BuiltinShape) -> Mesh {
         name: name.into(),
         source: MeshSource::Builtin(shape),
         span: span(),
+        obj: Default::default(),
     }
 }
 

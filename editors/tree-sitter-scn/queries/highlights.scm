@@ -60,7 +60,7 @@
   (#any-of? @property
     "ambient" "camera" "color" "diffuse" "encoding" "even" "exposure" "eye"
     "filter" "fov" "image" "indices" "intensity" "light_samples" "look_at" "max_samples" "noise" "quality" "max_samples" "noise" "quality" "material"
-    "matrix" "mesh" "normal_green" "normal_map" "normal_strength" "normals" "odd" "output"
+    "matrix" "mesh" "mtl" "normal_green" "normal_map" "normal_strength" "normals" "odd" "output"
     "position" "positions" "quad" "radiance" "radius" "resolution" "rotate" "samples"
     "scale" "seed" "segments" "shininess" "size" "specular" "target" "tonemap"
     "translate" "two_sided" "up" "uvs" "visible" "wrap"))
@@ -74,7 +74,7 @@
   (#not-any-of? @variable
     "ambient" "camera" "color" "diffuse" "encoding" "even" "exposure" "eye"
     "filter" "fov" "image" "indices" "intensity" "light_samples" "look_at" "max_samples" "noise" "quality" "max_samples" "noise" "quality" "material"
-    "matrix" "mesh" "normal_green" "normal_map" "normal_strength" "normals" "odd" "output"
+    "matrix" "mesh" "mtl" "normal_green" "normal_map" "normal_strength" "normals" "odd" "output"
     "position" "positions" "quad" "radiance" "radius" "resolution" "rotate" "samples"
     "scale" "seed" "segments" "shininess" "size" "specular" "target" "tonemap"
     "translate" "two_sided" "up" "uvs" "visible" "wrap" "bilinear" "clamp"

@@ -19,7 +19,7 @@ syn keyword scnKeyword render transform
 
 " Property keys of every block kind (the checker decides which block takes which).
 syn keyword scnKey contained ambient camera color diffuse encoding even exposure eye filter fov
-syn keyword scnKey contained image indices intensity light_samples look_at material matrix mesh normal_green normal_map
+syn keyword scnKey contained image indices intensity light_samples look_at material matrix mesh mtl normal_green normal_map
 syn keyword scnKey contained normal_strength normals odd output position positions quad radiance radius resolution
 syn keyword scnKey contained rotate samples scale seed segments shininess size specular target tonemap
 syn keyword scnKey contained translate two_sided up uvs visible wrap

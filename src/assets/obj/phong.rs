@@ -89,8 +89,9 @@ pub fn phong_of(m: &MtlMaterial) -> ObjPhong {
     }
 }
 
-/// The one place where MTL texture maps will become image textures once scnc has them (branch
-/// `tex`): today every map keeps its material's constant, and the caller warns once per map.
+/// The one place where MTL texture maps are to become image textures (scnc has them now, see
+/// `scene/texture_load.rs`; connecting them is the next step): today every map keeps its
+/// material's constant, and the caller warns once per map.
 /// Returns whether the map was used.
 pub fn texture_hook(_map: &str, _tex: &TexRef) -> bool {
     false

@@ -1,0 +1,212 @@
+//! Stage 3: the materials of an OBJ mesh in the scene (`mesh m = obj("m.obj")` whose faces
+//! say `usemtl`). Each `usemtl` name is a [`MeshPart`]; its MTL material becomes a Phong
+//! material of the scene, or, with `Ke` > 0, an area light over that part's triangles (per
+//! placement). Faces with no material, or one no library defines, use the placing `object`'s
+//! material; `mesh m = obj("m.obj") { material "roof tiles" slate }` replaces an OBJ material
+//! by a scene material (by `usemtl` name), `mtl false` skips the libraries altogether. The renderer asks [`Scene::surface_of`] which surface a triangle has.
+
+use glam::{Affine3A, Vec3};
+
+use super::lights::{AreaLight, Light};
+use super::mesh::{MeshPart, TriMesh};
+use super::{BuildError, Scene, SceneInstance, Surface, SurfaceMaterial};
+use crate::assets::obj::phong::{phong_of, texture_hook};
+use crate::assets::obj::report::{line_label, mtl_display_name};
+use crate::assets::obj::LoadedObj;
+use crate::assets::Loader;
+use crate::diag::Diagnostic;
+use crate::ir::{ColorInput, ObjOptions, ScalarInput};
+use crate::source::Span;
+
+/// `SceneInstance::part_base` of an instance whose mesh has no parts.
+pub const NO_PARTS: u32 = u32::MAX;
+
+/// The parts of a loaded OBJ and each triangle's part (empty when the whole mesh uses the
+/// object's material), plus a warning per material whose texture maps are not rendered.
+pub(super) fn parts_of(
+    obj: &LoadedObj,
+    written: &str,
+    span: Span,
+    loader: &dyn Loader,
+) -> (Vec<MeshPart>, Vec<u32>, Vec<BuildError>) {
+    let m = &obj.model;
+    let mut parts: Vec<MeshPart> = Vec::new();
+    let mut warnings = Vec::new();
+    let mut run_part = Vec::with_capacity(m.runs.len());
+    for run in &m.runs {
+        let index = match parts.iter().position(|p| p.name == run.name) {
+            Some(i) => i,
+            None => {
+                let found = run.name.as_deref().and_then(|n| obj.find_material(n));
+                let phong = found.map(|(l, i)| {
+                    let src = &obj.mtls[l];
+                    let mat = &src.library.materials[i];
+                    let phong = phong_of(mat);
+                    for (key, tex) in &phong.maps {
+                        let file = mtl_display_name(written, &src.written);
+                        // Read through the Loader, so `scnc watch` watches it too.
+                        let dir = src.path.parent().unwrap_or(std::path::Path::new(""));
+                        let d = match loader.read(&dir.join(&tex.file)) {
+                            Err(e) => Diagnostic::warning(
+                                "scnc::obj::missing_texture",
+                                format!("cannot read the texture `{}` of material `{}` ({e}); its constant colour is used", tex.file, mat.name),
+                            )
+                            .help("texture paths in an MTL are relative to the MTL file"),
+                            Ok(_) if texture_hook(key, tex) => continue,
+                            Ok(_) => Diagnostic::warning(
+                                "scnc::obj::texture_not_rendered",
+                                format!("`{key} {}` of material `{}` is not rendered yet; its constant colour is used", tex.file, mat.name),
+                            )
+                            .help("MTL maps are not yet connected to scnc's image textures (`phong::texture_hook`); declare a `texture … = image(…)` material and replace this one with `material NAME mat` in the mesh's block"),
+                        };
+                        warnings.push(BuildError::Obj(Box::new(
+                            d.in_file(line_label(&file, &src.text, tex.at, "this map"))
+                                .at(span, "the OBJ file named here"),
+                        )));
+                    }
+                    phong
+                });
+                parts.push(MeshPart {
+                    name: run.name.clone(),
+                    phong,
+                });
+                parts.len() - 1
+            }
+        };
+        run_part.push(index as u32);
+    }
+    if parts.iter().all(|p| p.name.is_none()) {
+        return (Vec::new(), Vec::new(), warnings);
+    }
+    let mut part_of = Vec::new();
+    if parts.len() > 1 {
+        part_of.reserve_exact(m.triangles.len());
+        for (i, run) in m.runs.iter().enumerate() {
+            let end = m.runs.get(i + 1).map_or(m.triangles.len(), |r| r.start);
+            part_of.resize(end.max(part_of.len()), run_part[i]);
+            debug_assert!(run.start <= end);
+        }
+    }
+    (parts, part_of, warnings)
+}
+
+/// Surfaces of OBJ parts, per placement, and the area lights of their emissive parts.
+#[derive(Debug, Default)]
+pub(super) struct PartTables {
+    pub surfaces: Vec<Surface>,
+    /// (index into `surfaces`, the light): numbered once every other light is known.
+    pending: Vec<(usize, AreaLight)>,
+    /// `.scn` overrides naming no `usemtl` of their OBJ (each reported once).
+    pub unknown: Vec<BuildError>,
+}
+
+impl PartTables {
+    /// Surfaces for one placement of `mesh`; returns its `part_base` ([`NO_PARTS`] if none).
+    /// `options` are the mesh's `.scn` overrides (`obj("f.obj") { material NAME mat }`).
+    pub fn place(
+        &mut self,
+        mesh: &TriMesh,
+        options: &ObjOptions,
+        object_material: u32,
+        world_from_object: Affine3A,
+        materials: &mut Vec<SurfaceMaterial>,
+    ) -> u32 {
+        for o in &options.materials {
+            let known = mesh
+                .parts
+                .iter()
+                .any(|p| p.name.as_deref() == Some(&o.obj_name));
+            if !known && !self.unknown.iter().any(|u| matches!(u, BuildError::Obj(d) if d.primary.as_ref().is_some_and(|l| l.span == o.span))) {
+                let names: Vec<String> = mesh.parts.iter().filter_map(|p| p.name.clone()).map(|n| format!("`{n}`")).collect();
+                self.unknown.push(BuildError::Obj(Box::new(
+                    Diagnostic::warning(
+                        "scnc::obj::unknown_override",
+                        format!("the OBJ has no material `{}` to replace", o.obj_name),
+                    )
+                    .at(o.span, "no `usemtl` of this name")
+                    .help(if names.is_empty() {
+                        "the OBJ uses no `usemtl` at all".to_string()
+                    } else {
+                        format!("its materials are {}", names.join(", "))
+                    }),
+                )));
+            }
+        }
+        let overridden = |p: &MeshPart| {
+            options
+                .materials
+                .iter()
+                .find(|o| p.name.as_deref() == Some(&o.obj_name))
+                .map(|o| o.material)
+        };
+        if mesh
+            .parts
+            .iter()
+            .all(|p| p.phong.is_none() && overridden(p).is_none())
+        {
+            return NO_PARTS;
+        }
+        let base = self.surfaces.len() as u32;
+        for (i, part) in mesh.parts.iter().enumerate() {
+            let surface = match (&part.phong, overridden(part)) {
+                (_, Some(m)) => Surface::Material(m),
+                (None, None) => Surface::Material(object_material),
+                (Some(p), None) if p.is_emitter() => {
+                    let world: Vec<[Vec3; 3]> = mesh
+                        .triangles
+                        .iter()
+                        .enumerate()
+                        .filter(|(t, _)| mesh.part_of.get(*t).map_or(0, |&p| p as usize) == i)
+                        .map(|(_, tri)| {
+                            tri.map(|v| {
+                                world_from_object.transform_point3(mesh.positions[v as usize])
+                            })
+                        })
+                        .collect();
+                    match AreaLight::new(p.emission, false, 1, world) {
+                        Some(light) => {
+                            self.pending.push((self.surfaces.len(), light));
+                            Surface::Emitter(0)
+                        }
+                        None => Surface::Material(object_material),
+                    }
+                }
+                (Some(p), None) => {
+                    materials.push(SurfaceMaterial {
+                        diffuse: ColorInput::Constant(p.diffuse),
+                        specular: ColorInput::Constant(p.specular),
+                        shininess: ScalarInput::Constant(p.shininess),
+                        ambient: Vec3::ZERO,
+                        normal_map: None,
+                    });
+                    Surface::Material(materials.len() as u32 - 1)
+                }
+            };
+            self.surfaces.push(surface);
+        }
+        base
+    }
+
+    /// Appends the emissive parts' lights after `lights` and points their surfaces at them.
+    pub fn attach(&mut self, lights: &mut Vec<Light>) {
+        for (slot, light) in self.pending.drain(..) {
+            self.surfaces[slot] = Surface::Emitter(lights.len() as u32);
+            lights.push(Light::Area(light));
+        }
+    }
+}
+
+impl Scene {
+    /// What triangle `prim` of instance `inst` (placing `mesh`) is: its OBJ part's surface, or
+    /// the instance's.
+    pub fn surface_of(&self, inst: &SceneInstance, mesh: &TriMesh, prim: u32) -> Surface {
+        if inst.part_base == NO_PARTS {
+            return inst.surface;
+        }
+        let part = mesh.part_of.get(prim as usize).copied().unwrap_or(0);
+        self.part_surfaces
+            .get((inst.part_base + part) as usize)
+            .copied()
+            .unwrap_or(inst.surface)
+    }
+}
