@@ -22,15 +22,22 @@ fn mtl_parts_become_materials_and_an_area_light() {
     };
     assert_eq!(lamp.radiance, glam::Vec3::new(6.0, 6.0, 5.0));
     assert!((lamp.total_area - 1.44).abs() < 1e-4);
-    // trim and stone (the .scn's), then blue (the MTL's; `white floor` is replaced by stone).
+    // trim and stone (the .scn's), then blue and bricks (the MTL's; `white floor` is replaced
+    // by stone).
     assert_eq!(desc.materials.len(), 2);
-    assert_eq!(scene.materials.len(), desc.materials.len() + 1);
+    assert_eq!(scene.materials.len(), desc.materials.len() + 2);
     let inst = &scene.instances[0];
     let mesh = &scene.meshes[inst.mesh as usize];
     let names: Vec<Option<&str>> = mesh.parts.iter().map(|p| p.name.as_deref()).collect();
     assert_eq!(
         names,
-        [None, Some("white floor"), Some("lamp"), Some("blue")]
+        [
+            None,
+            Some("white floor"),
+            Some("lamp"),
+            Some("blue"),
+            Some("bricks")
+        ]
     );
     let surfaces: Vec<Surface> = (0..mesh.triangles.len() as u32)
         .map(|t| scene.surface_of(inst, mesh, t))
@@ -39,7 +46,14 @@ fn mtl_parts_become_materials_and_an_area_light() {
     assert!(surfaces[..4].iter().all(|&s| s == Surface::Material(0)));
     assert_eq!(surfaces[4], Surface::Material(1));
     assert_eq!(surfaces[6], Surface::Emitter(1));
-    assert_eq!(*surfaces.last().expect("ball"), Surface::Material(2));
+    assert_eq!(
+        surfaces[surfaces.len() - 3],
+        Surface::Material(2),
+        "the ball"
+    );
+    // The brick wall (the last two triangles): map_Kd and norm made it a textured material.
+    assert_eq!(*surfaces.last().expect("wall"), Surface::Material(3));
+    assert!(scene.materials[3].is_textured() && scene.materials[3].normal_map.is_some());
 }
 
 fn build_mem(scn: &str, obj: &str, mtl: &str) -> (scnc::scene::Scene, usize) {
@@ -87,7 +101,7 @@ fn scn_overrides_replace_obj_materials_by_name_and_mtl_false_skips_the_library()
 }
 
 #[test]
-fn mtl_texture_maps_warn_at_the_mtl_line_missing_or_not() {
+fn mtl_texture_maps_warn_at_the_mtl_line_when_missing_or_corrupt() {
     let mut loader = MemLoader::new();
     let scn = format!("{HEAD}mesh o = obj(\"m.obj\")\nobject o {{ material m }}\n");
     loader.insert("s.scn", scn.into_bytes());
@@ -105,11 +119,79 @@ fn mtl_texture_maps_warn_at_the_mtl_line_missing_or_not() {
     assert_eq!(
         got,
         [
-            ("scnc::obj::texture_not_rendered", 3),
+            ("scnc::obj::bad_texture", 3),
             ("scnc::obj::missing_texture", 6)
         ]
     );
     assert!(loader
         .recorded()
         .contains(&std::path::PathBuf::from("gone.png")));
+}
+
+/// A 2 x 1 PNG: a red texel and a green one.
+fn two_texel_png() -> Vec<u8> {
+    let img = image::RgbImage::from_fn(2, 1, |x, _| {
+        if x == 0 {
+            image::Rgb([255, 0, 0])
+        } else {
+            image::Rgb([0, 255, 0])
+        }
+    });
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut bytes, image::ImageFormat::Png)
+        .expect("encodes");
+    bytes.into_inner()
+}
+
+#[test]
+fn mtl_colour_and_normal_maps_become_image_textures() {
+    use scnc::ir::ColorInput;
+    let obj = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nusemtl painted\nf 1/1 2/2 3/3\n";
+    let mtl = "newmtl painted\nKd 0.5 0.5 0.5\nmap_Kd t.png\nmap_Ks t.png\nmap_Ns t.png\nnorm -bm 0.5 n.png\n";
+    let mut loader = MemLoader::new();
+    let scn = format!("{HEAD}mesh o = obj(\"m.obj\")\nobject o {{ material m }}\n");
+    loader.insert("s.scn", scn.into_bytes());
+    loader.insert("m.obj", obj.as_bytes().to_vec());
+    loader.insert("m.mtl", mtl.as_bytes().to_vec());
+    loader.insert("t.png", two_texel_png());
+    loader.insert("n.png", two_texel_png());
+    let compiled = compile_file(Path::new("s.scn"), &loader);
+    let desc = compiled.scene.expect("compiles");
+    let scene = build(&desc, &compiled.sources, &loader, &BuildOptions::default()).expect("builds");
+    // map_Ns keeps the constant exponent, with one warning at its MTL line.
+    let got: Vec<(&str, u32)> = scene
+        .warnings
+        .iter()
+        .map(|w| (w.code, w.external.first().map_or(0, |e| e.line)))
+        .collect();
+    assert_eq!(got, [("scnc::obj::texture_not_rendered", 5)]);
+    let inst = &scene.instances[0];
+    let mesh = &scene.meshes[inst.mesh as usize];
+    let Surface::Material(m) = scene.surface_of(inst, mesh, 0) else {
+        panic!("the part is a material");
+    };
+    let material = &scene.materials[m as usize];
+    let (ColorInput::Texture(kd), ColorInput::Texture(ks)) = (material.diffuse, material.specular)
+    else {
+        panic!("map_Kd and map_Ks are textures: {material:?}");
+    };
+    let normal = material.normal_map.as_ref().expect("norm is a normal map");
+    assert_eq!(normal.strength, 0.5);
+    // Colour maps are sRGB-decoded: the left texel is pure red, the right pure green.
+    let red = scene
+        .textures
+        .color(ColorInput::Texture(kd), glam::Vec2::new(0.25, 0.5), 1e-6);
+    let green = scene
+        .textures
+        .color(ColorInput::Texture(ks), glam::Vec2::new(0.75, 0.5), 1e-6);
+    assert!((red - glam::Vec3::X).abs().max_element() < 1e-3, "{red}");
+    assert!(
+        (green - glam::Vec3::Y).abs().max_element() < 1e-3,
+        "{green}"
+    );
+    // One decode per (file, encoding) is not required across parts, but the normal map is
+    // data and the colour maps are not: three image slots beyond the scene's own textures.
+    assert_eq!(scene.textures.slots.iter().flatten().count(), 3);
+    // The mesh has UVs and a normal-mapped part: tangents were derived for it.
+    assert!(!scene.tangents[inst.mesh as usize].is_empty());
 }

@@ -311,3 +311,71 @@ fn textures_are_loaded_once_and_a_material_edit_does_not_reload_them() {
     assert_ne!(image(&s), first);
     cache.recycle(s);
 }
+
+/// The diffuse colour of the first material an OBJ part brought (after the scene's own).
+fn part_diffuse(scene: &Scene) -> glam::Vec3 {
+    match scene.materials.last().map(|m| m.diffuse) {
+        Some(scnc::ir::ColorInput::Constant(c)) => c,
+        other => panic!("a constant diffuse: {other:?}"),
+    }
+}
+
+#[test]
+fn an_mtl_edit_reloads_its_obj_and_an_unchanged_one_does_not() {
+    let obj = "mtllib tri.mtl\nv -2 -1 0\nv 2 -1 0\nv 0 2 0\nusemtl paint\nf 1 2 3\n";
+    let files = |kd: &str| {
+        let mut l = loader(obj);
+        l.insert(
+            "meshes/tri.mtl",
+            format!("newmtl paint\nKd {kd}\n").as_bytes(),
+        );
+        l
+    };
+    let hashes = |l: &MemLoader| {
+        let h = |p: &str| {
+            l.read(std::path::Path::new(p))
+                .map(|b| content_hash(&b))
+                .ok()
+        };
+        (h("meshes/tri.obj"), h("meshes/tri.mtl"))
+    };
+    let mut cache = BuildCache::new();
+    let red = files("0.5 0 0");
+    let first = build(&text(1.0, 0.0), &red, Some(&mut cache));
+    assert_eq!(part_diffuse(&first), glam::Vec3::new(0.5, 0.0, 0.0));
+    // The MTL is in the watch set even on builds that do not read it again.
+    assert!(cache
+        .files_in_use()
+        .iter()
+        .any(|(p, _)| p.ends_with("meshes/tri.mtl")));
+    cache.recycle(first);
+
+    let (obj_hash, red_hash) = hashes(&red);
+    cache.retain_current(|p| {
+        if p.ends_with("tri.mtl") {
+            red_hash
+        } else {
+            obj_hash
+        }
+    });
+    let again = build(&text(1.0, 0.0), &red, Some(&mut cache));
+    assert_eq!(cache.report().meshes_loaded, 0, "nothing changed");
+    cache.recycle(again);
+
+    let blue = files("0 0 0.5");
+    let (_, blue_hash) = hashes(&blue);
+    cache.retain_current(|p| {
+        if p.ends_with("tri.mtl") {
+            blue_hash
+        } else {
+            obj_hash
+        }
+    });
+    let edited = build(&text(1.0, 0.0), &blue, Some(&mut cache));
+    assert_eq!(
+        cache.report().meshes_loaded,
+        1,
+        "the OBJ is reloaded for its MTL"
+    );
+    assert_eq!(part_diffuse(&edited), glam::Vec3::new(0.0, 0.0, 0.5));
+}

@@ -13,7 +13,7 @@ use glam::Vec3;
 use serde_json::{json, Value};
 
 use super::report::{print_diagnostic_list, DiagnosticFormat, JsonTo};
-use crate::assets::obj::phong::{default_phong, phong_of, ObjPhong};
+use crate::assets::obj::phong::{default_phong, phong_of, renders_map, ObjPhong};
 use crate::assets::obj::report::{error_diagnostic, mtl_display_name, warning_diagnostics};
 use crate::assets::obj::{load_obj, LoadedObj};
 use crate::assets::{FsLoader, Loader};
@@ -97,7 +97,7 @@ fn mapping(p: &ObjPhong) -> Value {
         "shininess": p.shininess,
         "emission": v3(p.emission),
         "adjusted": p.adjusted,
-        "maps_not_rendered": p.maps.iter().map(|(k, t)| json!({"map": k, "file": t.file})).collect::<Vec<_>>(),
+        "maps": p.maps.iter().map(|(k, t)| json!({"map": k, "file": t.file, "rendered": renders_map(k)})).collect::<Vec<_>>(),
     })
 }
 
@@ -208,6 +208,18 @@ fn human(s: &Value) -> String {
             "    {name} ({} triangles, {from}): {} diffuse {} specular {} shininess {} emission {}\n",
             m["triangles"], map["kind"].as_str().unwrap_or(""), f(&map["diffuse"]), f(&map["specular"]), map["shininess"], f(&map["emission"])
         );
+        for t in map["maps"].as_array().into_iter().flatten() {
+            let how = if t["rendered"] == true {
+                "rendered"
+            } else {
+                "not rendered: constant kept"
+            };
+            out += &format!(
+                "      {} {} ({how})\n",
+                t["map"].as_str().unwrap_or(""),
+                t["file"].as_str().unwrap_or("")
+            );
+        }
     }
     out += &format!(
         "  warnings   {}\n",

@@ -83,7 +83,7 @@ fn build_with(
         });
     }
 
-    let (mut materials, textures) = b.materials();
+    let (mut materials, mut textures) = b.materials();
     let mut parts = PartTables::default();
     let environment = b.environment();
 
@@ -102,6 +102,7 @@ fn build_with(
                 object.material,
                 world_from_object,
                 &mut materials,
+                &mut textures,
             );
             instances.push(SceneInstance {
                 mesh,
@@ -194,17 +195,30 @@ impl Builder<'_> {
                 continue;
             };
             let mesh = *mesh as usize;
-            if materials::texture_roots(material).is_empty() {
+            // The object's material, or the MTL maps of the OBJ's parts.
+            let mapped_part = self.meshes[mesh].parts.iter().find(|p| !p.maps.is_empty());
+            if materials::texture_roots(material).is_empty() && mapped_part.is_none() {
                 continue;
             }
+            let normal_mapped = material.normal_map.is_some()
+                || self.meshes[mesh]
+                    .parts
+                    .iter()
+                    .any(|p| p.maps.normal.is_some());
             if self.meshes[mesh].uvs.is_empty() {
                 let name = self.desc.meshes.get(object.mesh as usize);
+                let material = match mapped_part {
+                    Some(p) if materials::texture_roots(material).is_empty() => {
+                        p.name.clone().unwrap_or_default()
+                    }
+                    _ => material.name.clone(),
+                };
                 self.problems.push(BuildError::NoUvs {
                     mesh: name.map(|m| m.name.clone()).unwrap_or_default(),
-                    material: material.name.clone(),
+                    material,
                     span: object.span,
                 });
-            } else if material.normal_map.is_some() && tangents[mesh].is_empty() {
+            } else if normal_mapped && tangents[mesh].is_empty() {
                 tangents[mesh] = vertex_tangents(&self.meshes[mesh]);
             }
         }

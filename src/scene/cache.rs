@@ -111,6 +111,9 @@ struct CachedMesh {
     mesh: TriMesh,
     /// Content hash of the OBJ file it came from (`None` for inline and built-in meshes).
     file_hash: Option<u64>,
+    /// The other files its load read (an OBJ's MTL libraries and their texture maps) and
+    /// their content hashes (`None`: could not be read): a change to any reloads the mesh.
+    deps: Vec<(PathBuf, Option<u64>)>,
 }
 
 /// An environment map's file, intensity bits and rotation bits.
@@ -135,6 +138,8 @@ pub struct BuildCache {
     accel: Option<(AccelKey, Accel)>,
     /// Keys (and file hashes) of the meshes of the scene built last, in its mesh order.
     current: Vec<(MeshKey, Option<u64>)>,
+    /// Per entry of `current`: the other files its load read (see [`CachedMesh::deps`]).
+    current_deps: Vec<Vec<(PathBuf, Option<u64>)>>,
     /// The key of the accel the current build made or reused (stored with it on give-back).
     last_accel_key: Option<AccelKey>,
     /// The environment map kept between builds (at most one image per scene).
@@ -157,7 +162,11 @@ impl BuildCache {
     /// unknown) differs from the one it was loaded from.
     pub fn retain_current(&mut self, hash_of: impl Fn(&Path) -> Option<u64>) {
         self.meshes.retain(|key, m| match key {
-            MeshKey::Obj(path, _) => m.file_hash.is_some() && hash_of(path) == m.file_hash,
+            MeshKey::Obj(path, _) => {
+                m.file_hash.is_some()
+                    && hash_of(path) == m.file_hash
+                    && m.deps.iter().all(|(p, h)| hash_of(p) == *h)
+            }
             MeshKey::Data(_) => true,
         });
         if let Some(((path, _, _), cached)) = &self.env_map {
@@ -178,6 +187,12 @@ impl BuildCache {
                 (MeshKey::Obj(p, _), Some(h)) => Some((p.clone(), *h)),
                 _ => None,
             })
+            .chain(
+                self.current_deps
+                    .iter()
+                    .flatten()
+                    .filter_map(|(p, h)| Some((p.clone(), (*h)?))),
+            )
             .chain(
                 self.current_env
                     .iter()
@@ -207,6 +222,7 @@ impl BuildCache {
 
     pub(super) fn begin(&mut self) {
         self.current.clear();
+        self.current_deps.clear();
         self.current_env = None;
         self.current_textures.clear();
         self.last_accel_key = None;
@@ -215,8 +231,16 @@ impl BuildCache {
 
     /// Returns meshes (in the order they were loaded in the current build) and an accel.
     pub(super) fn give_back(&mut self, meshes: Vec<TriMesh>, accel: Option<Accel>) {
-        for ((key, file_hash), mesh) in self.current.iter().cloned().zip(meshes) {
-            self.meshes.insert(key, CachedMesh { mesh, file_hash });
+        let deps = std::mem::take(&mut self.current_deps);
+        for (((key, file_hash), deps), mesh) in self.current.iter().cloned().zip(deps).zip(meshes) {
+            self.meshes.insert(
+                key,
+                CachedMesh {
+                    mesh,
+                    file_hash,
+                    deps,
+                },
+            );
         }
         if let (Some(accel), Some(key)) = (accel, self.last_accel_key.take()) {
             self.accel = Some((key, accel));
@@ -233,16 +257,18 @@ impl BuildCache {
         if let Some(hit) = self.meshes.remove(&key) {
             self.report.meshes_reused += 1;
             self.current.push((key, hit.file_hash));
+            self.current_deps.push(hit.deps);
             return Ok((hit.mesh, Vec::new()));
         }
         let hashing = HashingLoader {
             inner: loader,
-            last: Mutex::new(None),
+            last: Mutex::new(Vec::new()),
         };
         let loaded = load_mesh(decl, &hashing)?;
         self.report.meshes_loaded += 1;
-        let file_hash = hashing.last.lock().ok().and_then(|h| *h);
+        let (file_hash, deps) = hashing.first_and_rest();
         self.current.push((key, file_hash));
+        self.current_deps.push(deps);
         Ok(loaded)
     }
 
@@ -269,11 +295,11 @@ impl BuildCache {
         }
         let hashing = HashingLoader {
             inner: loader,
-            last: Mutex::new(None),
+            last: Mutex::new(Vec::new()),
         };
         let loaded = load_env_map(file, intensity, rotation_y_rad, &hashing);
         self.report.environment_loaded = true;
-        let file_hash = hashing.last.lock().ok().and_then(|h| *h);
+        let file_hash = hashing.first_and_rest().0;
         self.current_env = Some((key, file_hash));
         loaded
     }
@@ -299,10 +325,10 @@ impl BuildCache {
         }
         let hashing = HashingLoader {
             inner: loader,
-            last: Mutex::new(None),
+            last: Mutex::new(Vec::new()),
         };
         let loaded = load_image_texture(file, encoding, mipmaps, &hashing);
-        let file_hash = hashing.last.lock().ok().and_then(|h| *h);
+        let file_hash = hashing.first_and_rest().0;
         self.report.textures_loaded += 1;
         self.current_textures.push((key.0.clone(), file_hash));
         let data = loaded?;
@@ -352,16 +378,30 @@ impl BuildCache {
 /// material libraries are read after it and do not change its geometry).
 struct HashingLoader<'a> {
     inner: &'a dyn Loader,
-    last: Mutex<Option<u64>>,
+    /// Every read, in order, with its content hash (`None`: the read failed).
+    last: Mutex<Vec<(PathBuf, Option<u64>)>>,
+}
+
+impl HashingLoader<'_> {
+    /// The hash of the first file read (the asset itself), and every other file read.
+    fn first_and_rest(&self) -> (Option<u64>, Vec<(PathBuf, Option<u64>)>) {
+        let mut reads = self.last.lock().map(|r| r.clone()).unwrap_or_default();
+        if reads.is_empty() {
+            return (None, reads);
+        }
+        let first = reads.remove(0);
+        (first.1, reads)
+    }
 }
 
 impl Loader for HashingLoader<'_> {
     fn read(&self, path: &Path) -> std::io::Result<Arc<[u8]>> {
-        let bytes = self.inner.read(path)?;
-        if let Ok(mut last) = self.last.lock() {
-            last.get_or_insert_with(|| content_hash(&bytes));
+        let result = self.inner.read(path);
+        if let Ok(mut reads) = self.last.lock() {
+            let hash = result.as_ref().ok().map(|b| content_hash(b));
+            reads.push((path.to_path_buf(), hash));
         }
-        Ok(bytes)
+        result
     }
 
     fn recorded(&self) -> Vec<PathBuf> {

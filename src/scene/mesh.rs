@@ -30,6 +30,42 @@ pub struct TriMesh {
 pub struct MeshPart {
     pub name: Option<String>,
     pub phong: Option<crate::assets::obj::phong::ObjPhong>,
+    /// The MTL texture maps that render (decoded once, when the OBJ is loaded).
+    pub maps: PartMaps,
+}
+
+/// Decoded MTL maps of one part: `map_Kd` and `map_Ks` (sRGB colour, replacing `Kd` / `Ks`)
+/// and `norm` (a tangent-space normal map, data, strength from `-bm`). Mipmapped: they are
+/// filtered trilinearly with repeat wrapping, as MTL's default `-clamp off` says.
+#[derive(Debug, Clone, Default)]
+pub struct PartMaps {
+    pub diffuse: Option<std::sync::Arc<super::image_texture::ImageData>>,
+    pub specular: Option<std::sync::Arc<super::image_texture::ImageData>>,
+    pub normal: Option<(std::sync::Arc<super::image_texture::ImageData>, f32)>,
+}
+
+impl PartialEq for PartMaps {
+    fn eq(&self, o: &PartMaps) -> bool {
+        use std::sync::Arc;
+        let same = |a: &Option<Arc<_>>, b: &Option<Arc<_>>| match (a, b) {
+            (None, None) => true,
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            _ => false,
+        };
+        same(&self.diffuse, &o.diffuse)
+            && same(&self.specular, &o.specular)
+            && match (&self.normal, &o.normal) {
+                (None, None) => true,
+                (Some((a, x)), Some((b, y))) => Arc::ptr_eq(a, b) && x == y,
+                _ => false,
+            }
+    }
+}
+
+impl PartMaps {
+    pub fn is_empty(&self) -> bool {
+        self.diffuse.is_none() && self.specular.is_none() && self.normal.is_none()
+    }
 }
 
 /// Why a mesh cannot be rendered (converted into a `BuildError` by the caller, who knows the

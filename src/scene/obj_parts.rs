@@ -10,12 +10,20 @@ use glam::{Affine3A, Vec3};
 use super::lights::{AreaLight, Light};
 use super::mesh::{MeshPart, TriMesh};
 use super::{BuildError, Scene, SceneInstance, Surface, SurfaceMaterial};
-use crate::assets::obj::phong::{phong_of, texture_hook};
+use std::sync::Arc;
+
+use super::image_texture::ImageData;
+use super::mesh::PartMaps;
+use super::texture::{Texture, Textures};
+use crate::assets::obj::phong::{phong_of, renders_map};
 use crate::assets::obj::report::{line_label, mtl_display_name};
 use crate::assets::obj::LoadedObj;
+use crate::assets::texture_image::{decode_texture, ImageError, MAX_TEXTURE_SIDE};
 use crate::assets::Loader;
 use crate::diag::Diagnostic;
-use crate::ir::{ColorInput, ObjOptions, ScalarInput};
+use crate::ir::{
+    ColorInput, Filter, GreenConvention, NormalMap, ObjOptions, ScalarInput, WrapMode,
+};
 use crate::source::Span;
 
 /// `SceneInstance::part_base` of an instance whose mesh has no parts.
@@ -38,6 +46,7 @@ pub(super) fn parts_of(
             Some(i) => i,
             None => {
                 let found = run.name.as_deref().and_then(|n| obj.find_material(n));
+                let mut maps = PartMaps::default();
                 let phong = found.map(|(l, i)| {
                     let src = &obj.mtls[l];
                     let mat = &src.library.materials[i];
@@ -52,12 +61,29 @@ pub(super) fn parts_of(
                                 format!("cannot read the texture `{}` of material `{}` ({e}); its constant colour is used", tex.file, mat.name),
                             )
                             .help("texture paths in an MTL are relative to the MTL file"),
-                            Ok(_) if texture_hook(key, tex) => continue,
-                            Ok(_) => Diagnostic::warning(
+                            Ok(_) if !renders_map(key) => Diagnostic::warning(
                                 "scnc::obj::texture_not_rendered",
-                                format!("`{key} {}` of material `{}` is not rendered yet; its constant colour is used", tex.file, mat.name),
+                                format!("`{key} {}` of material `{}` is not rendered; its constant is used", tex.file, mat.name),
                             )
-                            .help("MTL maps are not yet connected to scnc's image textures (`phong::texture_hook`); declare a `texture … = image(…)` material and replace this one with `material NAME mat` in the mesh's block"),
+                            .help("scnc renders `map_Kd`, `map_Ks` and `norm` (normal maps); for others declare a `texture … = image(…)` and replace this material with `material NAME mat` in the mesh's block"),
+                            Ok(bytes) => match decode_texture(&bytes, *key != "norm") {
+                                Ok(img) => {
+                                    let data = Arc::new(ImageData::new(img.width, img.height, img.texels, true));
+                                    match *key {
+                                        "map_Kd" => maps.diffuse = Some(data),
+                                        "map_Ks" => maps.specular = Some(data),
+                                        _ => maps.normal = Some((data, tex.bump_multiplier.clamp(0.0, 1.0))),
+                                    }
+                                    continue;
+                                }
+                                Err(e) => Diagnostic::warning(
+                                    "scnc::obj::bad_texture",
+                                    format!("the texture `{}` of material `{}` cannot be used ({}); its constant colour is used", tex.file, mat.name, match e {
+                                        ImageError::Corrupt(reason) => reason,
+                                        ImageError::TooLarge { width, height } => format!("{width} x {height} is beyond the {MAX_TEXTURE_SIDE} x {MAX_TEXTURE_SIDE} cap"),
+                                    }),
+                                ),
+                            },
                         };
                         warnings.push(BuildError::Obj(Box::new(
                             d.in_file(line_label(&file, &src.text, tex.at, "this map"))
@@ -69,6 +95,7 @@ pub(super) fn parts_of(
                 parts.push(MeshPart {
                     name: run.name.clone(),
                     phong,
+                    maps,
                 });
                 parts.len() - 1
             }
@@ -110,6 +137,7 @@ impl PartTables {
         object_material: u32,
         world_from_object: Affine3A,
         materials: &mut Vec<SurfaceMaterial>,
+        textures: &mut Textures,
     ) -> u32 {
         for o in &options.materials {
             let known = mesh
@@ -172,12 +200,31 @@ impl PartTables {
                     }
                 }
                 (Some(p), None) => {
+                    let maps = &part.maps;
+                    let mut image = |data: &Arc<ImageData>| {
+                        textures.slots.push(Some(Texture::Image {
+                            data: data.clone(),
+                            wrap: WrapMode::Repeat,
+                            filter: Filter::Trilinear,
+                        }));
+                        textures.slots.len() as u32 - 1
+                    };
+                    let color = |map: Option<u32>, constant: Vec3| {
+                        map.map_or(ColorInput::Constant(constant), ColorInput::Texture)
+                    };
+                    let diffuse = color(maps.diffuse.as_ref().map(&mut image), p.diffuse);
+                    let specular = color(maps.specular.as_ref().map(&mut image), p.specular);
+                    let normal_map = maps.normal.as_ref().map(|(data, strength)| NormalMap {
+                        texture: image(data),
+                        strength: *strength,
+                        green: GreenConvention::OpenGl,
+                    });
                     materials.push(SurfaceMaterial {
-                        diffuse: ColorInput::Constant(p.diffuse),
-                        specular: ColorInput::Constant(p.specular),
+                        diffuse,
+                        specular,
                         shininess: ScalarInput::Constant(p.shininess),
                         ambient: Vec3::ZERO,
-                        normal_map: None,
+                        normal_map,
                     });
                     Surface::Material(materials.len() as u32 - 1)
                 }

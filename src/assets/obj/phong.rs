@@ -8,12 +8,12 @@
 //! in a channel, both are scaled down (the mapping says so). `Ka` is read but not rendered:
 //! scnc has no ambient light level for it to multiply, and Blender writes `Ka 1 1 1`, which as
 //! ambient radiance would make every exported object glow. Missing values take the MTL
-//! defaults (`Kd` 0.8, `Ks` 0, `Ns` 0). Texture maps are reported as constants until image
-//! textures land (see [`texture_hook`]).
+//! defaults (`Kd` 0.8, `Ks` 0, `Ns` 0). `map_Kd`, `map_Ks` and `norm` maps render (see
+//! [`renders_map`]); the others keep their constants with a warning.
 
 use glam::Vec3;
 
-use super::mtl::{MtlMaterial, TexRef};
+use super::mtl::{BumpKind, MtlMaterial, TexRef};
 
 /// The Phong parameters of one MTL material.
 #[derive(Debug, Clone, PartialEq)]
@@ -25,7 +25,7 @@ pub struct ObjPhong {
     pub emission: Vec3,
     /// What was changed to make it energy-conserving, for `scnc inspect` and warnings.
     pub adjusted: Option<String>,
-    /// Texture maps named by the MTL (not yet rendered: see [`texture_hook`]).
+    /// Texture maps named by the MTL (which of them render: [`renders_map`]).
     pub maps: Vec<(&'static str, TexRef)>,
 }
 
@@ -76,8 +76,12 @@ pub fn phong_of(m: &MtlMaterial) -> ObjPhong {
             maps.push((key, t.clone()));
         }
     }
-    if let Some((_, t)) = &m.bump {
-        maps.push(("bump", t.clone()));
+    if let Some((kind, t)) = &m.bump {
+        let key = match kind {
+            BumpKind::Height => "bump",
+            BumpKind::Normal => "norm",
+        };
+        maps.push((key, t.clone()));
     }
     ObjPhong {
         diffuse,
@@ -89,12 +93,12 @@ pub fn phong_of(m: &MtlMaterial) -> ObjPhong {
     }
 }
 
-/// The one place where MTL texture maps are to become image textures (scnc has them now, see
-/// `scene/texture_load.rs`; connecting them is the next step): today every map keeps its
-/// material's constant, and the caller warns once per map.
-/// Returns whether the map was used.
-pub fn texture_hook(_map: &str, _tex: &TexRef) -> bool {
-    false
+/// Whether scnc renders an MTL map written with `key` (`map_Kd`, `map_Ks`, `norm`): colour maps
+/// replace their constant, `norm` is a tangent-space normal map. `map_Ns` (scnc's scalar
+/// textures give the exponent itself, not a 0..1 factor of `Ns`) and height maps (`bump`,
+/// `map_Bump`: scnc has no bump mapping) keep their material's constants, with a warning.
+pub fn renders_map(key: &str) -> bool {
+    matches!(key, "map_Kd" | "map_Ks" | "norm")
 }
 
 #[cfg(test)]
