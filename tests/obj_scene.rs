@@ -189,9 +189,14 @@ fn mtl_colour_and_normal_maps_become_image_textures() {
         (green - glam::Vec3::Y).abs().max_element() < 1e-3,
         "{green}"
     );
-    // One decode per (file, encoding) is not required across parts, but the normal map is
-    // data and the colour maps are not: three image slots beyond the scene's own textures.
-    assert_eq!(scene.textures.slots.iter().flatten().count(), 3);
+    // map_Kd and map_Ks name one file with one encoding: decoded once, shared; the normal map
+    // is data (decoded raw), a second decode.
+    let image = |id: u32| match &scene.textures.slots[id as usize] {
+        Some(scnc::scene::Texture::Image { data, .. }) => data.clone(),
+        other => panic!("an image texture: {other:?}"),
+    };
+    assert!(std::sync::Arc::ptr_eq(&image(kd), &image(ks)));
+    assert!(!std::sync::Arc::ptr_eq(&image(kd), &image(normal.texture)));
     // The mesh has UVs and a normal-mapped part: tangents were derived for it.
     assert!(!scene.tangents[inst.mesh as usize].is_empty());
 }

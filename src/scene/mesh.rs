@@ -63,6 +63,20 @@ impl PartialEq for PartMaps {
 }
 
 impl PartMaps {
+    /// Stores a decoded map under its MTL statement (`map_Kd`, `map_Ks`, else `norm`).
+    pub fn set(
+        &mut self,
+        key: &str,
+        data: std::sync::Arc<super::image_texture::ImageData>,
+        bump_multiplier: f32,
+    ) {
+        match key {
+            "map_Kd" => self.diffuse = Some(data),
+            "map_Ks" => self.specular = Some(data),
+            _ => self.normal = Some((data, bump_multiplier.clamp(0.0, 1.0))),
+        }
+    }
+
     pub fn is_empty(&self) -> bool {
         self.diffuse.is_none() && self.specular.is_none() && self.normal.is_none()
     }

@@ -41,6 +41,9 @@ pub(super) fn parts_of(
     let mut parts: Vec<MeshPart> = Vec::new();
     let mut warnings = Vec::new();
     let mut run_part = Vec::with_capacity(m.runs.len());
+    // Maps decoded so far in this OBJ, by path and sRGB-ness: one decode however many parts
+    // name a file.
+    let mut decoded: Vec<(std::path::PathBuf, bool, Arc<ImageData>)> = Vec::new();
     for run in &m.runs {
         let index = match parts.iter().position(|p| p.name == run.name) {
             Some(i) => i,
@@ -55,7 +58,17 @@ pub(super) fn parts_of(
                         let file = mtl_display_name(written, &src.written);
                         // Read through the Loader, so `scnc watch` watches it too.
                         let dir = src.path.parent().unwrap_or(std::path::Path::new(""));
-                        let d = match loader.read(&dir.join(&tex.file)) {
+                        let path = dir.join(&tex.file);
+                        let srgb = *key != "norm";
+                        let earlier = decoded
+                            .iter()
+                            .find(|(p, s, _)| *p == path && *s == srgb)
+                            .map(|(_, _, data)| data.clone());
+                        if let (Some(data), true) = (earlier, renders_map(key)) {
+                            maps.set(key, data, tex.bump_multiplier);
+                            continue;
+                        }
+                        let d = match loader.read(&path) {
                             Err(e) => Diagnostic::warning(
                                 "scnc::obj::missing_texture",
                                 format!("cannot read the texture `{}` of material `{}` ({e}); its constant colour is used", tex.file, mat.name),
@@ -66,14 +79,11 @@ pub(super) fn parts_of(
                                 format!("`{key} {}` of material `{}` is not rendered; its constant is used", tex.file, mat.name),
                             )
                             .help("scnc renders `map_Kd`, `map_Ks` and `norm` (normal maps); for others declare a `texture … = image(…)` and replace this material with `material NAME mat` in the mesh's block"),
-                            Ok(bytes) => match decode_texture(&bytes, *key != "norm") {
+                            Ok(bytes) => match decode_texture(&bytes, srgb) {
                                 Ok(img) => {
                                     let data = Arc::new(ImageData::new(img.width, img.height, img.texels, true));
-                                    match *key {
-                                        "map_Kd" => maps.diffuse = Some(data),
-                                        "map_Ks" => maps.specular = Some(data),
-                                        _ => maps.normal = Some((data, tex.bump_multiplier.clamp(0.0, 1.0))),
-                                    }
+                                    decoded.push((path, srgb, data.clone()));
+                                    maps.set(key, data, tex.bump_multiplier);
                                     continue;
                                 }
                                 Err(e) => Diagnostic::warning(
