@@ -1,6 +1,7 @@
 //! `scnc watch`: progressive rendering on a thread of its own. Pass 1 at preview quality
 //! (1 sample per pixel), then passes refining to the scene's samples (1, 4, then the scene's
-//! N², each skipped when it would not add samples). Each finished pass is written atomically
+//! N², each skipped when it would not add samples); a scene with a noise target
+//! (`render { noise 0.01 }`) ends with an adaptive pass instead of the fixed N². Each finished pass is written atomically
 //! to every output and handed to the preview. Stopping sets the cancel flag (the renderer checks
 //! it before every tile) and gives the scene back for the build cache.
 
@@ -16,10 +17,15 @@ use crate::render::{self, RenderOptions};
 use crate::scene::Scene;
 use crate::source::SourceMap;
 
-/// The samples per pixel of each pass, for a scene rendering `full` in the end.
-pub fn plan(full: u32) -> Vec<u32> {
-    let mut passes: Vec<u32> = [1, 4].into_iter().filter(|&s| s < full).collect();
-    passes.push(full.max(1));
+/// The samples per pixel of each pass, for a scene rendering `full` in the end; `None` is the
+/// scene's own adaptive sampling (when it sets a noise target), after the 1- and 4-sample
+/// previews.
+pub fn plan(full: u32, adaptive: bool) -> Vec<Option<u32>> {
+    if adaptive {
+        return vec![Some(1), Some(4), None];
+    }
+    let mut passes: Vec<Option<u32>> = [1, 4].into_iter().filter(|&s| s < full).map(Some).collect();
+    passes.push(Some(full.max(1)));
     passes
 }
 
@@ -70,12 +76,12 @@ fn run(
     cancel: &AtomicBool,
 ) {
     let scene = &ready.scene;
-    let passes = plan(scene.settings.samples_per_pixel);
+    let passes = plan(
+        scene.settings.samples_per_pixel,
+        scene.settings.noise.is_some(),
+    );
     for (i, &spp) in passes.iter().enumerate() {
-        let options = RenderOptions {
-            spp: Some(spp),
-            threads,
-        };
+        let options = RenderOptions { spp, threads };
         let Ok((film, stats)) = render::render(scene, &options, &|_| {}, cancel) else {
             return;
         };
@@ -108,9 +114,15 @@ mod tests {
 
     #[test]
     fn passes_refine_up_to_the_scene() {
-        assert_eq!(plan(1), vec![1]);
-        assert_eq!(plan(4), vec![1, 4]);
-        assert_eq!(plan(16), vec![1, 4, 16]);
-        assert_eq!(plan(0), vec![1]);
+        assert_eq!(plan(1, false), vec![Some(1)]);
+        assert_eq!(plan(4, false), vec![Some(1), Some(4)]);
+        assert_eq!(plan(16, false), vec![Some(1), Some(4), Some(16)]);
+        assert_eq!(plan(0, false), vec![Some(1)]);
+    }
+
+    #[test]
+    fn a_noise_target_ends_with_the_adaptive_pass() {
+        assert_eq!(plan(16, true), vec![Some(1), Some(4), None]);
+        assert_eq!(plan(1, true), vec![Some(1), Some(4), None]);
     }
 }
