@@ -38,26 +38,12 @@ pub fn decode_float_image(bytes: &[u8]) -> Result<FloatImage, ImageError> {
     if bytes.starts_with(b"PF") || bytes.starts_with(b"Pf") {
         return decode_pfm(bytes);
     }
-    let reader = || {
-        ImageReader::new(Cursor::new(bytes))
-            .with_guessed_format()
-            .map_err(|e| ImageError::Corrupt(e.to_string()))
-    };
-    let probe = reader()?;
-    if probe.format().is_none() {
-        return Err(ImageError::Corrupt(
-            "not a Radiance .hdr, OpenEXR, PFM, PNG or JPEG image".into(),
-        ));
-    }
-    let (width, height) = probe
-        .into_dimensions()
-        .map_err(|e| ImageError::Corrupt(e.to_string()))?;
-    check_size(width, height)?;
-    let mut full = reader()?;
-    full.no_limits();
-    let image = full
-        .decode()
-        .map_err(|e| ImageError::Corrupt(e.to_string()))?;
+    let image = decode_checked(
+        bytes,
+        "not a Radiance .hdr, OpenEXR, PFM, PNG or JPEG image",
+        (MAX_WIDTH, MAX_HEIGHT),
+    )?;
+    let (width, height) = (image.width(), image.height());
     let linear = matches!(
         image,
         DynamicImage::ImageRgb32F(_) | DynamicImage::ImageRgba32F(_)
@@ -85,8 +71,39 @@ pub fn decode_float_image(bytes: &[u8]) -> Result<FloatImage, ImageError> {
     })
 }
 
-fn check_size(width: u32, height: u32) -> Result<(), ImageError> {
-    if width > MAX_WIDTH || height > MAX_HEIGHT {
+/// Decodes `bytes` with the `image` crate (format recognised from the bytes), after reading only
+/// the header to reject an unknown format (`not_an_image`), an empty image or one larger than
+/// `max` (width, height): an absurd header never allocates its pixels.
+pub(crate) fn decode_checked(
+    bytes: &[u8],
+    not_an_image: &str,
+    max: (u32, u32),
+) -> Result<DynamicImage, ImageError> {
+    let reader = || {
+        ImageReader::new(Cursor::new(bytes))
+            .with_guessed_format()
+            .map_err(|e| ImageError::Corrupt(e.to_string()))
+    };
+    let probe = reader()?;
+    if probe.format().is_none() {
+        return Err(ImageError::Corrupt(not_an_image.into()));
+    }
+    let (width, height) = probe
+        .into_dimensions()
+        .map_err(|e| ImageError::Corrupt(e.to_string()))?;
+    check_size(width, height, max)?;
+    let mut full = reader()?;
+    full.no_limits();
+    full.decode()
+        .map_err(|e| ImageError::Corrupt(e.to_string()))
+}
+
+fn check_size(
+    width: u32,
+    height: u32,
+    (max_width, max_height): (u32, u32),
+) -> Result<(), ImageError> {
+    if width > max_width || height > max_height {
         return Err(ImageError::TooLarge { width, height });
     }
     if width == 0 || height == 0 {
@@ -130,7 +147,7 @@ fn decode_pfm(bytes: &[u8]) -> Result<FloatImage, ImageError> {
     if scale == 0.0 || !scale.is_finite() {
         return Err(bad("the scale must be a non-zero number"));
     }
-    check_size(width, height)?;
+    check_size(width, height, (MAX_WIDTH, MAX_HEIGHT))?;
     let (w, h) = (width as usize, height as usize);
     let data = bytes.get(pos..).ok_or_else(|| bad("truncated"))?;
     let needed = w * h * channels * 4;

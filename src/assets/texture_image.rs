@@ -13,11 +13,10 @@
 //! 8192 × 8192 texels (1 GiB as f32 RGBA, plus a third for its mip pyramid) is rejected.
 //! Nothing here panics on bad bytes: every problem is an [`ImageError`].
 
-use std::io::Cursor;
-
 use glam::Vec4;
-use image::{DynamicImage, ImageReader};
+use image::DynamicImage;
 
+use super::hdr_image::decode_checked;
 pub use super::hdr_image::ImageError;
 
 /// The largest accepted width and height of a texture.
@@ -33,33 +32,12 @@ pub struct TexelImage {
 
 /// Decodes `bytes` (PNG, JPEG, HDR, EXR); `srgb` decodes integer colour samples to linear.
 pub fn decode_texture(bytes: &[u8], srgb: bool) -> Result<TexelImage, ImageError> {
-    let reader = || {
-        ImageReader::new(Cursor::new(bytes))
-            .with_guessed_format()
-            .map_err(|e| ImageError::Corrupt(e.to_string()))
-    };
-    let probe = reader()?;
-    if probe.format().is_none() {
-        return Err(ImageError::Corrupt(
-            "not a PNG, JPEG, Radiance .hdr or OpenEXR image".into(),
-        ));
-    }
-    let (width, height) = probe
-        .into_dimensions()
-        .map_err(|e| ImageError::Corrupt(e.to_string()))?;
-    if width > MAX_TEXTURE_SIDE || height > MAX_TEXTURE_SIDE {
-        return Err(ImageError::TooLarge { width, height });
-    }
-    if width == 0 || height == 0 {
-        return Err(ImageError::Corrupt(format!(
-            "the image is empty ({width} × {height})"
-        )));
-    }
-    let mut full = reader()?;
-    full.no_limits();
-    let image = full
-        .decode()
-        .map_err(|e| ImageError::Corrupt(e.to_string()))?;
+    let image = decode_checked(
+        bytes,
+        "not a PNG, JPEG, Radiance .hdr or OpenEXR image",
+        (MAX_TEXTURE_SIDE, MAX_TEXTURE_SIDE),
+    )?;
+    let (width, height) = (image.width(), image.height());
     let texels = match image {
         DynamicImage::ImageRgb32F(_) | DynamicImage::ImageRgba32F(_) => image
             .into_rgba32f()
@@ -122,6 +100,7 @@ pub fn srgb_to_linear(c: f32) -> f32 {
 mod tests {
     use super::*;
     use image::{ImageFormat, Luma, LumaA, Rgb, Rgba};
+    use std::io::Cursor;
 
     fn encode(img: DynamicImage, format: ImageFormat) -> Vec<u8> {
         let mut out = Cursor::new(Vec::new());
