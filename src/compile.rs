@@ -9,7 +9,7 @@ use std::path::{Component, Path, PathBuf};
 
 use crate::assets::Loader;
 use crate::check;
-use crate::diag::Diagnostic;
+use crate::diag::{Code, Diagnostic};
 use crate::ir;
 use crate::source::{FileId, SourceMap, Span};
 use crate::syntax::{self, ExprKind, Stmt};
@@ -42,11 +42,8 @@ pub fn compile_file(path: &Path, loader: &dyn Loader) -> Compiled {
             d.add_root(path, &name, &bytes);
         }
         Err(e) => d.diags.push(
-            Diagnostic::error(
-                "scnc::io::read",
-                format!("cannot read {}: {e}", path.display()),
-            )
-            .help("check the path"),
+            Diagnostic::error(Code::IoRead, format!("cannot read {}: {e}", path.display()))
+                .help("check the path"),
         ),
     }
     d.finish()
@@ -90,7 +87,7 @@ impl<'l> Driver<'l> {
             Ok(t) => t,
             Err(why) => {
                 let mut d = Diagnostic::error(
-                    "scnc::source::not_text",
+                    Code::SourceNotText,
                     format!("{name} is not a text file: {why}"),
                 )
                 .help("scene files are UTF-8 text; check that you named the .scn file");
@@ -109,7 +106,7 @@ impl<'l> Driver<'l> {
         if text.trim().is_empty() {
             let span = Span::new(id, 0, 0);
             self.diags.push(
-                Diagnostic::error("scnc::syntax::empty", "empty scene: expected `scnc 1`")
+                Diagnostic::error(Code::SyntaxEmpty, "empty scene: expected `scnc 1`")
                     .at(span, "file is empty")
                     .help("start the file with the version header `scnc 1`"),
             );
@@ -138,7 +135,7 @@ impl<'l> Driver<'l> {
                 } if v == VERSION => {}
                 _ => self.diags.push(
                     Diagnostic::error(
-                        "scnc::syntax::unsupported_version",
+                        Code::SyntaxUnsupportedVersion,
                         format!("unsupported version `{}`", self.sources.snippet(value.span)),
                     )
                     .at(value.span, "this version")
@@ -154,7 +151,7 @@ impl<'l> Driver<'l> {
                         .map_or(text.len(), |n| first_offset + n);
                     self.diags.push(
                         Diagnostic::error(
-                            "scnc::syntax::missing_version",
+                            Code::SyntaxMissingVersion,
                             "the file does not start with the version header `scnc 1`",
                         )
                         .at(
@@ -170,7 +167,7 @@ impl<'l> Driver<'l> {
             if let Stmt::Version { span, .. } = s {
                 self.diags.push(
                     Diagnostic::error(
-                        "scnc::syntax::misplaced_version",
+                        Code::SyntaxMisplacedVersion,
                         "`scnc` header after the start of the file",
                     )
                     .at(*span, "only allowed as the first statement"),
@@ -183,7 +180,7 @@ impl<'l> Driver<'l> {
         let span = path_expr.span;
         let ExprKind::Str(written) = &path_expr.kind else {
             self.diags.push(
-                Diagnostic::error("scnc::include::not_a_string", "`include` takes a file name")
+                Diagnostic::error(Code::IncludeNotAString, "`include` takes a file name")
                     .at(span, "expected a string")
                     .help("write `include \"common.scn\"`"),
             );
@@ -199,7 +196,7 @@ impl<'l> Driver<'l> {
         let path = normalise(&dir.join(written));
         if let Some(pos) = self.stack.iter().position(|(p, _)| *p == path) {
             let mut d = Diagnostic::error(
-                "scnc::include::cycle",
+                Code::IncludeCycle,
                 format!("include cycle: `{written}` includes itself"),
             )
             .at(span, "this include closes the cycle");
@@ -219,7 +216,7 @@ impl<'l> Driver<'l> {
         if self.stack.len() >= MAX_INCLUDE_DEPTH {
             self.diags.push(
                 Diagnostic::error(
-                    "scnc::include::too_deep",
+                    Code::IncludeTooDeep,
                     format!("includes nested deeper than {MAX_INCLUDE_DEPTH}"),
                 )
                 .at(span, "here"),
@@ -233,7 +230,7 @@ impl<'l> Driver<'l> {
             }
             Err(e) => self.diags.push(
                 Diagnostic::error(
-                    "scnc::include::not_found",
+                    Code::IncludeNotFound,
                     format!("cannot read included file `{written}`"),
                 )
                 .at(
@@ -287,16 +284,16 @@ impl<'l> Driver<'l> {
 }
 
 /// Checker codes that are only consequences of statements lost to syntax errors.
-fn is_cascade(code: &str) -> bool {
+fn is_cascade(code: Code) -> bool {
     matches!(
         code,
-        "scnc::check::no_camera"
-            | "scnc::check::unused"
-            | "scnc::check::unknown_material"
-            | "scnc::check::unknown_mesh"
-            | "scnc::check::unknown_texture"
-            | "scnc::check::unknown_camera"
-            | "scnc::check::unknown_name"
+        Code::CheckNoCamera
+            | Code::CheckUnused
+            | Code::CheckUnknownMaterial
+            | Code::CheckUnknownMesh
+            | Code::CheckUnknownTexture
+            | Code::CheckUnknownCamera
+            | Code::CheckUnknownName
     )
 }
 

@@ -52,7 +52,7 @@ fn every_bad_scene_fails_with_well_placed_labels() {
         );
         for d in &compiled.diagnostics {
             codes.insert(d.code);
-            assert!(d.code.starts_with("scnc::"), "{}", d.code);
+            assert!(d.code.as_str().starts_with("scnc::"), "{}", d.code);
             for label in d.primary.iter().chain(&d.secondary) {
                 let text = &compiled.sources.get(label.span.file).text;
                 assert!(

@@ -15,7 +15,7 @@ fn compile(body: &str) -> Compiled {
 }
 
 fn codes(c: &Compiled) -> Vec<&'static str> {
-    c.diagnostics.iter().map(|d| d.code).collect()
+    c.diagnostics.iter().map(|d| d.code.as_str()).collect()
 }
 
 /// Folds `expr` by placing it as a point light's position.

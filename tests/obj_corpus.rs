@@ -33,7 +33,7 @@ fn area(o: &LoadedObj) -> f32 {
 }
 
 fn codes(o: &LoadedObj) -> Vec<&'static str> {
-    o.warnings.iter().map(|(_, n)| n.code).collect()
+    o.warnings.iter().map(|(_, n)| n.code.as_str()).collect()
 }
 
 fn materials(o: &LoadedObj) -> Vec<Option<String>> {
@@ -252,7 +252,7 @@ fn errors_name_their_line() {
     ];
     for &(text, code, line) in cases {
         let e = load_with(text.as_bytes(), &[]).expect_err(text);
-        assert_eq!((e.code, e.at.line), (code, line), "{text}");
+        assert_eq!((e.code.as_str(), e.at.line), (code, line), "{text}");
     }
 }
 

@@ -85,7 +85,7 @@ fn scn_overrides_replace_obj_materials_by_name_and_mtl_false_skips_the_library()
     assert_eq!(n, 2);
     assert_eq!(scene.surface_of(inst, mesh, 0), Surface::Material(gold));
     assert_eq!(scene.surface_of(inst, mesh, 1), Surface::Emitter(1));
-    let codes: Vec<&str> = scene.warnings.iter().map(|w| w.code).collect();
+    let codes: Vec<&str> = scene.warnings.iter().map(|w| w.code.as_str()).collect();
     assert_eq!(codes, ["scnc::obj::unknown_override"]);
 
     // `mtl false`: the library is not read; no emitter, the object's material everywhere
@@ -114,7 +114,7 @@ fn mtl_texture_maps_warn_at_the_mtl_line_when_missing_or_corrupt() {
     let got: Vec<(&str, u32)> = scene
         .warnings
         .iter()
-        .map(|w| (w.code, w.external.first().map_or(0, |e| e.line)))
+        .map(|w| (w.code.as_str(), w.external.first().map_or(0, |e| e.line)))
         .collect();
     assert_eq!(
         got,
@@ -162,7 +162,7 @@ fn mtl_colour_and_normal_maps_become_image_textures() {
     let got: Vec<(&str, u32)> = scene
         .warnings
         .iter()
-        .map(|w| (w.code, w.external.first().map_or(0, |e| e.line)))
+        .map(|w| (w.code.as_str(), w.external.first().map_or(0, |e| e.line)))
         .collect();
     assert_eq!(got, [("scnc::obj::texture_not_rendered", 5)]);
     let inst = &scene.instances[0];

@@ -126,7 +126,7 @@ fn corrupt_obj_bytes() {
         b"\xff\xfe\x00\x01binary junk".to_vec(),
     );
     let scene = fx.build_obj(&loader).expect("loads, with warnings");
-    let codes: Vec<&str> = scene.warnings.iter().map(|w| w.code).collect();
+    let codes: Vec<&str> = scene.warnings.iter().map(|w| w.code.as_str()).collect();
     assert_eq!(
         codes,
         [
@@ -204,7 +204,7 @@ fn a_good_obj_loads_once_for_two_instances_and_renders() {
     // The BVH stores the shared mesh's triangles once, however many instances place it.
     assert_eq!(scene.accel_stats().triangles, 2);
     // Its MTL is absent: warnings at the OBJ's lines, the default material is used.
-    let codes: Vec<&str> = scene.warnings.iter().map(|w| w.code).collect();
+    let codes: Vec<&str> = scene.warnings.iter().map(|w| w.code.as_str()).collect();
     assert_eq!(
         codes,
         ["scnc::obj::missing_mtl", "scnc::obj::unknown_material"]
@@ -266,7 +266,7 @@ fn a_missing_image_texture_and_environment_map_are_missing_at_their_paths() {
             let at = fx
                 .sources
                 .snippet(d.primary.as_ref().expect("labelled").span);
-            (at, d.code)
+            (at, d.code.as_str())
         })
         .collect();
     labelled.sort();
@@ -294,7 +294,7 @@ fn no_camera_and_singular_transforms_are_errors() {
         ..BuildOptions::default()
     };
     let diags = scene::build(&desc, &fx.sources, &MemLoader::new(), &opts).expect_err("bad");
-    let codes: Vec<&str> = diags.iter().map(|d| d.code).collect();
+    let codes: Vec<&str> = diags.iter().map(|d| d.code.as_str()).collect();
     assert_eq!(
         codes,
         ["scnc::build::no_camera", "scnc::build::singular_transform"]

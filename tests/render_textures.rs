@@ -275,7 +275,7 @@ fn error_at(src: &str, loader: &MemLoader) -> Vec<(String, &'static str)> {
             let at = compiled
                 .sources
                 .snippet(d.primary.as_ref().expect("labelled").span);
-            (at.to_string(), d.code)
+            (at.to_string(), d.code.as_str())
         })
         .collect()
 }
@@ -331,7 +331,7 @@ render { resolution 4 x 4 }
     let (built, front) = try_build(src, &loader);
     assert!(front.contains("scnc::check::srgb_normal_map"), "{front}");
     let scene = built.expect("warnings only");
-    let codes: Vec<&str> = scene.warnings.iter().map(|d| d.code).collect();
+    let codes: Vec<&str> = scene.warnings.iter().map(|d| d.code.as_str()).collect();
     assert_eq!(codes, ["scnc::build::no_uvs"]);
     assert!(scene.tangents.iter().all(Vec::is_empty));
     assert!(pixels(&scene, 1).iter().all(|p| p.is_finite()));

@@ -8,7 +8,7 @@
 use glam::DVec3;
 
 use super::Checker;
-use crate::diag::Diagnostic;
+use crate::diag::{Code, Diagnostic};
 use crate::ir;
 use crate::source::Span;
 use crate::syntax::{Block, Ident};
@@ -43,7 +43,7 @@ impl Checker<'_> {
             if let Some(p) = eye_p.or(target_p).or(up_p) {
                 self.error(
                     Diagnostic::error(
-                        "scnc::check::conflicting_keys",
+                        Code::CheckConflictingKeys,
                         "a camera takes either `eye`/`target`/`up` or a `transform`, not both",
                     )
                     .at(p.key_span, "here")
@@ -62,7 +62,7 @@ impl Checker<'_> {
             let (Some(eye_p), Some(target_p)) = (eye_p, target_p) else {
                 self.error(
                     Diagnostic::error(
-                        "scnc::check::missing_key",
+                        Code::CheckMissingKey,
                         format!(
                             "camera `{}` needs `eye` and `target` (or a `transform`)",
                             name.name
@@ -87,7 +87,7 @@ impl Checker<'_> {
             if (target - eye).length() == 0.0 {
                 self.error(
                     Diagnostic::error(
-                        "scnc::check::zero_direction",
+                        Code::CheckZeroDirection,
                         "camera target equals its eye: no view direction",
                     )
                     .at(
@@ -109,7 +109,7 @@ impl Checker<'_> {
         else {
             self.error(
                 Diagnostic::error(
-                    "scnc::check::up_parallel",
+                    Code::CheckUpParallel,
                     "`up` is parallel to the view direction",
                 )
                 .at(up_span, "parallel to the view")

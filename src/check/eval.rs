@@ -10,7 +10,7 @@ use glam::{DVec2, DVec3};
 
 use super::value::{parse_hex, srgb_to_linear, Value};
 use super::Checker;
-use crate::diag::{suggest, Diagnostic};
+use crate::diag::{suggest, Code, Diagnostic};
 use crate::syntax::{BinOp, Expr, ExprKind};
 
 /// Every function callable in an expression.
@@ -41,7 +41,7 @@ impl Checker<'_> {
         if !v.is_finite() {
             self.error(
                 Diagnostic::error(
-                    "scnc::check::not_finite",
+                    Code::CheckNotFinite,
                     "this expression is not a finite number",
                 )
                 .at(e.span, "evaluates to infinity or NaN")
@@ -71,7 +71,7 @@ impl Checker<'_> {
                     };
                     self.error(
                         Diagnostic::error(
-                            "scnc::check::unknown_unit",
+                            Code::CheckUnknownUnit,
                             format!("unknown unit `{}`", s.name),
                         )
                         .at(s.span, "not a unit")
@@ -84,12 +84,9 @@ impl Checker<'_> {
                 Some(c) => Some(Value::Color(c)),
                 None => {
                     self.error(
-                        Diagnostic::error(
-                            "scnc::check::bad_color",
-                            format!("`#{hex}` is not a colour"),
-                        )
-                        .at(e.span, "expected 3 or 6 hex digits")
-                        .help("write `#rgb` or `#rrggbb`, e.g. `#ff8800`"),
+                        Diagnostic::error(Code::CheckBadColor, format!("`#{hex}` is not a colour"))
+                            .at(e.span, "expected 3 or 6 hex digits")
+                            .help("write `#rgb` or `#rrggbb`, e.g. `#ff8800`"),
                     );
                     None
                 }
@@ -116,7 +113,7 @@ impl Checker<'_> {
                 if r.is_none() {
                     self.error(
                         Diagnostic::error(
-                            "scnc::check::bad_operands",
+                            Code::CheckBadOperands,
                             format!(
                                 "cannot apply `{}` to {} and {}",
                                 op.symbol(),
@@ -132,12 +129,9 @@ impl Checker<'_> {
             ExprKind::Call { func, args } => self.call(&func.name, func.span, args, e),
             ExprKind::Array => {
                 self.error(
-                    Diagnostic::error(
-                        "scnc::check::unexpected_array",
-                        "an array is not allowed here",
-                    )
-                    .at(e.span, "array")
-                    .help("`[ ... ]` is only for inline mesh data and `matrix`"),
+                    Diagnostic::error(Code::CheckUnexpectedArray, "an array is not allowed here")
+                        .at(e.span, "array")
+                        .help("`[ ... ]` is only for inline mesh data and `matrix`"),
                 );
                 None
             }
@@ -162,12 +156,9 @@ impl Checker<'_> {
             None => "constants must be declared with `let` before they are used".to_string(),
         };
         self.error(
-            Diagnostic::error(
-                "scnc::check::unknown_name",
-                format!("unknown name `{name}`"),
-            )
-            .at(e.span, "not declared")
-            .help(help),
+            Diagnostic::error(Code::CheckUnknownName, format!("unknown name `{name}`"))
+                .at(e.span, "not declared")
+                .help(help),
         );
         None
     }
@@ -194,7 +185,7 @@ impl Checker<'_> {
             _ => {
                 self.error(
                     Diagnostic::error(
-                        "scnc::check::bad_vector",
+                        Code::CheckBadVector,
                         format!("a vector has 2 or 3 components, found {}", nums.len()),
                     )
                     .at(e.span, "this vector"),
@@ -207,7 +198,7 @@ impl Checker<'_> {
     pub fn type_error(&mut self, e: &Expr, expected: &str, found: &Value) {
         self.error(
             Diagnostic::error(
-                "scnc::check::wrong_type",
+                Code::CheckWrongType,
                 format!("expected {expected}, found {}", found.type_name()),
             )
             .at(e.span, format!("this is {}", found.type_name())),
@@ -239,7 +230,7 @@ impl Checker<'_> {
                 };
                 self.error(
                     Diagnostic::error(
-                        "scnc::check::unknown_function",
+                        Code::CheckUnknownFunction,
                         format!("unknown function `{name}`"),
                     )
                     .at(name_span, "not a function")
@@ -251,7 +242,7 @@ impl Checker<'_> {
         if args.len() != arity {
             self.error(
                 Diagnostic::error(
-                    "scnc::check::wrong_arity",
+                    Code::CheckWrongArity,
                     format!("`{name}` takes {arity} argument(s), found {}", args.len()),
                 )
                 .at(e.span, "this call"),
@@ -267,7 +258,7 @@ impl Checker<'_> {
             let types: Vec<&str> = vals.iter().map(Value::type_name).collect();
             self.error(
                 Diagnostic::error(
-                    "scnc::check::wrong_type",
+                    Code::CheckWrongType,
                     format!("`{name}` cannot take {}", types.join(" and ")),
                 )
                 .at(e.span, "this call")

@@ -14,7 +14,7 @@ use glam::{DVec3, Mat4, Vec3};
 
 use super::names::Namespace;
 use super::Checker;
-use crate::diag::{suggest, Diagnostic};
+use crate::diag::{suggest, Code, Diagnostic};
 use crate::ir;
 use crate::syntax::{Block, Decl};
 
@@ -34,7 +34,7 @@ impl Checker<'_> {
             (name, _) => {
                 self.error(
                     Diagnostic::error(
-                        "scnc::check::unknown_light_kind",
+                        Code::CheckUnknownLightKind,
                         format!("unknown light kind `{name}`"),
                     )
                     .at(d.ctor.span, "not a light kind")
@@ -52,7 +52,7 @@ impl Checker<'_> {
         if emitted.max_element() == 0.0 {
             self.error(
                 Diagnostic::warning(
-                    "scnc::check::dark_light",
+                    Code::CheckDarkLight,
                     format!("light `{}` emits nothing", d.name.name),
                 )
                 .at(d.name.span, "zero radiance")
@@ -73,7 +73,7 @@ impl Checker<'_> {
             Some(p) => self.one(p, "position (0, 4, 0)").and_then(|e| self.vec3(e)),
             None => {
                 self.error(
-                    Diagnostic::error("scnc::check::missing_key", "a point light needs `position`")
+                    Diagnostic::error(Code::CheckMissingKey, "a point light needs `position`")
                         .at(d.name.span, "no position")
                         .help("write `position (x, y, z)`"),
                 );
@@ -107,7 +107,7 @@ impl Checker<'_> {
                 let pts = pts?;
                 if (pts[1] - pts[0]).cross(pts[2] - pts[0]).length() == 0.0 {
                     self.error(
-                        Diagnostic::error("scnc::check::degenerate_quad", "the quad has no area")
+                        Diagnostic::error(Code::CheckDegenerateQuad, "the quad has no area")
                             .at(q.span(), "its first three corners are in a line"),
                     );
                     return None;
@@ -136,7 +136,7 @@ impl Checker<'_> {
             (Some(q), Some(m)) => {
                 self.error(
                     Diagnostic::error(
-                        "scnc::check::conflicting_keys",
+                        Code::CheckConflictingKeys,
                         "an area light takes either `quad` or `mesh`, not both",
                     )
                     .at(m.key_span, "mesh here")
@@ -147,7 +147,7 @@ impl Checker<'_> {
             (None, None) => {
                 self.error(
                     Diagnostic::error(
-                        "scnc::check::missing_key",
+                        Code::CheckMissingKey,
                         "an area light needs a shape: `quad P0 P1 P2 P3` or `mesh NAME`",
                     )
                     .at(d.name.span, "no shape"),
@@ -161,7 +161,7 @@ impl Checker<'_> {
                 .and_then(|e| self.color(e)),
             None => {
                 self.error(
-                    Diagnostic::error("scnc::check::missing_key", "an area light needs `radiance`")
+                    Diagnostic::error(Code::CheckMissingKey, "an area light needs `radiance`")
                         .at(d.name.span, "no radiance")
                         .help("write `radiance rgb(17, 12, 4)` (linear)"),
                 );
@@ -207,7 +207,7 @@ impl Checker<'_> {
             (Some(i), Some(c)) => {
                 self.error(
                     Diagnostic::error(
-                        "scnc::check::conflicting_keys",
+                        Code::CheckConflictingKeys,
                         "an environment takes either `image(...)` or `color`, not both",
                     )
                     .at(c.key_span, "color here")
@@ -218,7 +218,7 @@ impl Checker<'_> {
             (None, None) => {
                 self.error(
                     Diagnostic::error(
-                        "scnc::check::missing_key",
+                        Code::CheckMissingKey,
                         "an environment needs `image(\"file.hdr\")` or `color C`",
                     )
                     .at(d.name.span, "no source"),

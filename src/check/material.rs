@@ -11,7 +11,7 @@ use glam::DVec3;
 
 use super::names::Namespace;
 use super::Checker;
-use crate::diag::{suggest, Diagnostic};
+use crate::diag::{suggest, Code, Diagnostic};
 use crate::ir;
 use crate::syntax::{Decl, Expr};
 
@@ -24,7 +24,7 @@ impl Checker<'_> {
         if d.ctor.name.name != "phong" || d.ctor.args.is_some() {
             self.error(
                 Diagnostic::error(
-                    "scnc::check::unknown_material_kind",
+                    Code::CheckUnknownMaterialKind,
                     format!("unknown material kind `{}`", d.ctor.name.name),
                 )
                 .at(d.ctor.span, "not a material kind")
@@ -152,7 +152,7 @@ impl Checker<'_> {
                 let refs: Vec<&str> = candidates.iter().map(String::as_str).collect();
                 self.error(
                     Diagnostic::error(
-                        "scnc::check::unknown_name",
+                        Code::CheckUnknownName,
                         format!("unknown texture or constant `{name}`"),
                     )
                     .at(e.span, "not declared")
@@ -169,7 +169,7 @@ impl Checker<'_> {
         if c.max_element() > 1.0 {
             self.error(
                 Diagnostic::error(
-                    "scnc::check::albedo_out_of_range",
+                    Code::CheckAlbedoOutOfRange,
                     format!(
                         "{key} albedo must be at most 1 per channel, found {}",
                         c.max_element()

@@ -10,7 +10,7 @@
 
 use super::array::{self, ArrayError};
 use super::Checker;
-use crate::diag::{suggest, Diagnostic};
+use crate::diag::{suggest, Code, Diagnostic};
 use crate::ir;
 use crate::source::Span;
 use crate::syntax::{Block, Decl, Expr, ExprKind};
@@ -32,12 +32,9 @@ impl Checker<'_> {
                     [one] => ir::MeshSource::Obj(self.asset_path(one)?),
                     _ => {
                         self.error(
-                            Diagnostic::error(
-                                "scnc::check::wrong_arity",
-                                "`obj` takes one file name",
-                            )
-                            .at(d.ctor.span, "here")
-                            .help("write `obj(\"file.obj\")`"),
+                            Diagnostic::error(Code::CheckWrongArity, "`obj` takes one file name")
+                                .at(d.ctor.span, "here")
+                                .help("write `obj(\"file.obj\")`"),
                         );
                         return None;
                     }
@@ -100,7 +97,7 @@ impl Checker<'_> {
                 };
                 self.error(
                     Diagnostic::error(
-                        "scnc::check::unknown_mesh_kind",
+                        Code::CheckUnknownMeshKind,
                         format!("unknown mesh kind `{name}`"),
                     )
                     .at(d.ctor.span, "not a mesh kind")
@@ -137,7 +134,7 @@ impl Checker<'_> {
                 _ => {
                     self.error(
                         Diagnostic::error(
-                            "scnc::check::expected_name",
+                            Code::CheckExpectedName,
                             "expected the OBJ's material name (`usemtl` name)",
                         )
                         .at(v[0].span, "not a name")
@@ -175,7 +172,7 @@ impl Checker<'_> {
         if !matches!(e.kind, ExprKind::Array) {
             self.error(
                 Diagnostic::error(
-                    "scnc::check::wrong_type",
+                    Code::CheckWrongType,
                     format!("`{key}` takes an array `[ ... ]`"),
                 )
                 .at(e.span, "not an array"),
@@ -187,7 +184,7 @@ impl Checker<'_> {
 
     fn array_error(&mut self, err: ArrayError, span: Span) {
         let at = err.span(span);
-        self.error(Diagnostic::error("scnc::check::bad_array", err.message).at(at, "here"));
+        self.error(Diagnostic::error(Code::CheckBadArray, err.message).at(at, "here"));
     }
 
     pub(super) fn inline_mesh(&mut self, body: &Block, name_span: Span) -> Option<ir::InlineMesh> {
@@ -226,7 +223,7 @@ impl Checker<'_> {
             if !present {
                 self.error(
                     Diagnostic::error(
-                        "scnc::check::missing_key",
+                        Code::CheckMissingKey,
                         format!("an inline mesh needs `{key}`"),
                     )
                     .at(name_span, "incomplete mesh"),
@@ -248,7 +245,7 @@ impl Checker<'_> {
             let span = idx.map_or(name_span, |(_, s)| s);
             self.error(
                 Diagnostic::error(
-                    "scnc::check::index_out_of_range",
+                    Code::CheckIndexOutOfRange,
                     format!("index {bad} is out of range: there are {n} positions"),
                 )
                 .at(span, "in these indices")
@@ -263,7 +260,7 @@ impl Checker<'_> {
             if len != 0 && len != n {
                 self.error(
                     Diagnostic::error(
-                        "scnc::check::length_mismatch",
+                        Code::CheckLengthMismatch,
                         format!("{len} {key} for {n} positions"),
                     )
                     .at(span.unwrap_or(name_span), "wrong count")

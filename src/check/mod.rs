@@ -27,7 +27,7 @@ pub use eval::FUNCTIONS;
 
 use std::collections::HashMap;
 
-use crate::diag::Diagnostic;
+use crate::diag::{Code, Diagnostic};
 use crate::ir;
 use crate::source::{SourceMap, Span};
 use crate::syntax::{Decl, DeclKind, Stmt};
@@ -95,7 +95,7 @@ impl<'s> Checker<'s> {
         {
             self.error(
                 Diagnostic::error(
-                    "scnc::check::duplicate_name",
+                    Code::CheckDuplicateName,
                     format!("{} `{name}` is declared twice", ns.what()),
                 )
                 .at(span, "declared again here")
@@ -110,7 +110,7 @@ impl<'s> Checker<'s> {
         if matches!(name.name.as_str(), "true" | "false") {
             self.error(
                 Diagnostic::error(
-                    "scnc::check::reserved_name",
+                    Code::CheckReservedName,
                     format!("`{}` is a reserved word", name.name),
                 )
                 .at(name.span, "cannot be a constant"),
@@ -121,7 +121,7 @@ impl<'s> Checker<'s> {
             let first = *first;
             self.error(
                 Diagnostic::error(
-                    "scnc::check::duplicate_name",
+                    Code::CheckDuplicateName,
                     format!("constant `{}` is declared twice", name.name),
                 )
                 .at(name.span, "declared again here")
@@ -202,13 +202,10 @@ pub fn check(statements: &[Stmt], sources: &SourceMap) -> (Option<ir::SceneDesc>
     if let Some((_, span)) = renders.get(1) {
         let first = renders[0].1;
         cx.error(
-            Diagnostic::error(
-                "scnc::check::duplicate_render",
-                "more than one `render` block",
-            )
-            .at(*span, "second `render` block")
-            .also(first, "first here")
-            .help("merge them into one"),
+            Diagnostic::error(Code::CheckDuplicateRender, "more than one `render` block")
+                .at(*span, "second `render` block")
+                .also(first, "first here")
+                .help("merge them into one"),
         );
     }
     let settings = cx.render(renders.first().map(|(b, s)| (*b, *s)));
@@ -225,7 +222,7 @@ impl Checker<'_> {
         let written = self.string(e)?;
         if written.is_empty() {
             self.error(
-                Diagnostic::error("scnc::check::empty_path", "empty file name")
+                Diagnostic::error(Code::CheckEmptyPath, "empty file name")
                     .at(e.span, "empty string"),
             );
             return None;

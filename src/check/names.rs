@@ -4,7 +4,7 @@
 use std::collections::HashMap;
 
 use super::Checker;
-use crate::diag::{suggest, Diagnostic};
+use crate::diag::{suggest, Code, Diagnostic};
 use crate::ir;
 use crate::source::Span;
 use crate::syntax::Expr;
@@ -43,14 +43,15 @@ impl Namespace {
         }
     }
 
-    fn unknown_code(self) -> &'static str {
+    /// Nothing refers to a light or a group by name yet, so an unknown one cannot be reported;
+    /// when something does, that namespace gets its own code.
+    fn unknown_code(self) -> Code {
         match self {
-            Namespace::Texture => "scnc::check::unknown_texture",
-            Namespace::Material => "scnc::check::unknown_material",
-            Namespace::Mesh => "scnc::check::unknown_mesh",
-            Namespace::Light => "scnc::check::unknown_light",
-            Namespace::Camera => "scnc::check::unknown_camera",
-            Namespace::Group => "scnc::check::unknown_group",
+            Namespace::Texture => Code::CheckUnknownTexture,
+            Namespace::Material => Code::CheckUnknownMaterial,
+            Namespace::Mesh => Code::CheckUnknownMesh,
+            Namespace::Camera => Code::CheckUnknownCamera,
+            Namespace::Light | Namespace::Group => Code::CheckUnknownName,
         }
     }
 }
@@ -87,7 +88,7 @@ impl Checker<'_> {
         let Some(name) = e.as_name() else {
             self.error(
                 Diagnostic::error(
-                    "scnc::check::wrong_type",
+                    Code::CheckWrongType,
                     format!("expected the name of a {}", ns.what()),
                 )
                 .at(e.span, "not a name"),
@@ -121,7 +122,7 @@ impl Checker<'_> {
         let name = self.table(ns).names[i].clone();
         self.error(
             Diagnostic::warning(
-                "scnc::check::unused",
+                Code::CheckUnused,
                 format!("{} `{name}` is never used", ns.what()),
             )
             .at(span, "declared here, used nowhere")
@@ -211,7 +212,7 @@ impl Checker<'_> {
         }
         if self.cameras.is_empty() && self.table(Namespace::Camera).names.is_empty() {
             self.error(
-                Diagnostic::error("scnc::check::no_camera", "the scene has no camera").help(
+                Diagnostic::error(Code::CheckNoCamera, "the scene has no camera").help(
                     "add one, e.g. `camera main { eye (0, 1, -5)  target (0, 1, 0)  fov 40deg }`",
                 ),
             );

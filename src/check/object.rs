@@ -9,7 +9,7 @@ use glam::Mat4;
 
 use super::names::Namespace;
 use super::Checker;
-use crate::diag::Diagnostic;
+use crate::diag::{Code, Diagnostic};
 use crate::ir;
 use crate::syntax::{GroupStmt, ObjectStmt, Stmt};
 
@@ -42,7 +42,7 @@ impl Checker<'_> {
             None => {
                 self.error(
                     Diagnostic::error(
-                        "scnc::check::missing_key",
+                        Code::CheckMissingKey,
                         format!("object `{}` has no material", o.mesh.name),
                     )
                     .at(o.mesh.span, "no material")

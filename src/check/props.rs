@@ -11,7 +11,7 @@ use glam::{DVec2, DVec3};
 
 use super::value::Value;
 use super::Checker;
-use crate::diag::{suggest, Diagnostic};
+use crate::diag::{suggest, Code, Diagnostic};
 use crate::source::Span;
 use crate::syntax::{Block, Expr, ExprKind, GroupStmt, Item, ObjectStmt};
 
@@ -80,7 +80,7 @@ impl Checker<'_> {
                 if !nested.contains(&kind) {
                     self.error(
                         Diagnostic::error(
-                            "scnc::check::misplaced_block",
+                            Code::CheckMisplacedBlock,
                             format!("`{kind}` is not allowed inside {what}"),
                         )
                         .at(span, "not allowed here"),
@@ -106,7 +106,7 @@ impl Checker<'_> {
                     if let Some(first) = out.props.iter().find(|p| p.key == key) {
                         self.error(
                             Diagnostic::error(
-                                "scnc::check::duplicate_key",
+                                Code::CheckDuplicateKey,
                                 format!("`{key}` is given twice in {what}"),
                             )
                             .at(key_span, "given again here")
@@ -145,13 +145,13 @@ impl Checker<'_> {
     fn unknown_key(&mut self, e: &Expr, what: &str, keys: &[&'static str]) {
         let d = match &e.kind {
             ExprKind::Name(n) => Diagnostic::error(
-                "scnc::check::unknown_key",
+                Code::CheckUnknownKey,
                 format!("unknown key `{n}` in {what}"),
             )
             .at(e.span, "not a key here")
             .help(suggest::help_for(n, keys, "keys")),
             _ => Diagnostic::error(
-                "scnc::check::expected_key",
+                Code::CheckExpectedKey,
                 format!("expected a key in {what}, found a value"),
             )
             .at(e.span, "value without a key")
@@ -172,7 +172,7 @@ impl Checker<'_> {
             format!("`{}` takes {n} value(s), found {found}", p.key)
         };
         self.error(
-            Diagnostic::error("scnc::check::wrong_arity", msg)
+            Diagnostic::error(Code::CheckWrongArity, msg)
                 .at(p.span(), "here")
                 .help(format!("write `{form}`")),
         );
@@ -213,7 +213,7 @@ impl Checker<'_> {
         if x.fract() != 0.0 {
             self.error(
                 Diagnostic::error(
-                    "scnc::check::not_integer",
+                    Code::CheckNotInteger,
                     format!("{what} must be a whole number, found {x}"),
                 )
                 .at(e.span, "not a whole number"),
@@ -229,8 +229,7 @@ impl Checker<'_> {
 
     pub fn out_of_range(&mut self, span: Span, msg: &str) {
         self.error(
-            Diagnostic::error("scnc::check::out_of_range", msg.to_string())
-                .at(span, "out of range"),
+            Diagnostic::error(Code::CheckOutOfRange, msg.to_string()).at(span, "out of range"),
         );
     }
 
@@ -240,7 +239,7 @@ impl Checker<'_> {
             Value::Num(x) => {
                 self.error(
                     Diagnostic::error(
-                        "scnc::check::angle_without_unit",
+                        Code::CheckAngleWithoutUnit,
                         format!("angle `{x}` has no unit"),
                     )
                     .at(e.span, "expected an angle")
@@ -297,7 +296,7 @@ impl Checker<'_> {
             Value::Vec3(v) => {
                 self.error(
                     Diagnostic::error(
-                        "scnc::check::wrong_type",
+                        Code::CheckWrongType,
                         "expected a colour, found a 3-vector",
                     )
                     .at(e.span, "a vector does not say its encoding")
@@ -315,11 +314,8 @@ impl Checker<'_> {
         };
         if c.min_element() < 0.0 {
             self.error(
-                Diagnostic::error(
-                    "scnc::check::negative_color",
-                    "colours must not be negative",
-                )
-                .at(e.span, "has a negative channel"),
+                Diagnostic::error(Code::CheckNegativeColor, "colours must not be negative")
+                    .at(e.span, "has a negative channel"),
             );
             return None;
         }
@@ -353,17 +349,14 @@ impl Checker<'_> {
                 return Some(c);
             }
             self.error(
-                Diagnostic::error(
-                    "scnc::check::unknown_choice",
-                    format!("unknown {what} `{n}`"),
-                )
-                .at(e.span, format!("not a {what}"))
-                .help(suggest::help_for(n, choices, "choices")),
+                Diagnostic::error(Code::CheckUnknownChoice, format!("unknown {what} `{n}`"))
+                    .at(e.span, format!("not a {what}"))
+                    .help(suggest::help_for(n, choices, "choices")),
             );
             return None;
         }
         self.error(
-            Diagnostic::error("scnc::check::wrong_type", format!("expected a {what}"))
+            Diagnostic::error(Code::CheckWrongType, format!("expected a {what}"))
                 .at(e.span, "expected a word")
                 .help(format!("choose one of {}", suggest::list(choices))),
         );

@@ -14,7 +14,7 @@
 
 use super::names::Namespace;
 use super::Checker;
-use crate::diag::{suggest, Diagnostic};
+use crate::diag::{suggest, Code, Diagnostic};
 use crate::ir;
 use crate::source::Span;
 use crate::syntax::Block;
@@ -130,7 +130,7 @@ impl Checker<'_> {
         if v[1].as_name() != Some("x") {
             self.error(
                 Diagnostic::error(
-                    "scnc::check::bad_resolution",
+                    Code::CheckBadResolution,
                     "expected `x` between width and height",
                 )
                 .at(v[1].span, "expected `x`")
@@ -175,7 +175,7 @@ impl Checker<'_> {
             let above = near.iter().copied().filter(|&q| q > n).min().unwrap_or(4);
             self.error(
                 Diagnostic::error(
-                    "scnc::check::samples_not_square",
+                    Code::CheckSamplesNotSquare,
                     format!("samples must be a perfect square (1, 4, 9, 16, ...), found {n}"),
                 )
                 .at(count.span, "not a square")
@@ -211,7 +211,7 @@ impl Checker<'_> {
                 };
                 self.error(
                     Diagnostic::error(
-                        "scnc::check::unknown_output_format",
+                        Code::CheckUnknownOutputFormat,
                         if ext.is_empty() {
                             "the output file has no extension".to_string()
                         } else {

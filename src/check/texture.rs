@@ -10,7 +10,7 @@ use glam::DVec3;
 
 use super::names::Namespace;
 use super::Checker;
-use crate::diag::{suggest, Diagnostic};
+use crate::diag::{suggest, Code, Diagnostic};
 use crate::ir;
 use crate::syntax::{Block, Decl, Expr};
 
@@ -79,7 +79,7 @@ impl Checker<'_> {
                 };
                 self.error(
                     Diagnostic::error(
-                        "scnc::check::unknown_texture_kind",
+                        Code::CheckUnknownTextureKind,
                         format!("unknown texture kind `{name}`"),
                     )
                     .at(d.ctor.span, "not a texture kind")
@@ -112,7 +112,7 @@ impl Checker<'_> {
             [one] => self.asset_path(one),
             _ => {
                 self.error(
-                    Diagnostic::error("scnc::check::wrong_arity", "`image` takes one file name")
+                    Diagnostic::error(Code::CheckWrongArity, "`image` takes one file name")
                         .at(d.ctor.span, "here")
                         .help("write `image(\"file.png\")`"),
                 );
@@ -176,7 +176,7 @@ impl Checker<'_> {
         {
             self.error(
                 Diagnostic::warning(
-                    "scnc::check::srgb_normal_map",
+                    Code::CheckSrgbNormalMap,
                     "this normal map is decoded as an sRGB colour image",
                 )
                 .at(e.span, "normal map")

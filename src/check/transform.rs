@@ -12,7 +12,7 @@ use glam::{DMat4, DVec3, Mat4};
 use super::array;
 use super::props::Prop;
 use super::Checker;
-use crate::diag::Diagnostic;
+use crate::diag::{Code, Diagnostic};
 use crate::syntax::{Block, Expr, ExprKind};
 
 pub const TRANSFORM_KEYS: &[&str] = &["translate", "rotate", "scale", "look_at", "matrix"];
@@ -41,7 +41,7 @@ impl Checker<'_> {
         if let [first, second, ..] = blocks {
             self.error(
                 Diagnostic::error(
-                    "scnc::check::duplicate_key",
+                    Code::CheckDuplicateKey,
                     format!("`transform` is given twice in {what}"),
                 )
                 .at(second.span, "given again here")
@@ -85,7 +85,7 @@ impl Checker<'_> {
                 let s = self.vec3_or_num(e)?;
                 if s.x * s.y * s.z == 0.0 {
                     self.error(
-                        Diagnostic::error("scnc::check::degenerate_transform", "scale of zero")
+                        Diagnostic::error(Code::CheckDegenerateTransform, "scale of zero")
                             .at(e.span, "flattens everything")
                             .help("every scale factor must be non-zero"),
                     );
@@ -100,7 +100,7 @@ impl Checker<'_> {
                 if m.is_none() {
                     self.error(
                         Diagnostic::error(
-                            "scnc::check::degenerate_transform",
+                            Code::CheckDegenerateTransform,
                             "look_at has no direction: eye equals target, or up is parallel to the view",
                         )
                         .at(p.span(), "this look_at")
@@ -127,11 +127,8 @@ impl Checker<'_> {
         let n = v.try_normalize();
         if n.is_none() {
             self.error(
-                Diagnostic::error(
-                    "scnc::check::zero_direction",
-                    "rotation axis has zero length",
-                )
-                .at(e.span, "cannot be normalised"),
+                Diagnostic::error(Code::CheckZeroDirection, "rotation axis has zero length")
+                    .at(e.span, "cannot be normalised"),
             );
         }
         n
@@ -140,7 +137,7 @@ impl Checker<'_> {
     fn matrix(&mut self, e: &Expr) -> Option<DMat4> {
         if !matches!(e.kind, ExprKind::Array) {
             self.error(
-                Diagnostic::error("scnc::check::wrong_type", "expected `[16 numbers]`")
+                Diagnostic::error(Code::CheckWrongType, "expected `[16 numbers]`")
                     .at(e.span, "not an array"),
             );
             return None;
@@ -150,16 +147,14 @@ impl Checker<'_> {
             Ok(n) => n,
             Err(err) => {
                 let span = err.span(e.span);
-                self.error(
-                    Diagnostic::error("scnc::check::bad_array", err.message).at(span, "here"),
-                );
+                self.error(Diagnostic::error(Code::CheckBadArray, err.message).at(span, "here"));
                 return None;
             }
         };
         let Ok(rows) = <[f32; 16]>::try_from(nums.as_slice()) else {
             self.error(
                 Diagnostic::error(
-                    "scnc::check::wrong_arity",
+                    Code::CheckWrongArity,
                     format!("a matrix has 16 numbers, found {}", nums.len()),
                 )
                 .at(e.span, "this matrix"),
@@ -169,11 +164,8 @@ impl Checker<'_> {
         let m = Mat4::from_cols_array(&rows).transpose().as_dmat4();
         if m.determinant().abs() < 1e-12 {
             self.error(
-                Diagnostic::error(
-                    "scnc::check::degenerate_transform",
-                    "matrix is not invertible",
-                )
-                .at(e.span, "determinant is zero"),
+                Diagnostic::error(Code::CheckDegenerateTransform, "matrix is not invertible")
+                    .at(e.span, "determinant is zero"),
             );
             return None;
         }

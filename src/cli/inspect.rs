@@ -17,7 +17,7 @@ use crate::assets::obj::phong::{default_phong, phong_of, renders_map, ObjPhong};
 use crate::assets::obj::report::{error_diagnostic, mtl_display_name, warning_diagnostics};
 use crate::assets::obj::{load_obj, LoadedObj};
 use crate::assets::{FsLoader, Loader};
-use crate::diag::{Diagnostic, Severity};
+use crate::diag::{Code, Diagnostic, Severity};
 use crate::source::SourceMap;
 
 #[derive(Debug, Clone, Args)]
@@ -49,7 +49,7 @@ pub fn run(args: &InspectArgs) -> ExitCode {
         Ok(b) => b,
         Err(e) => {
             let d = Diagnostic::error(
-                "scnc::inspect::read_failed",
+                Code::InspectReadFailed,
                 format!("cannot read `{shown}`: {e}"),
             );
             print_diagnostic_list(&[d], &sources, DiagnosticFormat::Human, JsonTo::Stderr);

@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 
 use crate::diag::suggest::did_you_mean;
-use crate::diag::Diagnostic;
+use crate::diag::{Code, Diagnostic};
 use crate::ir::SceneDesc;
 use crate::source::Span;
 
@@ -15,7 +15,7 @@ pub fn camera_index(desc: &SceneDesc, name: &str) -> Result<usize, Box<Diagnosti
     desc.camera_by_name(name).ok_or_else(|| {
         let names: Vec<&str> = desc.cameras.iter().map(|c| c.name.as_str()).collect();
         let d = Diagnostic::error(
-            "scnc::cli::unknown_camera",
+            Code::CliUnknownCamera,
             format!("the scene has no camera named `{name}`"),
         );
         Box::new(match did_you_mean(name, names.iter().copied()) {

@@ -2,6 +2,7 @@
 
 use serde::Serialize;
 
+use super::Code;
 use crate::source::Span;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize)]
@@ -38,8 +39,9 @@ pub struct ExternalLabel {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Diagnostic {
     pub severity: Severity,
-    /// Stable code, e.g. `scnc::check::unknown_material`; editors and tests key on it.
-    pub code: &'static str,
+    /// Stable code, e.g. `scnc::check::unknown_material` (serialised as that string); editors
+    /// and tests key on it, and `scnc explain` explains it.
+    pub code: Code,
     /// One sentence saying what is wrong.
     pub message: String,
     /// Where it is wrong. `None` only for problems with no source location (e.g. the root
@@ -57,7 +59,8 @@ pub struct Diagnostic {
 }
 
 impl Diagnostic {
-    pub fn error(code: &'static str, message: impl Into<String>) -> Diagnostic {
+    /// An error: it stops the pipeline after the stage that found it.
+    pub fn error(code: Code, message: impl Into<String>) -> Diagnostic {
         Diagnostic {
             severity: Severity::Error,
             code,
@@ -69,7 +72,8 @@ impl Diagnostic {
         }
     }
 
-    pub fn warning(code: &'static str, message: impl Into<String>) -> Diagnostic {
+    /// A warning: reported, never stops anything.
+    pub fn warning(code: Code, message: impl Into<String>) -> Diagnostic {
         Diagnostic {
             severity: Severity::Warning,
             ..Diagnostic::error(code, message)

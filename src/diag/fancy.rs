@@ -12,13 +12,14 @@ use miette::{
     SourceSpan, SpanContents,
 };
 
-use super::{Diagnostic, Severity};
+use super::{Code, Diagnostic, Severity};
 use crate::source::{FileId, SourceMap};
 
 #[derive(Debug)]
 struct Report {
     severity: miette::Severity,
-    code: &'static str,
+    /// `None` for the context reports attached to a diagnostic (they are not problems).
+    code: Option<Code>,
     message: String,
     help: Option<String>,
     source: Option<NamedSource<Arc<str>>>,
@@ -38,7 +39,7 @@ impl std::error::Error for Report {}
 
 impl miette::Diagnostic for Report {
     fn code<'a>(&'a self) -> Option<Box<dyn fmt::Display + 'a>> {
-        (!self.code.is_empty()).then(|| Box::new(self.code) as Box<dyn fmt::Display>)
+        self.code.map(|c| Box::new(c) as Box<dyn fmt::Display>)
     }
 
     fn severity(&self) -> Option<miette::Severity> {
@@ -124,7 +125,7 @@ fn to_report(d: &Diagnostic, sources: &SourceMap) -> Report {
         if scn.source.is_some() {
             report.related.push(Report {
                 severity: miette::Severity::Advice,
-                code: "",
+                code: None,
                 message: "referenced here".into(),
                 help: None,
                 ..scn
@@ -152,7 +153,7 @@ fn scn_report(d: &Diagnostic, sources: &SourceMap) -> Report {
             related.push(Report {
                 // Context in another file: shown as advice, not as a second problem.
                 severity: miette::Severity::Advice,
-                code: "",
+                code: None,
                 message: l.message.clone(),
                 help: None,
                 source: Some(sources.named_source(l.span.file)),
@@ -167,13 +168,22 @@ fn scn_report(d: &Diagnostic, sources: &SourceMap) -> Report {
             Severity::Error => miette::Severity::Error,
             Severity::Warning => miette::Severity::Warning,
         },
-        code: d.code,
+        code: Some(d.code),
         message: d.message.clone(),
-        help: d.help.clone(),
+        help: Some(help_with_explain_hint(d)),
         source: main_file.map(|f| sources.named_source(f)),
         labels,
         related,
         line_source: None,
+    }
+}
+
+/// The diagnostic's help, then where to read more: the terminal is where a user meets a code
+/// for the first time. (Plain output, which tests snapshot, stays without it.)
+fn help_with_explain_hint(d: &Diagnostic) -> String {
+    match &d.help {
+        Some(h) => format!("{h}\n{}", d.code.explain_hint()),
+        None => d.code.explain_hint(),
     }
 }
 

@@ -1,7 +1,7 @@
 //! JSON rendering of diagnostics for editors and the preview (`--diagnostic-format json`).
 //!
 //! One object `{"diagnostics": [...], "errors": N, "warnings": M}`; each diagnostic has
-//! `severity`, `code`, `message`, `help`, and `labels` (primary first) with `file` (display
+//! `severity`, `code`, `message`, `help`, `explain` (the command that explains the code), and `labels` (primary first) with `file` (display
 //! name), `path`, byte `start`/`end`, 1-based `line`/`column` and `message`.
 
 use serde::Serialize;
@@ -24,9 +24,11 @@ struct JsonLabel<'a> {
 #[derive(Serialize)]
 struct JsonDiagnostic<'a> {
     severity: super::Severity,
-    code: &'a str,
+    code: super::Code,
     message: &'a str,
     help: Option<&'a str>,
+    /// `scnc explain CODE`: where to read what the code means.
+    explain: String,
     labels: Vec<JsonLabel<'a>>,
     /// Lines of OBJ/MTL files (absent when there are none).
     #[serde(skip_serializing_if = "<[_]>::is_empty")]
@@ -65,6 +67,7 @@ pub fn render_json(diags: &[Diagnostic], sources: &SourceMap) -> String {
                 code: d.code,
                 message: &d.message,
                 help: d.help.as_deref(),
+                explain: format!("scnc explain {}", d.code),
                 labels: d
                     .primary
                     .iter()

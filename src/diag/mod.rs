@@ -5,12 +5,15 @@
 //! [`render_json`] for editors. A compile collects many diagnostics in one run; warnings never
 //! stop it.
 
+mod code;
+mod codes;
 mod diagnostic;
 mod fancy;
 mod json;
 mod plain;
 pub mod suggest;
 
+pub use code::Code;
 pub use diagnostic::{Diagnostic, ExternalLabel, Label, Severity};
 pub use fancy::render_fancy;
 pub use json::render_json;

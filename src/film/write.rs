@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use super::{encode, Film};
-use crate::diag::Diagnostic;
+use crate::diag::{Code, Diagnostic};
 use crate::ir::{OutputFormat, RenderSettings, ToneMap};
 use crate::source::Span;
 
@@ -42,16 +42,14 @@ impl Default for WriteSettings {
     }
 }
 
-#[derive(Debug, thiserror::Error, miette::Diagnostic)]
+/// Why an image could not be written; [`WriteError::code`] gives its registry code.
+#[derive(Debug, thiserror::Error)]
 pub enum WriteError {
     #[error("cannot tell the image format of `{}` (use .png, .exr, .hdr or .pfm)", path.display())]
-    #[diagnostic(code(scnc::write::unknown_format))]
     UnknownFormat { path: PathBuf },
     #[error("cannot encode `{}`: {message}", path.display())]
-    #[diagnostic(code(scnc::write::encode))]
     Encode { path: PathBuf, message: String },
     #[error("cannot write `{}`: {source}", path.display())]
-    #[diagnostic(code(scnc::write::io))]
     Io {
         path: PathBuf,
         #[source]
@@ -60,11 +58,12 @@ pub enum WriteError {
 }
 
 impl WriteError {
-    pub fn code(&self) -> &'static str {
+    /// The stable code of this error.
+    pub fn code(&self) -> Code {
         match self {
-            WriteError::UnknownFormat { .. } => "scnc::write::unknown_format",
-            WriteError::Encode { .. } => "scnc::write::encode",
-            WriteError::Io { .. } => "scnc::write::io",
+            WriteError::UnknownFormat { .. } => Code::WriteUnknownFormat,
+            WriteError::Encode { .. } => Code::WriteEncode,
+            WriteError::Io { .. } => Code::WriteIo,
         }
     }
 

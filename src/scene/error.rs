@@ -10,15 +10,13 @@ use std::io;
 
 use thiserror::Error;
 
-use crate::diag::{Diagnostic, Severity};
+use crate::diag::{Code, Diagnostic, Severity};
 use crate::source::Span;
 
-/// One problem found while building the scene. The `miette` codes and [`BuildError::code`]
-/// agree (a unit test checks every variant).
-#[derive(Debug, Error, miette::Diagnostic)]
+/// One problem found while building the scene; [`BuildError::code`] gives its registry code.
+#[derive(Debug, Error)]
 pub enum BuildError {
     #[error("cannot find `{written}`: {source}")]
-    #[diagnostic(code(scnc::build::missing_file))]
     Missing {
         written: String,
         span: Span,
@@ -26,7 +24,6 @@ pub enum BuildError {
         source: io::Error,
     },
     #[error("cannot read `{written}`: {source}")]
-    #[diagnostic(code(scnc::build::read_failed))]
     Read {
         written: String,
         span: Span,
@@ -34,28 +31,24 @@ pub enum BuildError {
         source: io::Error,
     },
     #[error("`{written}` is not a valid OBJ file: {reason}")]
-    #[diagnostic(code(scnc::build::corrupt_obj))]
     CorruptObj {
         written: String,
         span: Span,
         reason: String,
     },
     #[error("`{written}`: a face refers to a vertex, normal or UV that does not exist ({reason})")]
-    #[diagnostic(code(scnc::build::index_out_of_range))]
     IndexOutOfRange {
         written: String,
         span: Span,
         reason: String,
     },
     #[error("every triangle of mesh `{mesh}` is degenerate ({count} triangles of zero area or with a NaN or infinite corner)")]
-    #[diagnostic(code(scnc::build::degenerate_mesh))]
     AllDegenerate {
         mesh: String,
         count: usize,
         span: Span,
     },
     #[error("{count} of {total} triangles of mesh `{mesh}` are degenerate (zero area, repeated vertices, or a NaN or infinite corner) and were dropped")]
-    #[diagnostic(code(scnc::build::degenerate_triangles), severity(Warning))]
     SomeDegenerate {
         mesh: String,
         count: usize,
@@ -63,27 +56,22 @@ pub enum BuildError {
         span: Span,
     },
     #[error("mesh `{mesh}` has no triangles")]
-    #[diagnostic(code(scnc::build::empty_mesh), severity(Warning))]
     EmptyMesh { mesh: String, span: Span },
     #[error("this transform is singular or not finite, so the object has no area")]
-    #[diagnostic(code(scnc::build::singular_transform))]
     SingularTransform { span: Span },
     #[error("{what} is not supported yet")]
-    #[diagnostic(code(scnc::build::unsupported))]
     Unsupported {
         what: String,
         span: Span,
         help: String,
     },
     #[error("`{written}` is not a valid image: {reason}")]
-    #[diagnostic(code(scnc::build::corrupt_image))]
     CorruptImage {
         written: String,
         span: Span,
         reason: String,
     },
     #[error("`{written}` is {width} × {height}, larger than the {max_width} × {max_height} limit")]
-    #[diagnostic(code(scnc::build::image_too_large))]
     ImageTooLarge {
         written: String,
         span: Span,
@@ -93,7 +81,6 @@ pub enum BuildError {
         max_height: u32,
     },
     #[error("{count} of {total} pixels of `{written}` are negative, NaN or infinite; they were set to black")]
-    #[diagnostic(code(scnc::build::invalid_environment_pixels), severity(Warning))]
     InvalidPixels {
         written: String,
         span: Span,
@@ -101,13 +88,10 @@ pub enum BuildError {
         total: usize,
     },
     #[error("the environment map `{written}` is black everywhere; it lights nothing")]
-    #[diagnostic(code(scnc::build::black_environment), severity(Warning))]
     BlackEnvironment { written: String, span: Span },
     #[error("area light `{light}` faces away from everything: all the scene's geometry is behind its one-sided front")]
-    #[diagnostic(code(scnc::build::light_faces_away), severity(Warning))]
     LightFacesAway { light: String, span: Span },
     #[error("mesh `{mesh}` has no UV coordinates, but its material `{material}` is textured")]
-    #[diagnostic(code(scnc::build::no_uvs), severity(Warning))]
     NoUvs {
         mesh: String,
         material: String,
@@ -116,33 +100,31 @@ pub enum BuildError {
     /// A problem inside an OBJ or MTL file, already a diagnostic with both places: the line
     /// of that file and the path literal in the `.scn` (its code is `scnc::obj::…`).
     #[error("{}", .0.message)]
-    #[diagnostic(code(scnc::obj))]
     Obj(Box<Diagnostic>),
     #[error("the scene has no camera {which}")]
-    #[diagnostic(code(scnc::build::no_camera))]
     NoCamera { which: String },
 }
 
 impl BuildError {
     /// The stable code editors and tests key on.
-    pub fn code(&self) -> &'static str {
+    pub fn code(&self) -> Code {
         match self {
-            BuildError::Missing { .. } => "scnc::build::missing_file",
-            BuildError::Read { .. } => "scnc::build::read_failed",
-            BuildError::CorruptObj { .. } => "scnc::build::corrupt_obj",
-            BuildError::IndexOutOfRange { .. } => "scnc::build::index_out_of_range",
-            BuildError::AllDegenerate { .. } => "scnc::build::degenerate_mesh",
-            BuildError::SomeDegenerate { .. } => "scnc::build::degenerate_triangles",
-            BuildError::EmptyMesh { .. } => "scnc::build::empty_mesh",
-            BuildError::SingularTransform { .. } => "scnc::build::singular_transform",
-            BuildError::Unsupported { .. } => "scnc::build::unsupported",
-            BuildError::CorruptImage { .. } => "scnc::build::corrupt_image",
-            BuildError::ImageTooLarge { .. } => "scnc::build::image_too_large",
-            BuildError::InvalidPixels { .. } => "scnc::build::invalid_environment_pixels",
-            BuildError::BlackEnvironment { .. } => "scnc::build::black_environment",
-            BuildError::LightFacesAway { .. } => "scnc::build::light_faces_away",
-            BuildError::NoUvs { .. } => "scnc::build::no_uvs",
-            BuildError::NoCamera { .. } => "scnc::build::no_camera",
+            BuildError::Missing { .. } => Code::BuildMissingFile,
+            BuildError::Read { .. } => Code::BuildReadFailed,
+            BuildError::CorruptObj { .. } => Code::BuildCorruptObj,
+            BuildError::IndexOutOfRange { .. } => Code::BuildIndexOutOfRange,
+            BuildError::AllDegenerate { .. } => Code::BuildDegenerateMesh,
+            BuildError::SomeDegenerate { .. } => Code::BuildDegenerateTriangles,
+            BuildError::EmptyMesh { .. } => Code::BuildEmptyMesh,
+            BuildError::SingularTransform { .. } => Code::BuildSingularTransform,
+            BuildError::Unsupported { .. } => Code::BuildUnsupported,
+            BuildError::CorruptImage { .. } => Code::BuildCorruptImage,
+            BuildError::ImageTooLarge { .. } => Code::BuildImageTooLarge,
+            BuildError::InvalidPixels { .. } => Code::BuildInvalidEnvironmentPixels,
+            BuildError::BlackEnvironment { .. } => Code::BuildBlackEnvironment,
+            BuildError::LightFacesAway { .. } => Code::BuildLightFacesAway,
+            BuildError::NoUvs { .. } => Code::BuildNoUvs,
+            BuildError::NoCamera { .. } => Code::BuildNoCamera,
             BuildError::Obj(d) => d.code,
         }
     }
@@ -263,7 +245,7 @@ mod tests {
     use crate::source::FileId;
 
     #[test]
-    fn miette_codes_and_severities_match_the_diagnostics() {
+    fn diagnostics_carry_the_code_and_severity() {
         let span = Span::new(FileId(0), 1, 2);
         let s = || String::from("x");
         let all = [
@@ -334,12 +316,9 @@ mod tests {
             BuildError::NoCamera { which: s() },
         ];
         for e in &all {
-            let code = miette::Diagnostic::code(e).map(|c| c.to_string());
-            assert_eq!(code.as_deref(), Some(e.code()));
-            let warning = miette::Diagnostic::severity(e) == Some(miette::Severity::Warning);
-            assert_eq!(warning, e.severity() == Severity::Warning, "{}", e.code());
             let d = e.to_diagnostic();
             assert_eq!(d.code, e.code());
+            assert_eq!(d.severity, e.severity(), "{}", e.code());
             assert_eq!(
                 d.primary.is_some(),
                 !matches!(e, BuildError::NoCamera { .. })

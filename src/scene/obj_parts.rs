@@ -20,7 +20,7 @@ use crate::assets::obj::report::{line_label, mtl_display_name};
 use crate::assets::obj::LoadedObj;
 use crate::assets::texture_image::{decode_texture, ImageError, MAX_TEXTURE_SIDE};
 use crate::assets::Loader;
-use crate::diag::Diagnostic;
+use crate::diag::{Code, Diagnostic};
 use crate::ir::{
     ColorInput, Filter, GreenConvention, NormalMap, ObjOptions, ScalarInput, WrapMode,
 };
@@ -70,12 +70,12 @@ pub(super) fn parts_of(
                         }
                         let d = match loader.read(&path) {
                             Err(e) => Diagnostic::warning(
-                                "scnc::obj::missing_texture",
+                                Code::ObjMissingTexture,
                                 format!("cannot read the texture `{}` of material `{}` ({e}); its constant colour is used", tex.file, mat.name),
                             )
                             .help("texture paths in an MTL are relative to the MTL file"),
                             Ok(_) if !renders_map(key) => Diagnostic::warning(
-                                "scnc::obj::texture_not_rendered",
+                                Code::ObjTextureNotRendered,
                                 format!("`{key} {}` of material `{}` is not rendered; its constant is used", tex.file, mat.name),
                             )
                             .help("scnc renders `map_Kd`, `map_Ks` and `norm` (normal maps); for others declare a `texture … = image(…)` and replace this material with `material NAME mat` in the mesh's block"),
@@ -87,7 +87,7 @@ pub(super) fn parts_of(
                                     continue;
                                 }
                                 Err(e) => Diagnostic::warning(
-                                    "scnc::obj::bad_texture",
+                                    Code::ObjBadTexture,
                                     format!("the texture `{}` of material `{}` cannot be used ({}); its constant colour is used", tex.file, mat.name, match e {
                                         ImageError::Corrupt(reason) => reason,
                                         ImageError::TooLarge { width, height } => format!("{width} x {height} is beyond the {MAX_TEXTURE_SIDE} x {MAX_TEXTURE_SIDE} cap"),
@@ -158,7 +158,7 @@ impl PartTables {
                 let names: Vec<String> = mesh.parts.iter().filter_map(|p| p.name.clone()).map(|n| format!("`{n}`")).collect();
                 self.unknown.push(BuildError::Obj(Box::new(
                     Diagnostic::warning(
-                        "scnc::obj::unknown_override",
+                        Code::ObjUnknownOverride,
                         format!("the OBJ has no material `{}` to replace", o.obj_name),
                     )
                     .at(o.span, "no `usemtl` of this name")

@@ -12,7 +12,7 @@ use pest::iterators::{Pair, Pairs};
 
 use super::ast::*;
 use super::Rule;
-use crate::diag::Diagnostic;
+use crate::diag::{Code, Diagnostic};
 use crate::source::{FileId, Span};
 
 /// Most nodes one top-level expression may have. Keeps every later recursion over expressions
@@ -47,7 +47,7 @@ impl Converter {
             drop(e);
             self.errors.borrow_mut().push(
                 Diagnostic::error(
-                    "scnc::syntax::expression_too_large",
+                    Code::SyntaxExpressionTooLarge,
                     format!("expression too large (more than {MAX_EXPR_NODES} terms)"),
                 )
                 .at(span, "this expression")

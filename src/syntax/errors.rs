@@ -8,8 +8,8 @@ use pest::error::{Error, ErrorVariant, InputLocation};
 
 use super::scan::{self, STATEMENT_KEYWORDS};
 use super::Rule;
-use crate::diag::suggest;
 use crate::diag::Diagnostic;
+use crate::diag::{suggest, Code};
 use crate::source::{FileId, Span};
 
 fn describe(rule: Rule) -> &'static str {
@@ -94,7 +94,7 @@ pub(super) fn from_pest(file: FileId, base: usize, chunk: &str, e: &Error<Rule>)
     {
         let span = Span::new(file, base + pos, base + pos + found.len());
         return Diagnostic::error(
-            "scnc::syntax::unknown_keyword",
+            Code::SyntaxUnknownKeyword,
             format!("unknown statement `{found}`"),
         )
         .at(span, "expected a statement keyword")
@@ -111,7 +111,7 @@ pub(super) fn from_pest(file: FileId, base: usize, chunk: &str, e: &Error<Rule>)
                 _ => "*/",
             };
             return Diagnostic::error(
-                "scnc::syntax::unclosed_delimiter",
+                Code::SyntaxUnclosedDelimiter,
                 format!("this `{tok}` is never closed"),
             )
             .at(span, "opened here")
@@ -145,11 +145,8 @@ pub(super) fn from_pest(file: FileId, base: usize, chunk: &str, e: &Error<Rule>)
     } else {
         format!("`{found}`")
     };
-    let mut d = Diagnostic::error(
-        "scnc::syntax::unexpected_token",
-        format!("unexpected {what}"),
-    )
-    .at(Span::new(file, base + start, base + end), "unexpected here");
+    let mut d = Diagnostic::error(Code::SyntaxUnexpectedToken, format!("unexpected {what}"))
+        .at(Span::new(file, base + start, base + end), "unexpected here");
     if matches!(found, "*" | "/" | "+") {
         d = d.help("inside a block each value is one term: write arithmetic in parentheses, e.g. `intensity (2 * 5)`, or use a `let`");
     } else if !expected.is_empty() {

@@ -17,7 +17,7 @@ pub use convert::MAX_EXPR_NODES;
 
 use pest::Parser;
 
-use crate::diag::Diagnostic;
+use crate::diag::{Code, Diagnostic};
 use crate::source::{FileId, Span};
 
 #[derive(pest_derive::Parser)]
@@ -104,7 +104,7 @@ fn parse_chunks(file: FileId, text: &str, scanned: &scan::Scan) -> (SceneFile, V
         if let Some(deep) = scanned.too_deep_at.filter(|&d| d >= start && d < end) {
             diags.push(
                 Diagnostic::error(
-                    "scnc::syntax::too_deep",
+                    Code::SyntaxTooDeep,
                     format!("nesting deeper than {} levels", scan::MAX_NESTING),
                 )
                 .at(Span::new(file, deep, deep + 1), "too deep here")
@@ -187,13 +187,13 @@ mod tests {
             ")".repeat(5000)
         );
         let (_, d) = parse(FileId(0), &src);
-        assert_eq!(d[0].code, "scnc::syntax::too_deep");
+        assert_eq!(d[0].code, Code::SyntaxTooDeep);
     }
 
     #[test]
     fn long_expressions_are_capped() {
         let src = format!("scnc 1\nlet a = 1{}\n", " + 1".repeat(300));
         let (_, d) = parse(FileId(0), &src);
-        assert_eq!(d[0].code, "scnc::syntax::expression_too_large");
+        assert_eq!(d[0].code, Code::SyntaxExpressionTooLarge);
     }
 }

@@ -14,6 +14,7 @@ use super::model::parse_obj;
 use super::mtl::{parse_mtl, MtlLibrary};
 use super::{Note, ObjError, ObjModel};
 use crate::assets::Loader;
+use crate::diag::Code;
 
 /// Which file a note is about.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -107,7 +108,7 @@ pub fn load_obj(
                 Err(e) => out.warnings.push((
                     FileRef::Obj,
                     Note::warning(
-                        "scnc::obj::missing_mtl",
+                        Code::ObjMissingMtl,
                         format!("cannot read the material library `{name}` ({e}); its materials use the default"),
                         at,
                     )
@@ -161,7 +162,7 @@ impl LoadedObj {
             notes.push((
                 FileRef::Obj,
                 Note::warning(
-                    "scnc::obj::unknown_material",
+                    Code::ObjUnknownMaterial,
                     format!("material `{name}` is not defined ({libs}); its faces use the default"),
                     at,
                 ),

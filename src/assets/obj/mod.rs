@@ -26,6 +26,7 @@ pub mod phong;
 pub mod polygon;
 pub mod report;
 
+use crate::diag::Code;
 pub use load::{load_obj, LoadedObj, MtlSource};
 pub use model::{parse_obj, MaterialRun, ObjModel, ObjStats};
 pub use mtl::{parse_mtl, BumpKind, MtlLibrary, MtlMaterial, TexRef};
@@ -55,14 +56,14 @@ impl Place {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Note {
     /// Stable code, e.g. `scnc::obj::lines_skipped`.
-    pub code: &'static str,
+    pub code: Code,
     pub message: String,
     pub at: Place,
     pub help: Option<String>,
 }
 
 impl Note {
-    pub fn warning(code: &'static str, message: impl Into<String>, at: Place) -> Note {
+    pub fn warning(code: Code, message: impl Into<String>, at: Place) -> Note {
         Note {
             code,
             message: message.into(),
@@ -80,14 +81,14 @@ impl Note {
 /// Why a file cannot be loaded, at the line where that became clear.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ObjError {
-    pub code: &'static str,
+    pub code: Code,
     pub message: String,
     pub at: Place,
     pub help: Option<String>,
 }
 
 impl ObjError {
-    pub fn new(code: &'static str, message: impl Into<String>, at: Place) -> ObjError {
+    pub fn new(code: Code, message: impl Into<String>, at: Place) -> ObjError {
         ObjError {
             code,
             message: message.into(),

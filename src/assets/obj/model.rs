@@ -23,6 +23,7 @@ use super::mtl::latin1_note;
 use super::number::{parse_f32, parse_index};
 use super::polygon::{triangulate, Scratch};
 use super::{Note, ObjError, Place};
+use crate::diag::Code;
 
 /// Triangles `start..` (up to the next run) use material `name` (`None`: before any `usemtl`).
 #[derive(Debug, Clone, PartialEq)]
@@ -136,7 +137,7 @@ impl Parser {
                 self.first.push((UNSET, UNSET));
                 if self.model.positions.len() >= EXTRA as usize {
                     return Err(ObjError::new(
-                        "scnc::obj::too_large",
+                        Code::ObjTooLarge,
                         "more than 2³¹ vertices",
                         at,
                     ));
@@ -213,7 +214,7 @@ impl Parser {
         for tok in tokens(rest) {
             let Some(v) = parse_f32(tok) else {
                 return Err(ObjError::new(
-                    "scnc::obj::bad_number",
+                    Code::ObjBadNumber,
                     format!("`{}` is not a number", decode_name(tok).0),
                     at,
                 )
@@ -226,7 +227,7 @@ impl Parser {
         }
         if count < min {
             return Err(ObjError::new(
-                "scnc::obj::missing_number",
+                Code::ObjMissingNumber,
                 format!("this line has {count} numbers; it should be {what}"),
                 at,
             ));
@@ -260,7 +261,7 @@ impl Parser {
         }
         if self.corners.len() < 3 {
             return Err(ObjError::new(
-                "scnc::obj::short_face",
+                Code::ObjShortFace,
                 format!(
                     "a face needs at least 3 corners, this one has {}",
                     self.corners.len()
@@ -358,7 +359,7 @@ impl Parser {
         if m.encoding != Encoding::Utf8 {
             m.warnings.push(
                 Note::warning(
-                    "scnc::obj::utf16",
+                    Code::ObjUtf16,
                     format!("this file is {}; it was transcoded", m.encoding.name()),
                     Place {
                         line: 1,
@@ -375,7 +376,7 @@ impl Parser {
         if let Some(at) = self.first_skipped {
             m.warnings.push(
                 Note::warning(
-                    "scnc::obj::lines_skipped",
+                    Code::ObjLinesSkipped,
                     format!(
                         "{} line (`l`) and point (`p`) elements skipped: only faces become surfaces",
                         m.stats.lines_and_points
@@ -387,7 +388,7 @@ impl Parser {
         }
         if let Some(at) = self.fanned {
             m.warnings.push(Note::warning(
-                "scnc::obj::polygon_fanned",
+                Code::ObjPolygonFanned,
                 format!(
                     "a face with more than {} corners was triangulated as a fan (correct only if it is convex)",
                     super::polygon::EAR_CLIP_MAX
@@ -406,7 +407,7 @@ impl Parser {
                 .collect();
             m.warnings.push(
                 Note::warning(
-                    "scnc::obj::unsupported_statement",
+                    Code::ObjUnsupportedStatement,
                     format!("OBJ statements scnc does not read were ignored: {}", list.join(", ")),
                     *first,
                 )
@@ -420,7 +421,7 @@ impl Parser {
 fn resolve(tok: &[u8], len: usize, at: Place, what: &str) -> Result<u32, ObjError> {
     let Some(i) = parse_index(tok) else {
         return Err(ObjError::new(
-            "scnc::obj::bad_index",
+            Code::ObjBadIndex,
             format!("`{}` is not a {what} index", decode_name(tok).0),
             at,
         )
@@ -431,7 +432,7 @@ fn resolve(tok: &[u8], len: usize, at: Place, what: &str) -> Result<u32, ObjErro
     let resolved = if i < 0 { len as i64 + i } else { i - 1 };
     if i == 0 || resolved < 0 || resolved >= len as i64 {
         return Err(ObjError::new(
-            "scnc::obj::index_out_of_range",
+            Code::ObjIndexOutOfRange,
             format!("{what} index {i} does not exist: {len} read so far"),
             at,
         )

@@ -16,6 +16,7 @@ use super::encoding::decode_name;
 use super::lexer::{keyword, strip_comment, tokens, Lines};
 use super::number::parse_f32;
 use super::{Note, Place};
+use crate::diag::Code;
 
 /// A texture named by an MTL statement.
 #[derive(Debug, Clone, PartialEq)]
@@ -101,7 +102,7 @@ pub fn parse_mtl(text: &[u8]) -> MtlLibrary {
         }
         let Some(m) = lib.materials.last_mut() else {
             bad.push(Note::warning(
-                "scnc::obj::mtl_outside_material",
+                Code::ObjMtlOutsideMaterial,
                 "this statement comes before any `newmtl` and is ignored",
                 at,
             ));
@@ -148,7 +149,7 @@ pub fn parse_mtl(text: &[u8]) -> MtlLibrary {
         if parsed.is_none() {
             bad.push(
                 Note::warning(
-                    "scnc::obj::bad_mtl_statement",
+                    Code::ObjBadMtlStatement,
                     format!(
                         "cannot read this `{}` statement; it is ignored",
                         decode_name(kw).0
@@ -173,7 +174,7 @@ pub fn parse_mtl(text: &[u8]) -> MtlLibrary {
             .collect();
         lib.warnings.push(
             Note::warning(
-                "scnc::obj::unsupported_mtl",
+                Code::ObjUnsupportedMtl,
                 format!("MTL statements scnc does not render were ignored: {}", list.join(", ")),
                 *first,
             )
@@ -186,7 +187,7 @@ pub fn parse_mtl(text: &[u8]) -> MtlLibrary {
 /// The note for names that were not UTF-8 and were read as Latin-1.
 pub fn latin1_note(at: Place) -> Note {
     Note::warning(
-        "scnc::obj::not_utf8",
+        Code::ObjNotUtf8,
         "this file is not valid UTF-8; its names were read as Latin-1",
         at,
     )
