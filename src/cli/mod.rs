@@ -6,6 +6,7 @@
 
 mod bench;
 mod check;
+mod explain;
 mod inspect;
 mod ir;
 mod render;
@@ -20,6 +21,7 @@ use clap::{Parser, Subcommand};
 
 pub use bench::BenchArgs;
 pub use check::CheckArgs;
+pub use explain::ExplainArgs;
 pub use inspect::InspectArgs;
 pub use ir::IrArgs;
 pub use render::{AccelArg, RenderArgs};
@@ -30,7 +32,14 @@ pub use watch::WatchArgs;
 
 /// scnc: a declarative scene-language compiler and ray tracer.
 #[derive(Debug, Parser)]
-#[command(name = "scnc", version, about)]
+#[command(
+    name = "scnc",
+    version,
+    about,
+    after_help = "Every error and warning has a code, e.g. scnc::check::unknown_material: run \
+                  `scnc explain CODE` for what it means and how to fix it, \
+                  `scnc explain --list` for every code."
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
@@ -38,9 +47,11 @@ pub struct Cli {
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Check a scene: report every error and warning (exit 0 clean, 1 on errors).
+    /// Check a scene: report every error and warning (exit 0 clean, 1 on errors); `scnc
+    /// explain CODE` explains a diagnostic's code.
     Check(CheckArgs),
-    /// Render a scene to an image (PNG, EXR, HDR or PFM by extension).
+    /// Render a scene to an image (PNG, EXR, HDR or PFM by extension); `scnc explain CODE`
+    /// explains a diagnostic's code.
     Render(RenderArgs),
     /// Print a scene's validated intermediate representation as JSON.
     Ir(IrArgs),
@@ -51,6 +62,9 @@ pub enum Command {
     Inspect(InspectArgs),
     /// Measure the speed/accuracy curve: `scnc bench quality scene.scn [--out DIR]`.
     Bench(BenchArgs),
+    /// Explain a diagnostic code with an example of the mistake and the fix:
+    /// `scnc explain scnc::check::unknown_material`, `scnc explain --list`.
+    Explain(ExplainArgs),
 }
 
 /// Parses the process arguments and runs the chosen command.
@@ -66,5 +80,6 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Watch(args) => watch::run(&args),
         Command::Inspect(args) => inspect::run(&args),
         Command::Bench(args) => bench::run(&args),
+        Command::Explain(args) => explain::run(&args),
     }
 }

@@ -85,7 +85,6 @@ super::code::codes! {
     build {
         BuildMissingFile = missing_file: "a file the scene names does not exist",
         BuildReadFailed = read_failed: "a file the scene names cannot be read",
-        BuildCorruptObj = corrupt_obj: "an OBJ file that cannot be parsed",
         BuildIndexOutOfRange = index_out_of_range: "an OBJ face refers to a vertex that does not exist",
         BuildDegenerateMesh = degenerate_mesh: "every triangle of a mesh is degenerate",
         BuildDegenerateTriangles = degenerate_triangles: "some triangles of a mesh are degenerate and were dropped",

@@ -30,12 +30,6 @@ pub enum BuildError {
         #[source]
         source: io::Error,
     },
-    #[error("`{written}` is not a valid OBJ file: {reason}")]
-    CorruptObj {
-        written: String,
-        span: Span,
-        reason: String,
-    },
     #[error("`{written}`: a face refers to a vertex, normal or UV that does not exist ({reason})")]
     IndexOutOfRange {
         written: String,
@@ -111,7 +105,6 @@ impl BuildError {
         match self {
             BuildError::Missing { .. } => Code::BuildMissingFile,
             BuildError::Read { .. } => Code::BuildReadFailed,
-            BuildError::CorruptObj { .. } => Code::BuildCorruptObj,
             BuildError::IndexOutOfRange { .. } => Code::BuildIndexOutOfRange,
             BuildError::AllDegenerate { .. } => Code::BuildDegenerateMesh,
             BuildError::SomeDegenerate { .. } => Code::BuildDegenerateTriangles,
@@ -147,7 +140,6 @@ impl BuildError {
         match self {
             BuildError::Missing { span, .. }
             | BuildError::Read { span, .. }
-            | BuildError::CorruptObj { span, .. }
             | BuildError::IndexOutOfRange { span, .. }
             | BuildError::AllDegenerate { span, .. }
             | BuildError::SomeDegenerate { span, .. }
@@ -167,7 +159,7 @@ impl BuildError {
     fn label(&self) -> &'static str {
         match self {
             BuildError::Missing { .. } | BuildError::Read { .. } => "this file",
-            BuildError::CorruptObj { .. } | BuildError::IndexOutOfRange { .. } => "this OBJ file",
+            BuildError::IndexOutOfRange { .. } => "this OBJ file",
             BuildError::AllDegenerate { .. } => "no triangle of this mesh has an area",
             BuildError::SomeDegenerate { .. } => "some triangles of this mesh have no area",
             BuildError::EmptyMesh { .. } => "this mesh",
@@ -258,11 +250,6 @@ mod tests {
                 written: s(),
                 span,
                 source: io::Error::from(io::ErrorKind::PermissionDenied),
-            },
-            BuildError::CorruptObj {
-                written: s(),
-                span,
-                reason: s(),
             },
             BuildError::IndexOutOfRange {
                 written: s(),
