@@ -18,7 +18,7 @@ use crate::diag::{suggest, Code, Diagnostic};
 use crate::ir;
 use crate::syntax::{Block, Decl};
 
-use super::vocabulary::LIGHT_KINDS as KINDS;
+use super::vocabulary::{LightKind, Word, LIGHT_KINDS as KINDS};
 
 impl Checker<'_> {
     pub(super) fn light(&mut self, d: &Decl) {
@@ -27,11 +27,12 @@ impl Checker<'_> {
             span: d.span,
         };
         let body = d.body.as_ref().unwrap_or(&empty);
-        let light = match (d.ctor.name.name.as_str(), &d.ctor.args) {
-            ("point", None) => self.point_light(d, body),
-            ("area", None) => self.area_light(d, body),
-            ("environment", None) => self.environment_light(d, body),
-            (name, _) => {
+        let name = d.ctor.name.name.as_str();
+        let light = match (LightKind::from_word(name), &d.ctor.args) {
+            (Some(LightKind::Point), None) => self.point_light(d, body),
+            (Some(LightKind::Area), None) => self.area_light(d, body),
+            (Some(LightKind::Environment), None) => self.environment_light(d, body),
+            (_, _) => {
                 self.error(
                     Diagnostic::error(
                         Code::CheckUnknownLightKind,

@@ -15,13 +15,14 @@ use crate::diag::{suggest, Code, Diagnostic};
 use crate::ir;
 use crate::syntax::{Decl, Expr};
 
-use super::vocabulary::MATERIAL_KEYS as KEYS;
+use super::vocabulary::{MaterialKind, Word, MATERIAL_KEYS as KEYS};
 
 impl Checker<'_> {
     /// Lowers a material; also returns the texture table indices it refers to.
     pub(super) fn material(&mut self, d: &Decl) -> (Option<ir::Material>, Vec<usize>) {
         let mut textures = Vec::new();
-        if d.ctor.name.name != "phong" || d.ctor.args.is_some() {
+        let kind = MaterialKind::from_word(&d.ctor.name.name);
+        if !matches!((kind, &d.ctor.args), (Some(MaterialKind::Phong), None)) {
             self.error(
                 Diagnostic::error(
                     Code::CheckUnknownMaterialKind,
@@ -79,13 +80,9 @@ impl Checker<'_> {
         };
         let green = match props.get("normal_green") {
             None => Some(ir::GreenConvention::OpenGl),
-            Some(p) => self.one(p, "normal_green opengl").and_then(|e| {
-                self.word(e, super::vocabulary::GREEN_WORDS, "normal map convention")
-                    .map(|w| match w {
-                        "opengl" => ir::GreenConvention::OpenGl,
-                        _ => ir::GreenConvention::DirectX,
-                    })
-            }),
+            Some(p) => self
+                .one(p, "normal_green opengl")
+                .and_then(|e| self.choice::<ir::GreenConvention>(e, "normal map convention")),
         };
         let normal_map = match props.get("normal_map") {
             None => Some(None),

@@ -10,6 +10,7 @@
 use glam::{DVec2, DVec3};
 
 use super::value::Value;
+use super::vocabulary::Word;
 use super::Checker;
 use crate::diag::{suggest, Code, Diagnostic};
 use crate::source::Span;
@@ -340,6 +341,11 @@ impl Checker<'_> {
                 None
             }
         }
+    }
+
+    /// One of the words of `T` (`wrap repeat`), converted to its value.
+    pub fn choice<T: Word>(&mut self, e: &Expr, what: &str) -> Option<T> {
+        self.word(e, T::WORDS, what).and_then(T::from_word)
     }
 
     /// One of a closed set of words (`repeat`, `clamp`, ...).

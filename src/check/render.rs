@@ -97,14 +97,8 @@ impl Checker<'_> {
                     .is_some(),
                 _ => self
                     .one(p, "tonemap filmic")
-                    .and_then(|e| self.word(e, super::vocabulary::TONEMAP_WORDS, "tone mapping"))
-                    .map(|w| {
-                        s.tonemap = match w {
-                            "clamp" => ir::ToneMap::Clamp,
-                            "reinhard" => ir::ToneMap::Reinhard,
-                            _ => ir::ToneMap::Filmic,
-                        }
-                    })
+                    .and_then(|e| self.choice::<ir::ToneMap>(e, "tone mapping"))
+                    .map(|t| s.tonemap = t)
                     .is_some(),
             };
         }
@@ -148,19 +142,7 @@ impl Checker<'_> {
     fn samples(&mut self, p: &super::props::Prop, s: &mut ir::RenderSettings) -> Option<()> {
         let (pattern, count) = match p.values.as_slice() {
             [n] => (ir::SamplePattern::RotatedGrid, *n),
-            [pat, n] => {
-                let w = self.word(
-                    pat,
-                    super::vocabulary::SAMPLE_PATTERN_WORDS,
-                    "sample pattern",
-                )?;
-                let pattern = if w == "rgss" {
-                    ir::SamplePattern::RotatedGrid
-                } else {
-                    ir::SamplePattern::Grid
-                };
-                (pattern, *n)
-            }
+            [pat, n] => (self.choice::<ir::SamplePattern>(pat, "sample pattern")?, *n),
             _ => {
                 self.arity(p, 2, "samples rgss 4")?;
                 return None;

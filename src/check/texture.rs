@@ -14,7 +14,7 @@ use crate::diag::{suggest, Code, Diagnostic};
 use crate::ir;
 use crate::syntax::{Block, Decl, Expr};
 
-use super::vocabulary::TEXTURE_KINDS as KINDS;
+use super::vocabulary::{TextureKind, Word, TEXTURE_KINDS as KINDS};
 
 impl Checker<'_> {
     pub(super) fn texture(&mut self, d: &Decl) -> Option<ir::Texture> {
@@ -23,9 +23,10 @@ impl Checker<'_> {
             span: d.span,
         };
         let body = d.body.as_ref().unwrap_or(&empty);
-        let source = match (d.ctor.name.name.as_str(), &d.ctor.args) {
-            ("image", Some(args)) => self.image_texture(args, d, body)?,
-            ("checker", None) => {
+        let name = d.ctor.name.name.as_str();
+        let source = match (TextureKind::from_word(name), &d.ctor.args) {
+            (Some(TextureKind::Image), Some(args)) => self.image_texture(args, d, body)?,
+            (Some(TextureKind::Checker), None) => {
                 let props = self.split(
                     body,
                     "a checker texture",
@@ -53,7 +54,7 @@ impl Checker<'_> {
                     scale: scale? as f32,
                 }
             }
-            ("constant", None) => {
+            (Some(TextureKind::Constant), None) => {
                 let props = self.split(
                     body,
                     "a constant texture",
@@ -70,8 +71,8 @@ impl Checker<'_> {
                 };
                 ir::TextureSource::Constant(c.as_vec3())
             }
-            (name, _) => {
-                let help = if KINDS.contains(&name) {
+            (kind, _) => {
+                let help = if kind.is_some() {
                     "write `image(\"file.png\")`, `checker { ... }` or `constant { ... }`"
                         .to_string()
                 } else {
@@ -121,35 +122,21 @@ impl Checker<'_> {
         };
         let wrap = match props.get("wrap") {
             None => Some(ir::WrapMode::Repeat),
-            Some(p) => self.one(p, "wrap repeat").and_then(|e| {
-                self.word(e, super::vocabulary::WRAP_WORDS, "wrap mode")
-                    .map(|w| match w {
-                        "repeat" => ir::WrapMode::Repeat,
-                        "clamp" => ir::WrapMode::Clamp,
-                        _ => ir::WrapMode::Mirror,
-                    })
-            }),
+            Some(p) => self
+                .one(p, "wrap repeat")
+                .and_then(|e| self.choice::<ir::WrapMode>(e, "wrap mode")),
         };
         let filter = match props.get("filter") {
             None => Some(ir::Filter::Trilinear),
-            Some(p) => self.one(p, "filter trilinear").and_then(|e| {
-                self.word(e, super::vocabulary::FILTER_WORDS, "filter")
-                    .map(|w| match w {
-                        "nearest" => ir::Filter::Nearest,
-                        "bilinear" => ir::Filter::Bilinear,
-                        _ => ir::Filter::Trilinear,
-                    })
-            }),
+            Some(p) => self
+                .one(p, "filter trilinear")
+                .and_then(|e| self.choice::<ir::Filter>(e, "filter")),
         };
         let encoding = match props.get("encoding") {
             None => Some(ir::TextureEncoding::Srgb),
-            Some(p) => self.one(p, "encoding data").and_then(|e| {
-                self.word(e, super::vocabulary::ENCODING_WORDS, "encoding")
-                    .map(|w| match w {
-                        "srgb" => ir::TextureEncoding::Srgb,
-                        _ => ir::TextureEncoding::Linear,
-                    })
-            }),
+            Some(p) => self
+                .one(p, "encoding data")
+                .and_then(|e| self.choice::<ir::TextureEncoding>(e, "encoding")),
         };
         Some(ir::TextureSource::Image {
             file: file?,
