@@ -10,6 +10,7 @@
 use glam::DVec3;
 
 use super::names::Namespace;
+use super::props::Props;
 use super::Checker;
 use crate::diag::{suggest, Code, Diagnostic};
 use crate::ir;
@@ -23,18 +24,7 @@ impl Checker<'_> {
         let mut textures = Vec::new();
         let kind = MaterialKind::from_word(&d.ctor.name.name);
         if !matches!((kind, &d.ctor.args), (Some(MaterialKind::Phong), None)) {
-            self.error(
-                Diagnostic::error(
-                    Code::CheckUnknownMaterialKind,
-                    format!("unknown material kind `{}`", d.ctor.name.name),
-                )
-                .at(d.ctor.span, "not a material kind")
-                .help(suggest::help_for(
-                    &d.ctor.name.name,
-                    super::vocabulary::MATERIAL_KINDS,
-                    "material kinds",
-                )),
-            );
+            self.unknown_material_kind(d);
             return (None, textures);
         }
         let empty = crate::syntax::Block {
@@ -43,35 +33,87 @@ impl Checker<'_> {
         };
         let body = d.body.as_ref().unwrap_or(&empty);
         let props = self.split(body, "a phong material", KEYS, &[], &[]);
-        let color_input = |cx: &mut Self, key: &str, default: f64, textures: &mut Vec<usize>| {
-            let Some(p) = props.get(key) else {
-                return Some(ir::ColorInput::Constant(DVec3::splat(default).as_vec3()));
-            };
-            let e = cx.one(p, &format!("{key} rgb(0.8, 0.8, 0.8)"))?;
-            if let Some(t) = cx.texture_ref(e) {
-                textures.push(t);
-                return Some(ir::ColorInput::Texture(t as u32));
-            }
-            let c = cx.albedo(e, key)?;
-            Some(ir::ColorInput::Constant(c.as_vec3()))
-        };
-        let diffuse = color_input(self, "diffuse", 0.5, &mut textures);
-        let specular = color_input(self, "specular", 0.0, &mut textures);
-        let shininess = match props.get("shininess") {
-            None => Some(ir::ScalarInput::Constant(32.0)),
-            Some(p) => self.one(p, "shininess 64").and_then(|e| {
-                if let Some(t) = self.texture_ref(e) {
-                    textures.push(t);
-                    return Some(ir::ScalarInput::Texture(t as u32));
-                }
-                self.num_in(e, 0.0, 1.0e6, "shininess")
-                    .map(|x| ir::ScalarInput::Constant(x as f32))
-            }),
-        };
+        let diffuse = self.color_input(&props, "diffuse", 0.5, &mut textures);
+        let specular = self.color_input(&props, "specular", 0.0, &mut textures);
+        let shininess = self.shininess(&props, &mut textures);
         let ambient = match props.get("ambient") {
             None => Some(DVec3::ZERO),
             Some(p) => self.one(p, "ambient 0").and_then(|e| self.color(e)),
         };
+        let normal_map = self.normal_map(&props, &mut textures);
+        let (Some(diffuse), Some(specular), Some(shininess), Some(ambient), Some(normal_map)) =
+            (diffuse, specular, shininess, ambient, normal_map)
+        else {
+            return (None, textures);
+        };
+        let m = ir::Material {
+            name: d.name.name.clone(),
+            diffuse,
+            specular,
+            shininess,
+            ambient: ambient.as_vec3(),
+            normal_map,
+            span: d.name.span,
+        };
+        (Some(m), textures)
+    }
+
+    fn unknown_material_kind(&mut self, d: &Decl) {
+        self.error(
+            Diagnostic::error(
+                Code::CheckUnknownMaterialKind,
+                format!("unknown material kind `{}`", d.ctor.name.name),
+            )
+            .at(d.ctor.span, "not a material kind")
+            .help(suggest::help_for(
+                &d.ctor.name.name,
+                super::vocabulary::MATERIAL_KINDS,
+                "material kinds",
+            )),
+        );
+    }
+
+    /// `diffuse C` / `specular C`: a texture name or a constant albedo.
+    fn color_input(
+        &mut self,
+        props: &Props,
+        key: &str,
+        default: f64,
+        textures: &mut Vec<usize>,
+    ) -> Option<ir::ColorInput> {
+        let Some(p) = props.get(key) else {
+            return Some(ir::ColorInput::Constant(DVec3::splat(default).as_vec3()));
+        };
+        let e = self.one(p, &format!("{key} rgb(0.8, 0.8, 0.8)"))?;
+        if let Some(t) = self.texture_ref(e) {
+            textures.push(t);
+            return Some(ir::ColorInput::Texture(t as u32));
+        }
+        let c = self.albedo(e, key)?;
+        Some(ir::ColorInput::Constant(c.as_vec3()))
+    }
+
+    /// `shininess N`: a texture name or a number in [0, 1e6].
+    fn shininess(&mut self, props: &Props, textures: &mut Vec<usize>) -> Option<ir::ScalarInput> {
+        let Some(p) = props.get("shininess") else {
+            return Some(ir::ScalarInput::Constant(32.0));
+        };
+        let e = self.one(p, "shininess 64")?;
+        if let Some(t) = self.texture_ref(e) {
+            textures.push(t);
+            return Some(ir::ScalarInput::Texture(t as u32));
+        }
+        self.num_in(e, 0.0, 1.0e6, "shininess")
+            .map(|x| ir::ScalarInput::Constant(x as f32))
+    }
+
+    /// `normal_map T  normal_strength S  normal_green opengl|directx`; `Some(None)` without
+    /// a map. Every key is checked before any error returns.
+    fn normal_map(
+        &mut self,
+        props: &Props,
+        textures: &mut Vec<usize>,
+    ) -> Option<Option<ir::NormalMap>> {
         let strength = match props.get("normal_strength") {
             None => Some(1.0),
             Some(p) => self
@@ -84,7 +126,7 @@ impl Checker<'_> {
                 .one(p, "normal_green opengl")
                 .and_then(|e| self.choice::<ir::GreenConvention>(e, "normal map convention")),
         };
-        let normal_map = match props.get("normal_map") {
+        let texture = match props.get("normal_map") {
             None => Some(None),
             Some(p) => self.one(p, "normal_map TEXTURE").and_then(|e| {
                 let t = self.resolve(Namespace::Texture, e)?;
@@ -93,34 +135,12 @@ impl Checker<'_> {
                 Some(Some(t))
             }),
         };
-        let (
-            Some(diffuse),
-            Some(specular),
-            Some(shininess),
-            Some(ambient),
-            Some(strength),
-            Some(green),
-            Some(normal_map),
-        ) = (
-            diffuse, specular, shininess, ambient, strength, green, normal_map,
-        )
-        else {
-            return (None, textures);
-        };
-        let m = ir::Material {
-            name: d.name.name.clone(),
-            diffuse,
-            specular,
-            shininess,
-            ambient: ambient.as_vec3(),
-            normal_map: normal_map.map(|t| ir::NormalMap {
-                texture: t as u32,
-                strength: strength as f32,
-                green,
-            }),
-            span: d.name.span,
-        };
-        (Some(m), textures)
+        let (strength, green, texture) = (strength?, green?, texture?);
+        Some(texture.map(|t| ir::NormalMap {
+            texture: t as u32,
+            strength: strength as f32,
+            green,
+        }))
     }
 
     /// The texture a bare name refers to, if it names one (constants are tried otherwise).

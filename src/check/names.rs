@@ -132,73 +132,10 @@ impl Checker<'_> {
 
     /// Drops unused declarations (with a warning each), remaps indices, builds the IR.
     pub(super) fn finish(&mut self, render: Option<ir::RenderSettings>) -> Option<ir::SceneDesc> {
-        // Materials: used if an object uses them, or a used OBJ mesh replaces one of its own.
-        for (i, m) in self.meshes.iter().enumerate() {
-            if !self.used_meshes.get(i).copied().unwrap_or(true) {
-                continue;
-            }
-            for o in m.iter().flat_map(|m| &m.obj.materials) {
-                if let Some(u) = self.used_materials.get_mut(o.material as usize) {
-                    *u = true;
-                }
-            }
-        }
-        let mut material_map = vec![None; self.materials.len()];
-        let mut used_textures = vec![false; self.textures.len()];
-        for i in 0..self.materials.len() {
-            if self.used_materials[i] {
-                for &t in &self.material_textures[i] {
-                    used_textures[t] = true;
-                }
-            } else {
-                self.warn_unused(Namespace::Material, i);
-            }
-        }
-        let mut texture_map = vec![None; self.textures.len()];
-        let mut textures = Vec::new();
-        for (i, used) in used_textures.iter().enumerate() {
-            if !used {
-                self.warn_unused(Namespace::Texture, i);
-            } else if let Some(t) = self.textures[i].take() {
-                texture_map[i] = Some(textures.len() as u32);
-                textures.push(t);
-            }
-        }
-        let mut materials = Vec::new();
-        for (i, slot) in material_map.iter_mut().enumerate() {
-            if !self.used_materials[i] {
-                continue;
-            }
-            if let Some(mut m) = self.materials[i].take() {
-                remap_color(&mut m.diffuse, &texture_map);
-                remap_color(&mut m.specular, &texture_map);
-                if let ir::ScalarInput::Texture(t) = &mut m.shininess {
-                    *t = texture_map[*t as usize].unwrap_or(0);
-                }
-                if let Some(n) = &mut m.normal_map {
-                    n.texture = texture_map[n.texture as usize].unwrap_or(0);
-                }
-                *slot = Some(materials.len() as u32);
-                materials.push(m);
-            }
-        }
-        let user_meshes = self.table(Namespace::Mesh).names.len();
-        let mut mesh_map = vec![None; self.meshes.len()];
-        let mut meshes = Vec::new();
-        for (i, slot) in mesh_map.iter_mut().enumerate() {
-            let used = self.used_meshes.get(i).copied().unwrap_or(true);
-            if !used && i < user_meshes {
-                self.warn_unused(Namespace::Mesh, i);
-                continue;
-            }
-            if let Some(mut m) = self.meshes[i].take() {
-                for o in &mut m.obj.materials {
-                    o.material = material_map[o.material as usize].unwrap_or(0);
-                }
-                *slot = Some(meshes.len() as u32);
-                meshes.push(m);
-            }
-        }
+        self.mark_override_materials_used();
+        let (textures, texture_map) = self.keep_used_textures();
+        let (materials, material_map) = self.keep_used_materials(&texture_map);
+        let (meshes, mesh_map) = self.keep_used_meshes(&material_map);
         let mut objects = std::mem::take(&mut self.objects);
         for o in &mut objects {
             o.mesh = mesh_map[o.mesh as usize].unwrap_or(0);
@@ -229,6 +166,99 @@ impl Checker<'_> {
             lights,
             render,
         })
+    }
+
+    /// A material is used if an object uses it, or a used OBJ mesh replaces one of its own.
+    fn mark_override_materials_used(&mut self) {
+        for (i, m) in self.meshes.iter().enumerate() {
+            if !self.used_meshes.get(i).copied().unwrap_or(true) {
+                continue;
+            }
+            for o in m.iter().flat_map(|m| &m.obj.materials) {
+                if let Some(u) = self.used_materials.get_mut(o.material as usize) {
+                    *u = true;
+                }
+            }
+        }
+    }
+
+    /// Warns about unused materials, then keeps the textures used materials refer to: the
+    /// kept textures and the old → new texture index map.
+    fn keep_used_textures(&mut self) -> (Vec<ir::Texture>, Vec<Option<u32>>) {
+        let mut used_textures = vec![false; self.textures.len()];
+        for i in 0..self.materials.len() {
+            if self.used_materials[i] {
+                for &t in &self.material_textures[i] {
+                    used_textures[t] = true;
+                }
+            } else {
+                self.warn_unused(Namespace::Material, i);
+            }
+        }
+        let mut texture_map = vec![None; self.textures.len()];
+        let mut textures = Vec::new();
+        for (i, used) in used_textures.iter().enumerate() {
+            if !used {
+                self.warn_unused(Namespace::Texture, i);
+            } else if let Some(t) = self.textures[i].take() {
+                texture_map[i] = Some(textures.len() as u32);
+                textures.push(t);
+            }
+        }
+        (textures, texture_map)
+    }
+
+    /// The used materials with their texture indices remapped, and the material index map.
+    fn keep_used_materials(
+        &mut self,
+        texture_map: &[Option<u32>],
+    ) -> (Vec<ir::Material>, Vec<Option<u32>>) {
+        let mut material_map = vec![None; self.materials.len()];
+        let mut materials = Vec::new();
+        for (i, slot) in material_map.iter_mut().enumerate() {
+            if !self.used_materials[i] {
+                continue;
+            }
+            if let Some(mut m) = self.materials[i].take() {
+                remap_color(&mut m.diffuse, texture_map);
+                remap_color(&mut m.specular, texture_map);
+                if let ir::ScalarInput::Texture(t) = &mut m.shininess {
+                    *t = texture_map[*t as usize].unwrap_or(0);
+                }
+                if let Some(n) = &mut m.normal_map {
+                    n.texture = texture_map[n.texture as usize].unwrap_or(0);
+                }
+                *slot = Some(materials.len() as u32);
+                materials.push(m);
+            }
+        }
+        (materials, material_map)
+    }
+
+    /// The used meshes (with a warning for each unused one the user declared) with their
+    /// material overrides remapped, and the mesh index map.
+    fn keep_used_meshes(
+        &mut self,
+        material_map: &[Option<u32>],
+    ) -> (Vec<ir::Mesh>, Vec<Option<u32>>) {
+        let user_meshes = self.table(Namespace::Mesh).names.len();
+        let mut mesh_map = vec![None; self.meshes.len()];
+        let mut meshes = Vec::new();
+        for (i, slot) in mesh_map.iter_mut().enumerate() {
+            let used = self.used_meshes.get(i).copied().unwrap_or(true);
+            if !used && i < user_meshes {
+                self.warn_unused(Namespace::Mesh, i);
+                continue;
+            }
+            if let Some(mut m) = self.meshes[i].take() {
+                for o in &mut m.obj.materials {
+                    o.material = material_map[o.material as usize].unwrap_or(0);
+                }
+                *slot = Some(meshes.len() as u32);
+                meshes.push(m);
+            }
+        }
+        (meshes, mesh_map)
     }
 }
 

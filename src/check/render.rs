@@ -22,96 +22,125 @@ use crate::syntax::Block;
 use super::vocabulary::RENDER_KEYS as KEYS;
 const EXTENSIONS: &[&str] = &["png", "exr", "hdr", "pfm"];
 
+/// The settings of a scene without a `render` block.
+fn default_settings() -> ir::RenderSettings {
+    ir::RenderSettings {
+        width: 640,
+        height: 480,
+        samples_per_pixel: 4,
+        pattern: ir::SamplePattern::RotatedGrid,
+        light_samples: 1,
+        seed: 0,
+        exposure: 0.0,
+        tonemap: ir::ToneMap::Filmic,
+        outputs: Vec::new(),
+        quality: None,
+        noise: None,
+        max_samples: None,
+    }
+}
+
+/// `samples` and `light_samples` as written: they win over a `quality` preset wherever it is.
+#[derive(Default)]
+struct Explicit {
+    samples: Option<u32>,
+    light_samples: Option<u32>,
+}
+
 impl Checker<'_> {
     pub(super) fn render(&mut self, block: Option<(&Block, Span)>) -> Option<ir::RenderSettings> {
-        let mut s = ir::RenderSettings {
-            width: 640,
-            height: 480,
-            samples_per_pixel: 4,
-            pattern: ir::SamplePattern::RotatedGrid,
-            light_samples: 1,
-            seed: 0,
-            exposure: 0.0,
-            tonemap: ir::ToneMap::Filmic,
-            outputs: Vec::new(),
-            quality: None,
-            noise: None,
-            max_samples: None,
-        };
+        let mut s = default_settings();
         let Some((block, _)) = block else {
             return Some(s);
         };
         let props = self.split(block, "render settings", KEYS, &["output"], &[]);
         let mut ok = true;
-        let (mut explicit_samples, mut explicit_light_samples) = (None, None);
+        let mut explicit = Explicit::default();
         for p in &props.props {
-            ok &= match p.key {
-                "resolution" => self.resolution(p, &mut s).is_some(),
-                "samples" => self
-                    .samples(p, &mut s)
-                    .map(|()| explicit_samples = Some(s.samples_per_pixel))
-                    .is_some(),
-                "quality" => self
-                    .one(p, "quality preview")
-                    .and_then(|e| self.word(e, super::vocabulary::QUALITY_WORDS, "quality preset"))
-                    .and_then(ir::Quality::from_name)
-                    .map(|q| s.quality = Some(q))
-                    .is_some(),
-                "noise" => self
-                    .one(p, "noise 0.01")
-                    .and_then(|e| self.num_in(e, 1e-4, 1.0, "noise"))
-                    .map(|x| s.noise = Some(x as f32))
-                    .is_some(),
-                "max_samples" => self
-                    .one(p, "max_samples 4096")
-                    .and_then(|e| self.int_in(e, 16, 1 << 20, "max_samples"))
-                    .map(|n| s.max_samples = Some(n as u32))
-                    .is_some(),
-                "light_samples" => self
-                    .one(p, "light_samples 1")
-                    .and_then(|e| self.int_in(e, 1, 1024, "light_samples"))
-                    .map(|n| explicit_light_samples = Some(n as u32))
-                    .is_some(),
-                "seed" => self
-                    .one(p, "seed 0")
-                    .and_then(|e| self.int_in(e, 0, 1 << 53, "seed"))
-                    .map(|n| s.seed = n)
-                    .is_some(),
-                "camera" => self
-                    .one(p, "camera NAME")
-                    .and_then(|e| self.resolve(Namespace::Camera, e))
-                    .map(|i| {
-                        let name = self.tables[Namespace::Camera as usize].names[i].clone();
-                        self.active_camera = self
-                            .cameras
-                            .iter()
-                            .position(|c| c.name == name)
-                            .unwrap_or(0);
-                    })
-                    .is_some(),
-                "output" => self.output(p, &mut s).is_some(),
-                "exposure" => self
-                    .one(p, "exposure 0")
-                    .and_then(|e| self.num_in(e, -64.0, 64.0, "exposure"))
-                    .map(|x| s.exposure = x as f32)
-                    .is_some(),
-                _ => self
-                    .one(p, "tonemap filmic")
-                    .and_then(|e| self.choice::<ir::ToneMap>(e, "tone mapping"))
-                    .map(|t| s.tonemap = t)
-                    .is_some(),
-            };
+            ok &= self.render_property(p, &mut s, &mut explicit);
         }
         if let Some(q) = s.quality {
             s.apply_quality(q);
         }
-        if let Some(n) = explicit_samples {
+        if let Some(n) = explicit.samples {
             s.samples_per_pixel = n;
         }
-        if let Some(n) = explicit_light_samples {
+        if let Some(n) = explicit.light_samples {
             s.light_samples = n;
         }
         ok.then_some(s)
+    }
+
+    /// Applies one property to `s`; false when it was wrong (and reported).
+    fn render_property(
+        &mut self,
+        p: &super::props::Prop,
+        s: &mut ir::RenderSettings,
+        explicit: &mut Explicit,
+    ) -> bool {
+        match p.key {
+            "resolution" => self.resolution(p, s).is_some(),
+            "samples" => self
+                .samples(p, s)
+                .map(|()| explicit.samples = Some(s.samples_per_pixel))
+                .is_some(),
+            "quality" => self
+                .one(p, "quality preview")
+                .and_then(|e| self.word(e, super::vocabulary::QUALITY_WORDS, "quality preset"))
+                .and_then(ir::Quality::from_name)
+                .map(|q| s.quality = Some(q))
+                .is_some(),
+            "noise" => self
+                .one(p, "noise 0.01")
+                .and_then(|e| self.num_in(e, 1e-4, 1.0, "noise"))
+                .map(|x| s.noise = Some(x as f32))
+                .is_some(),
+            "max_samples" => self
+                .one(p, "max_samples 4096")
+                .and_then(|e| self.int_in(e, 16, 1 << 20, "max_samples"))
+                .map(|n| s.max_samples = Some(n as u32))
+                .is_some(),
+            "light_samples" => self
+                .one(p, "light_samples 1")
+                .and_then(|e| self.int_in(e, 1, 1024, "light_samples"))
+                .map(|n| explicit.light_samples = Some(n as u32))
+                .is_some(),
+            "seed" => self
+                .one(p, "seed 0")
+                .and_then(|e| self.int_in(e, 0, 1 << 53, "seed"))
+                .map(|n| s.seed = n)
+                .is_some(),
+            "camera" => self.select_camera(p).is_some(),
+            "output" => self.output(p, s).is_some(),
+            "exposure" => self
+                .one(p, "exposure 0")
+                .and_then(|e| self.num_in(e, -64.0, 64.0, "exposure"))
+                .map(|x| s.exposure = x as f32)
+                .is_some(),
+            "tonemap" => self
+                .one(p, "tonemap filmic")
+                .and_then(|e| self.choice::<ir::ToneMap>(e, "tone mapping"))
+                .map(|t| s.tonemap = t)
+                .is_some(),
+            other => {
+                // split() yields only RENDER_KEYS, each handled above.
+                debug_assert!(false, "render key `{other}` has no arm");
+                true
+            }
+        }
+    }
+
+    /// `camera NAME`: the camera the render uses.
+    fn select_camera(&mut self, p: &super::props::Prop) -> Option<()> {
+        let e = self.one(p, "camera NAME")?;
+        let i = self.resolve(Namespace::Camera, e)?;
+        let name = self.tables[Namespace::Camera as usize].names[i].clone();
+        self.active_camera = self
+            .cameras
+            .iter()
+            .position(|c| c.name == name)
+            .unwrap_or(0);
+        Some(())
     }
 
     fn resolution(&mut self, p: &super::props::Prop, s: &mut ir::RenderSettings) -> Option<()> {
