@@ -11,7 +11,7 @@ use glam::{DVec2, DVec3};
 use super::value::{parse_hex, srgb_to_linear, Value};
 use super::Checker;
 use crate::diag::{suggest, Code, Diagnostic};
-use crate::syntax::{BinOp, Expr, ExprKind};
+use crate::syntax::{BinOp, Expr, ExprKind, Ident};
 
 /// Every function callable in an expression.
 pub const FUNCTIONS: &[&str] = &[
@@ -60,23 +60,7 @@ impl Checker<'_> {
                 Some(s) if s.name == "deg" => Some(Value::Angle(value.to_radians())),
                 Some(s) if s.name == "rad" => Some(Value::Angle(*value)),
                 Some(s) => {
-                    let help = if s.name.starts_with('x') {
-                        "write the two sizes apart: `512 x 512`".to_string()
-                    } else if s.name.starts_with("deg") {
-                        "write `deg`, e.g. `30deg`".to_string()
-                    } else if s.name.starts_with("rad") {
-                        "write `rad`, e.g. `0.5rad`".to_string()
-                    } else {
-                        suggest::help_for(&s.name, super::vocabulary::UNITS, "units")
-                    };
-                    self.error(
-                        Diagnostic::error(
-                            Code::CheckUnknownUnit,
-                            format!("unknown unit `{}`", s.name),
-                        )
-                        .at(s.span, "not a unit")
-                        .help(help),
-                    );
+                    self.unknown_unit(s);
                     None
                 }
             },
@@ -95,37 +79,8 @@ impl Checker<'_> {
             ExprKind::Name(n) => self.lookup(n, e),
             ExprKind::Paren(inner) => self.eval_inner(inner),
             ExprKind::Tuple(parts) => self.tuple(parts, e),
-            ExprKind::Neg(inner) => match self.eval_inner(inner)? {
-                Value::Num(x) => Some(Value::Num(-x)),
-                Value::Angle(x) => Some(Value::Angle(-x)),
-                Value::Vec2(v) => Some(Value::Vec2(-v)),
-                Value::Vec3(v) => Some(Value::Vec3(-v)),
-                Value::Color(v) => Some(Value::Color(-v)),
-                other => {
-                    self.type_error(e, "a number, angle or vector", &other);
-                    None
-                }
-            },
-            ExprKind::Binary { op, lhs, rhs } => {
-                let a = self.eval_inner(lhs)?;
-                let b = self.eval_inner(rhs)?;
-                let r = binary(*op, &a, &b);
-                if r.is_none() {
-                    self.error(
-                        Diagnostic::error(
-                            Code::CheckBadOperands,
-                            format!(
-                                "cannot apply `{}` to {} and {}",
-                                op.symbol(),
-                                a.type_name(),
-                                b.type_name()
-                            ),
-                        )
-                        .at(e.span, "in this expression"),
-                    );
-                }
-                r
-            }
+            ExprKind::Neg(inner) => self.negate(inner, e),
+            ExprKind::Binary { op, lhs, rhs } => self.binary_op(*op, lhs, rhs, e),
             ExprKind::Call { func, args } => self.call(&func.name, func.span, args, e),
             ExprKind::Array => {
                 self.error(
@@ -136,6 +91,61 @@ impl Checker<'_> {
                 None
             }
         }
+    }
+
+    /// A suffix that is no unit, with help for the usual slips (`640x480`, `30degs`).
+    fn unknown_unit(&mut self, s: &Ident) {
+        let help = if s.name.starts_with('x') {
+            "write the two sizes apart: `512 x 512`".to_string()
+        } else if s.name.starts_with("deg") {
+            "write `deg`, e.g. `30deg`".to_string()
+        } else if s.name.starts_with("rad") {
+            "write `rad`, e.g. `0.5rad`".to_string()
+        } else {
+            suggest::help_for(&s.name, super::vocabulary::UNITS, "units")
+        };
+        self.error(
+            Diagnostic::error(Code::CheckUnknownUnit, format!("unknown unit `{}`", s.name))
+                .at(s.span, "not a unit")
+                .help(help),
+        );
+    }
+
+    /// `-x` of a number, angle, vector or colour.
+    fn negate(&mut self, inner: &Expr, e: &Expr) -> Option<Value> {
+        match self.eval_inner(inner)? {
+            Value::Num(x) => Some(Value::Num(-x)),
+            Value::Angle(x) => Some(Value::Angle(-x)),
+            Value::Vec2(v) => Some(Value::Vec2(-v)),
+            Value::Vec3(v) => Some(Value::Vec3(-v)),
+            Value::Color(v) => Some(Value::Color(-v)),
+            other => {
+                self.type_error(e, "a number, angle or vector", &other);
+                None
+            }
+        }
+    }
+
+    /// `a op b`, or an error naming both operand types.
+    fn binary_op(&mut self, op: BinOp, lhs: &Expr, rhs: &Expr, e: &Expr) -> Option<Value> {
+        let a = self.eval_inner(lhs)?;
+        let b = self.eval_inner(rhs)?;
+        let r = binary(op, &a, &b);
+        if r.is_none() {
+            self.error(
+                Diagnostic::error(
+                    Code::CheckBadOperands,
+                    format!(
+                        "cannot apply `{}` to {} and {}",
+                        op.symbol(),
+                        a.type_name(),
+                        b.type_name()
+                    ),
+                )
+                .at(e.span, "in this expression"),
+            );
+        }
+        r
     }
 
     fn lookup(&mut self, name: &str, e: &Expr) -> Option<Value> {

@@ -13,6 +13,7 @@
 use glam::{DVec3, Mat4, Vec3};
 
 use super::names::Namespace;
+use super::props::{Prop, Props};
 use super::Checker;
 use crate::diag::{suggest, Code, Diagnostic};
 use crate::ir;
@@ -101,61 +102,7 @@ impl Checker<'_> {
         let keys = super::vocabulary::AREA_LIGHT_KEYS;
         let props = self.split(body, "an area light", keys, &[], &["transform"]);
         let world = self.transforms(&props.transforms, "an area light");
-        let mesh = match (props.get("quad"), props.get("mesh")) {
-            (Some(q), None) => self.arity(q, 4, "quad P0 P1 P2 P3").and_then(|v| {
-                let pts: Vec<Option<DVec3>> = v.iter().map(|e| self.vec3(e)).collect();
-                let pts: Option<Vec<DVec3>> = pts.into_iter().collect();
-                let pts = pts?;
-                if (pts[1] - pts[0]).cross(pts[2] - pts[0]).length() == 0.0 {
-                    self.error(
-                        Diagnostic::error(Code::CheckDegenerateQuad, "the quad has no area")
-                            .at(q.span(), "its first three corners are in a line"),
-                    );
-                    return None;
-                }
-                let id = self.meshes.len();
-                self.meshes.push(Some(ir::Mesh {
-                    name: format!("light {}", d.name.name),
-                    source: ir::MeshSource::Inline(ir::InlineMesh {
-                        positions: pts.iter().map(|p| p.as_vec3()).collect(),
-                        normals: Vec::new(),
-                        uvs: Vec::new(),
-                        indices: vec![[0, 1, 2], [0, 2, 3]],
-                    }),
-                    span: q.key_span,
-                    obj: ir::ObjOptions::default(),
-                }));
-                Some(id)
-            }),
-            (None, Some(m)) => self.one(m, "mesh NAME").and_then(|e| {
-                let id = self.resolve(Namespace::Mesh, e)?;
-                if let Some(u) = self.used_meshes.get_mut(id) {
-                    *u = true;
-                }
-                Some(id)
-            }),
-            (Some(q), Some(m)) => {
-                self.error(
-                    Diagnostic::error(
-                        Code::CheckConflictingKeys,
-                        "an area light takes either `quad` or `mesh`, not both",
-                    )
-                    .at(m.key_span, "mesh here")
-                    .also(q.key_span, "quad here"),
-                );
-                None
-            }
-            (None, None) => {
-                self.error(
-                    Diagnostic::error(
-                        Code::CheckMissingKey,
-                        "an area light needs a shape: `quad P0 P1 P2 P3` or `mesh NAME`",
-                    )
-                    .at(d.name.span, "no shape"),
-                );
-                None
-            }
-        };
+        let mesh = self.area_light_shape(d, &props);
         let radiance = match props.get("radiance") {
             Some(p) => self
                 .one(p, "radiance rgb(17, 12, 4)")
@@ -191,6 +138,72 @@ impl Checker<'_> {
             span: d.name.span,
         }))
         .filter(|_| world.is_some())
+    }
+
+    /// The mesh an area light emits from: `quad P0 P1 P2 P3` (a new mesh) or `mesh NAME`.
+    fn area_light_shape(&mut self, d: &Decl, props: &Props) -> Option<usize> {
+        match (props.get("quad"), props.get("mesh")) {
+            (Some(q), None) => self.quad_light_mesh(d, q),
+            (None, Some(m)) => self.one(m, "mesh NAME").and_then(|e| {
+                let id = self.resolve(Namespace::Mesh, e)?;
+                if let Some(u) = self.used_meshes.get_mut(id) {
+                    *u = true;
+                }
+                Some(id)
+            }),
+            (Some(q), Some(m)) => {
+                self.error(
+                    Diagnostic::error(
+                        Code::CheckConflictingKeys,
+                        "an area light takes either `quad` or `mesh`, not both",
+                    )
+                    .at(m.key_span, "mesh here")
+                    .also(q.key_span, "quad here"),
+                );
+                None
+            }
+            (None, None) => {
+                self.error(
+                    Diagnostic::error(
+                        Code::CheckMissingKey,
+                        "an area light needs a shape: `quad P0 P1 P2 P3` or `mesh NAME`",
+                    )
+                    .at(d.name.span, "no shape"),
+                );
+                None
+            }
+        }
+    }
+
+    /// `quad P0 P1 P2 P3` as a two-triangle mesh of its own; its first three corners must
+    /// span an area.
+    fn quad_light_mesh(&mut self, d: &Decl, q: &Prop) -> Option<usize> {
+        let v = self.arity(q, 4, "quad P0 P1 P2 P3")?;
+        let pts: Vec<Option<DVec3>> = v.iter().map(|e| self.vec3(e)).collect();
+        let pts: Vec<DVec3> = pts.into_iter().collect::<Option<_>>()?;
+        let [p0, p1, p2, _] = pts[..] else {
+            return None;
+        };
+        if (p1 - p0).cross(p2 - p0).length() == 0.0 {
+            self.error(
+                Diagnostic::error(Code::CheckDegenerateQuad, "the quad has no area")
+                    .at(q.span(), "its first three corners are in a line"),
+            );
+            return None;
+        }
+        let id = self.meshes.len();
+        self.meshes.push(Some(ir::Mesh {
+            name: format!("light {}", d.name.name),
+            source: ir::MeshSource::Inline(ir::InlineMesh {
+                positions: pts.iter().map(|p| p.as_vec3()).collect(),
+                normals: Vec::new(),
+                uvs: Vec::new(),
+                indices: vec![[0, 1, 2], [0, 2, 3]],
+            }),
+            span: q.key_span,
+            obj: ir::ObjOptions::default(),
+        }));
+        Some(id)
     }
 
     fn environment_light(&mut self, d: &Decl, body: &Block) -> Option<ir::Light> {

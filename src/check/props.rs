@@ -62,71 +62,16 @@ impl Checker<'_> {
         nested: &[&str],
     ) -> Props<'a> {
         let mut out = Props::default();
+        // After an unknown key or a duplicate, its values are skipped up to the next key.
         let mut skipping = false;
         for item in &block.items {
-            let nested_kind = match item {
-                Item::Value(_) => None,
-                Item::Transform(_) => Some("transform"),
-                Item::Object(_) => Some("object"),
-                Item::Group(_) => Some("group"),
-            };
-            if let Some(kind) = nested_kind {
+            let Item::Value(e) = item else {
                 skipping = false;
-                let span = match item {
-                    Item::Transform(b) => b.span,
-                    Item::Object(o) => o.span,
-                    Item::Group(g) => g.span,
-                    Item::Value(e) => e.span,
-                };
-                if !nested.contains(&kind) {
-                    self.error(
-                        Diagnostic::error(
-                            Code::CheckMisplacedBlock,
-                            format!("`{kind}` is not allowed inside {what}"),
-                        )
-                        .at(span, "not allowed here"),
-                    );
-                    continue;
-                }
-                match item {
-                    Item::Transform(b) => out.transforms.push(b),
-                    Item::Object(o) => out.objects.push(o),
-                    Item::Group(g) => out.groups.push(g),
-                    Item::Value(_) => {}
-                }
+                self.nested_block(item, what, nested, &mut out);
                 continue;
-            }
-            let Item::Value(e) = item else { continue };
+            };
             if let Some(key) = static_key(e, keys) {
-                skipping = false;
-                let key_span = match &e.kind {
-                    ExprKind::Call { func, .. } => func.span,
-                    _ => e.span,
-                };
-                if !repeatable.contains(&key) {
-                    if let Some(first) = out.props.iter().find(|p| p.key == key) {
-                        self.error(
-                            Diagnostic::error(
-                                Code::CheckDuplicateKey,
-                                format!("`{key}` is given twice in {what}"),
-                            )
-                            .at(key_span, "given again here")
-                            .also(first.key_span, "first given here")
-                            .help("remove one of them"),
-                        );
-                        skipping = true;
-                        continue;
-                    }
-                }
-                let values = match &e.kind {
-                    ExprKind::Call { args, .. } => args.iter().collect(),
-                    _ => Vec::new(),
-                };
-                out.props.push(Prop {
-                    key,
-                    key_span,
-                    values,
-                });
+                skipping = !self.start_property(e, key, what, repeatable, &mut out);
                 continue;
             }
             if skipping {
@@ -140,6 +85,78 @@ impl Checker<'_> {
             skipping = true;
         }
         out
+    }
+
+    /// A nested `transform`/`object`/`group` block: kept if `nested` allows it here.
+    fn nested_block<'a>(
+        &mut self,
+        item: &'a Item,
+        what: &str,
+        nested: &[&str],
+        out: &mut Props<'a>,
+    ) {
+        let (kind, span) = match item {
+            Item::Transform(b) => ("transform", b.span),
+            Item::Object(o) => ("object", o.span),
+            Item::Group(g) => ("group", g.span),
+            Item::Value(_) => return,
+        };
+        if !nested.contains(&kind) {
+            self.error(
+                Diagnostic::error(
+                    Code::CheckMisplacedBlock,
+                    format!("`{kind}` is not allowed inside {what}"),
+                )
+                .at(span, "not allowed here"),
+            );
+            return;
+        }
+        match item {
+            Item::Transform(b) => out.transforms.push(b),
+            Item::Object(o) => out.objects.push(o),
+            Item::Group(g) => out.groups.push(g),
+            Item::Value(_) => {}
+        }
+    }
+
+    /// Starts the property `key` (a call's arguments are its first values); false when it is a
+    /// duplicate that is not `repeatable` (reported, and its values are to be skipped).
+    fn start_property<'a>(
+        &mut self,
+        e: &'a Expr,
+        key: &'static str,
+        what: &str,
+        repeatable: &[&str],
+        out: &mut Props<'a>,
+    ) -> bool {
+        let key_span = match &e.kind {
+            ExprKind::Call { func, .. } => func.span,
+            _ => e.span,
+        };
+        if !repeatable.contains(&key) {
+            if let Some(first) = out.props.iter().find(|p| p.key == key) {
+                self.error(
+                    Diagnostic::error(
+                        Code::CheckDuplicateKey,
+                        format!("`{key}` is given twice in {what}"),
+                    )
+                    .at(key_span, "given again here")
+                    .also(first.key_span, "first given here")
+                    .help("remove one of them"),
+                );
+                return false;
+            }
+        }
+        let values = match &e.kind {
+            ExprKind::Call { args, .. } => args.iter().collect(),
+            _ => Vec::new(),
+        };
+        out.props.push(Prop {
+            key,
+            key_span,
+            values,
+        });
+        true
     }
 
     /// Reports an item in key position that is not a key.
