@@ -8,8 +8,7 @@ use pest::error::{Error, ErrorVariant, InputLocation};
 
 use super::scan::{self, STATEMENT_KEYWORDS};
 use super::Rule;
-use crate::diag::Diagnostic;
-use crate::diag::{suggest, Code};
+use crate::diag::{suggest, Code, Diagnostic};
 use crate::source::{FileId, Span};
 
 fn describe(rule: Rule) -> &'static str {
@@ -59,19 +58,38 @@ fn token_at(chunk: &str, offset: usize) -> &str {
     }
 }
 
+/// Where in `chunk` a pest error sits, for spans: the file and the chunk's offset in it.
+#[derive(Clone, Copy)]
+struct At<'a> {
+    file: FileId,
+    base: usize,
+    chunk: &'a str,
+}
+
+impl At<'_> {
+    fn span(self, start: usize, end: usize) -> Span {
+        Span::new(self.file, self.base + start, self.base + end)
+    }
+}
+
+/// The diagnostic for pest's error `e` on `chunk`, which starts at byte `base` of `file`.
 pub(super) fn from_pest(file: FileId, base: usize, chunk: &str, e: &Error<Rule>) -> Diagnostic {
-    let mut pos = match e.location {
-        InputLocation::Pos(p) => p,
-        InputLocation::Span((s, _)) => s,
-    };
-    // With error detail on, pest knows the farthest point reached and the literal tokens it
-    // wanted there (`=`, `}`), which its rule-level report misses.
+    let at = At { file, base, chunk };
+    let (pos, literals) = failure_point(chunk, e);
+    let found = token_at(chunk, pos);
+    unknown_keyword(at, pos, found)
+        .or_else(|| unclosed_delimiter(at, pos))
+        .unwrap_or_else(|| unexpected_token(at, pos, found, &literals, e))
+}
+
+/// The farthest position pest reached and the structural tokens (`` `}` ``, `` `=` ``) it
+/// wanted there: with error detail on, pest knows them, though its rule-level report does not.
+fn failure_point(chunk: &str, e: &Error<Rule>) -> (usize, Vec<String>) {
+    let mut pos = pos0(e);
     let mut literals: Vec<String> = Vec::new();
     if let Some(attempts) = e.parse_attempts() {
         if attempts.max_position >= pos && attempts.max_position <= chunk.len() {
-            if attempts.max_position > pos {
-                pos = attempts.max_position;
-            }
+            pos = attempts.max_position;
             for t in attempts.expected_tokens() {
                 // Only structural punctuation: value starts (`#`, `-`, `[`) are "a value" and
                 // comment starts are always possible.
@@ -82,54 +100,76 @@ pub(super) fn from_pest(file: FileId, base: usize, chunk: &str, e: &Error<Rule>)
             }
         }
     }
-    let found = token_at(chunk, pos);
-    let first_token = chunk.len() - chunk.trim_start().len();
-    // A word where a statement should start: most likely a misspelled keyword.
-    if pos == first_token
-        && found
-            .chars()
-            .next()
-            .is_some_and(|c| c.is_alphabetic() || c == '_')
-        && !STATEMENT_KEYWORDS.contains(&found)
-    {
-        let span = Span::new(file, base + pos, base + pos + found.len());
-        return Diagnostic::error(
+    (pos, literals)
+}
+
+/// A word where a statement should start: most likely a misspelled keyword.
+fn unknown_keyword(at: At, pos: usize, found: &str) -> Option<Diagnostic> {
+    let first_token = at.chunk.len() - at.chunk.trim_start().len();
+    let is_word = found
+        .chars()
+        .next()
+        .is_some_and(|c| c.is_alphabetic() || c == '_');
+    if pos != first_token || !is_word || STATEMENT_KEYWORDS.contains(&found) {
+        return None;
+    }
+    Some(
+        Diagnostic::error(
             Code::SyntaxUnknownKeyword,
             format!("unknown statement `{found}`"),
         )
-        .at(span, "expected a statement keyword")
-        .help(suggest::help_for(found, STATEMENT_KEYWORDS, "statements"));
+        .at(
+            at.span(pos, pos + found.len()),
+            "expected a statement keyword",
+        )
+        .help(suggest::help_for(found, STATEMENT_KEYWORDS, "statements")),
+    )
+}
+
+/// The chunk ended inside a bracket (or comment): point at where it opened.
+fn unclosed_delimiter(at: At, pos: usize) -> Option<Diagnostic> {
+    if !at.chunk.get(pos..).unwrap_or("").trim().is_empty() {
+        return None;
     }
-    // The chunk ended inside a bracket: point at the bracket.
-    if chunk[pos..].trim().is_empty() {
-        if let Some((open, tok)) = scan::unclosed(chunk) {
-            let span = Span::new(file, base + open, base + open + tok.len());
-            let close = match tok {
-                "(" => ")",
-                "[" => "]",
-                "{" => "}",
-                _ => "*/",
-            };
-            return Diagnostic::error(
-                Code::SyntaxUnclosedDelimiter,
-                format!("this `{tok}` is never closed"),
-            )
-            .at(span, "opened here")
-            .help(format!(
-                "add `{close}` where the block, list or comment ends"
-            ));
-        }
-    }
+    let (open, tok) = scan::unclosed(at.chunk)?;
+    let close = match tok {
+        "(" => ")",
+        "[" => "]",
+        "{" => "}",
+        _ => "*/",
+    };
+    Some(
+        Diagnostic::error(
+            Code::SyntaxUnclosedDelimiter,
+            format!("this `{tok}` is never closed"),
+        )
+        .at(at.span(open, open + tok.len()), "opened here")
+        .help(format!(
+            "add `{close}` where the block, list or comment ends"
+        )),
+    )
+}
+
+/// Anything else: what was found, and what pest expected in words a scene author knows.
+fn unexpected_token(
+    at: At,
+    pos: usize,
+    found: &str,
+    literals: &[String],
+    e: &Error<Rule>,
+) -> Diagnostic {
     let mut expected: Vec<&str> = literals.iter().map(String::as_str).collect();
     if let ErrorVariant::ParsingError { positives, .. } = &e.variant {
-        if !literals.is_empty() && e.parse_attempts().is_some_and(|a| a.max_position > pos0(e)) {
-            // The rule-level positives are about an earlier position; the literals say it all.
-        } else {
+        // When pest got farther than its rule-level report, the positives are about an
+        // earlier position; the literals say it all.
+        let farther = e.parse_attempts().is_some_and(|a| a.max_position > pos0(e));
+        if literals.is_empty() || !farther {
             expected.extend(positives.iter().map(|r| describe(*r)));
         }
     }
     expected.sort_unstable();
     expected.dedup();
+    let chunk = at.chunk;
     let (start, end) = if found.is_empty() {
         // At the end of the chunk: point at the last character before it.
         let p = chunk.trim_end().len();
@@ -145,14 +185,15 @@ pub(super) fn from_pest(file: FileId, base: usize, chunk: &str, e: &Error<Rule>)
     } else {
         format!("`{found}`")
     };
-    let mut d = Diagnostic::error(Code::SyntaxUnexpectedToken, format!("unexpected {what}"))
-        .at(Span::new(file, base + start, base + end), "unexpected here");
+    let d = Diagnostic::error(Code::SyntaxUnexpectedToken, format!("unexpected {what}"))
+        .at(at.span(start, end), "unexpected here");
     if matches!(found, "*" | "/" | "+") {
-        d = d.help("inside a block each value is one term: write arithmetic in parentheses, e.g. `intensity (2 * 5)`, or use a `let`");
+        d.help("inside a block each value is one term: write arithmetic in parentheses, e.g. `intensity (2 * 5)`, or use a `let`")
     } else if !expected.is_empty() {
-        d = d.help(format!("expected {}", join_or(&expected)));
+        d.help(format!("expected {}", join_or(&expected)))
+    } else {
+        d
     }
-    d
 }
 
 fn pos0(e: &Error<Rule>) -> usize {

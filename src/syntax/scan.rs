@@ -16,6 +16,7 @@ pub const STATEMENT_KEYWORDS: &[&str] = &[
     "render",
 ];
 
+/// What the pre-scan found.
 #[derive(Debug, Default)]
 pub struct Scan {
     /// Byte offset of the first bracket or `/*` that nests deeper than [`MAX_NESTING`].
@@ -51,85 +52,123 @@ fn word_at(bytes: &[u8], i: usize) -> &[u8] {
 /// Scans the whole text once.
 pub fn scan(text: &str) -> Scan {
     let bytes = text.as_bytes();
-    let mut out = Scan::default();
-    let mut state = State::Code;
-    let mut depth = 0usize;
+    let mut s = Scanner {
+        out: Scan::default(),
+        state: State::Code,
+        depth: 0,
+    };
     let mut line_start = true;
     let mut i = 0;
     while i < bytes.len() {
         let b = bytes[i];
-        if line_start && state == State::Code && b != b' ' && b != b'\t' && b != b'\r' {
+        if line_start && s.state == State::Code && !matches!(b, b' ' | b'\t' | b'\r') {
             line_start = false;
-            if is_ident_start(b) {
-                let column0 = i == 0 || bytes[i - 1] == b'\n';
-                let word = word_at(bytes, i);
-                // `object` and `group` also nest inside groups, so only the others resync
-                // inside brackets.
-                let keyword = STATEMENT_KEYWORDS
-                    .iter()
-                    .any(|k| k.as_bytes() == word && !matches!(*k, "object" | "group"));
-                if depth == 0 || (column0 && keyword) {
-                    out.resync.push(i);
-                }
+            if starts_statement(bytes, i, s.depth) {
+                s.out.resync.push(i);
             }
         }
-        let next = bytes.get(i + 1).copied();
-        match state {
-            State::Code => match b {
-                b'"' => state = State::Str,
-                b'/' if next == Some(b'/') => {
-                    state = State::LineComment;
-                    i += 1;
-                }
-                b'/' if next == Some(b'*') => {
-                    state = State::BlockComment(1);
-                    if depth + 1 > MAX_NESTING && out.too_deep_at.is_none() {
-                        out.too_deep_at = Some(i);
-                    }
-                    i += 1;
-                }
-                b'(' | b'[' | b'{' => {
-                    depth += 1;
-                    if depth > MAX_NESTING && out.too_deep_at.is_none() {
-                        out.too_deep_at = Some(i);
-                    }
-                }
-                b')' | b']' | b'}' => depth = depth.saturating_sub(1),
-                _ => {}
-            },
-            State::Str => match b {
-                b'\\' => i += 1,
-                b'"' | b'\n' => state = State::Code,
-                _ => {}
-            },
-            State::LineComment => {
-                if b == b'\n' {
-                    state = State::Code;
-                }
-            }
-            State::BlockComment(n) => {
-                if b == b'*' && next == Some(b'/') {
-                    state = if n == 1 {
-                        State::Code
-                    } else {
-                        State::BlockComment(n - 1)
-                    };
-                    i += 1;
-                } else if b == b'/' && next == Some(b'*') {
-                    if depth + n + 1 > MAX_NESTING && out.too_deep_at.is_none() {
-                        out.too_deep_at = Some(i);
-                    }
-                    state = State::BlockComment(n + 1);
-                    i += 1;
-                }
-            }
+        if s.step(b, bytes.get(i + 1).copied(), i) {
+            i += 1;
         }
         if b == b'\n' {
             line_start = true;
         }
         i += 1;
     }
-    out
+    s.out
+}
+
+/// Whether the first non-blank byte of a line, at `i`, may start a statement: a name at
+/// bracket depth 0, or a top-level keyword in column 0 at any depth.
+fn starts_statement(bytes: &[u8], i: usize, depth: usize) -> bool {
+    if !is_ident_start(bytes[i]) {
+        return false;
+    }
+    let column0 = i == 0 || bytes[i - 1] == b'\n';
+    let word = word_at(bytes, i);
+    // `object` and `group` also nest inside groups, so only the others resync inside brackets.
+    let keyword = STATEMENT_KEYWORDS
+        .iter()
+        .any(|k| k.as_bytes() == word && !matches!(*k, "object" | "group"));
+    depth == 0 || (column0 && keyword)
+}
+
+/// The scan's state between bytes.
+struct Scanner {
+    out: Scan,
+    state: State,
+    depth: usize,
+}
+
+impl Scanner {
+    /// Takes byte `b` at `i` (`next` follows it); true when `next` belongs to the same token
+    /// (`//`, `/*`, `*/`, an escape) and is consumed too.
+    fn step(&mut self, b: u8, next: Option<u8>, i: usize) -> bool {
+        match self.state {
+            State::Code => self.code(b, next, i),
+            State::Str => match b {
+                b'\\' => true,
+                b'"' | b'\n' => {
+                    self.state = State::Code;
+                    false
+                }
+                _ => false,
+            },
+            State::LineComment => {
+                if b == b'\n' {
+                    self.state = State::Code;
+                }
+                false
+            }
+            State::BlockComment(n) => self.block_comment(n, b, next, i),
+        }
+    }
+
+    fn code(&mut self, b: u8, next: Option<u8>, i: usize) -> bool {
+        match b {
+            b'"' => self.state = State::Str,
+            b'/' if next == Some(b'/') => {
+                self.state = State::LineComment;
+                return true;
+            }
+            b'/' if next == Some(b'*') => {
+                self.state = State::BlockComment(1);
+                self.note_depth(self.depth + 1, i);
+                return true;
+            }
+            b'(' | b'[' | b'{' => {
+                self.depth += 1;
+                self.note_depth(self.depth, i);
+            }
+            b')' | b']' | b'}' => self.depth = self.depth.saturating_sub(1),
+            _ => {}
+        }
+        false
+    }
+
+    fn block_comment(&mut self, n: usize, b: u8, next: Option<u8>, i: usize) -> bool {
+        if b == b'*' && next == Some(b'/') {
+            self.state = if n == 1 {
+                State::Code
+            } else {
+                State::BlockComment(n - 1)
+            };
+            return true;
+        }
+        if b == b'/' && next == Some(b'*') {
+            self.note_depth(self.depth + n + 1, i);
+            self.state = State::BlockComment(n + 1);
+            return true;
+        }
+        false
+    }
+
+    /// Remembers the first place nesting goes past [`MAX_NESTING`].
+    fn note_depth(&mut self, depth: usize, i: usize) {
+        if depth > MAX_NESTING && self.out.too_deep_at.is_none() {
+            self.out.too_deep_at = Some(i);
+        }
+    }
 }
 
 /// The innermost bracket (or block comment start) still open at the end of `text`, as a byte
