@@ -13,7 +13,7 @@
 use glam::Vec3;
 
 use super::encoding::decode_name;
-use super::lexer::{keyword, strip_comment, tokens, Lines};
+use super::lexer::{keyword, strip_comment, tokens, Line, Lines};
 use super::number::parse_f32;
 use super::{Note, Place};
 use crate::diag::Code;
@@ -76,78 +76,59 @@ const TEX_OPTIONS: &[(&[u8], usize)] = &[
     (b"-type", 1),
 ];
 
+/// Parses an MTL file: every `newmtl` with the statements scnc reads, and warnings (never
+/// errors: a bad statement is skipped with a note).
 pub fn parse_mtl(text: &[u8]) -> MtlLibrary {
-    let mut lib = MtlLibrary::default();
-    let mut unsupported: Vec<(String, usize, Place)> = Vec::new();
-    let mut latin1: Option<Place> = None;
-    let mut bad: Vec<Note> = Vec::new();
+    let mut reader = MtlReader::default();
     for line in Lines::new(text) {
+        reader.line(&line);
+    }
+    reader.finish()
+}
+
+/// The library read so far and what to warn about at the end.
+#[derive(Default)]
+struct MtlReader {
+    lib: MtlLibrary,
+    /// Statements scnc does not render: (word, count, first place).
+    unsupported: Vec<(String, usize, Place)>,
+    /// The first material name that was not UTF-8.
+    latin1: Option<Place>,
+    bad: Vec<Note>,
+}
+
+impl MtlReader {
+    fn line(&mut self, line: &Line) {
         let body = strip_comment(line.text);
         if body.is_empty() {
-            continue;
+            return;
         }
-        let at = Place::of_line(&line, body);
+        let at = Place::of_line(line, body);
         let (kw, rest) = keyword(body);
         if kw == b"newmtl" {
             let (name, was_latin1) = decode_name(rest);
-            if was_latin1 && latin1.is_none() {
-                latin1 = Some(at);
+            if was_latin1 && self.latin1.is_none() {
+                self.latin1 = Some(at);
             }
-            lib.materials.push(MtlMaterial {
+            self.lib.materials.push(MtlMaterial {
                 name,
                 at,
                 ..MtlMaterial::default()
             });
-            continue;
+            return;
         }
-        let Some(m) = lib.materials.last_mut() else {
-            bad.push(Note::warning(
+        let Some(m) = self.lib.materials.last_mut() else {
+            self.bad.push(Note::warning(
                 Code::ObjMtlOutsideMaterial,
                 "this statement comes before any `newmtl` and is ignored",
                 at,
             ));
-            continue;
+            return;
         };
-        let color = |rest: &[u8]| -> Option<Vec3> {
-            let v: Vec<f32> = tokens(rest).map(parse_f32).collect::<Option<_>>()?;
-            match v[..] {
-                [r] => Some(Vec3::splat(r)),
-                [r, g, b] => Some(Vec3::new(r, g, b)),
-                _ => None,
-            }
-        };
-        let parsed = match kw {
-            b"Kd" => color(rest).map(|c| m.kd = Some(c)),
-            b"Ks" => color(rest).map(|c| m.ks = Some(c)),
-            b"Ka" => color(rest).map(|c| m.ka = Some(c)),
-            b"Ke" => color(rest).map(|c| m.ke = Some(c)),
-            b"Ns" => parse_f32(rest).map(|n| m.ns = Some(n)),
-            b"map_Kd" => texture(rest, at).map(|t| m.map_kd = Some(t)),
-            b"map_Ks" => texture(rest, at).map(|t| m.map_ks = Some(t)),
-            b"map_Ns" => texture(rest, at).map(|t| m.map_ns = Some(t)),
-            b"map_Bump" | b"map_bump" | b"bump" => {
-                texture(rest, at).map(|t| m.bump = Some((BumpKind::Height, t)))
-            }
-            b"norm" | b"map_norm" => {
-                texture(rest, at).map(|t| m.bump = Some((BumpKind::Normal, t)))
-            }
-            b"illum" if matches!(rest, b"0" | b"1" | b"2") => Some(()),
-            _ => {
-                let (word, _) = decode_name(kw);
-                let word = if kw == b"illum" {
-                    format!("illum {}", decode_name(rest).0)
-                } else {
-                    word
-                };
-                match unsupported.iter_mut().find(|(w, _, _)| *w == word) {
-                    Some((_, n, _)) => *n += 1,
-                    None => unsupported.push((word, 1, at)),
-                }
-                Some(())
-            }
-        };
-        if parsed.is_none() {
-            bad.push(
+        match statement(m, kw, rest, at) {
+            Statement::Read => {}
+            Statement::Unsupported => self.count_unsupported(kw, rest, at),
+            Statement::Malformed => self.bad.push(
                 Note::warning(
                     Code::ObjBadMtlStatement,
                     format!(
@@ -157,31 +138,88 @@ pub fn parse_mtl(text: &[u8]) -> MtlLibrary {
                     at,
                 )
                 .help("colours are `Kd r g b` (or one grey value), `Ns` one number, maps `map_Kd [options] file`"),
-            );
+            ),
         }
     }
-    if let Some(at) = latin1 {
-        lib.warnings.push(latin1_note(at));
+
+    fn count_unsupported(&mut self, kw: &[u8], rest: &[u8], at: Place) {
+        let word = if kw == b"illum" {
+            format!("illum {}", decode_name(rest).0)
+        } else {
+            decode_name(kw).0
+        };
+        match self.unsupported.iter_mut().find(|(w, _, _)| *w == word) {
+            Some((_, n, _)) => *n += 1,
+            None => self.unsupported.push((word, 1, at)),
+        }
     }
-    lib.warnings.extend(bad);
-    if let Some((_, _, first)) = unsupported.first() {
-        let list: Vec<String> = unsupported
-            .iter()
-            .map(|(w, n, at)| match n {
-                1 => format!("`{w}` (line {})", at.line),
-                _ => format!("`{w}` ({n}×, first on line {})", at.line),
-            })
-            .collect();
-        lib.warnings.push(
-            Note::warning(
-                Code::ObjUnsupportedMtl,
-                format!("MTL statements scnc does not render were ignored: {}", list.join(", ")),
-                *first,
-            )
-            .help("scnc renders Kd, Ks, Ns, Ka, Ke and their maps; transparency, refraction and mirror reflection are not modelled"),
-        );
+
+    fn finish(mut self) -> MtlLibrary {
+        if let Some(at) = self.latin1 {
+            self.lib.warnings.push(latin1_note(at));
+        }
+        self.lib.warnings.extend(self.bad);
+        if let Some((_, _, first)) = self.unsupported.first() {
+            let list: Vec<String> = self
+                .unsupported
+                .iter()
+                .map(|(w, n, at)| match n {
+                    1 => format!("`{w}` (line {})", at.line),
+                    _ => format!("`{w}` ({n}×, first on line {})", at.line),
+                })
+                .collect();
+            self.lib.warnings.push(
+                Note::warning(
+                    Code::ObjUnsupportedMtl,
+                    format!("MTL statements scnc does not render were ignored: {}", list.join(", ")),
+                    *first,
+                )
+                .help("scnc renders Kd, Ks, Ns, Ka, Ke and their maps; transparency, refraction and mirror reflection are not modelled"),
+            );
+        }
+        self.lib
     }
-    lib
+}
+
+/// What became of one statement inside a material.
+enum Statement {
+    Read,
+    Malformed,
+    Unsupported,
+}
+
+/// Reads `kw rest` into `m`.
+fn statement(m: &mut MtlMaterial, kw: &[u8], rest: &[u8], at: Place) -> Statement {
+    let read = match kw {
+        b"Kd" => color(rest).map(|c| m.kd = Some(c)),
+        b"Ks" => color(rest).map(|c| m.ks = Some(c)),
+        b"Ka" => color(rest).map(|c| m.ka = Some(c)),
+        b"Ke" => color(rest).map(|c| m.ke = Some(c)),
+        b"Ns" => parse_f32(rest).map(|n| m.ns = Some(n)),
+        b"map_Kd" => texture(rest, at).map(|t| m.map_kd = Some(t)),
+        b"map_Ks" => texture(rest, at).map(|t| m.map_ks = Some(t)),
+        b"map_Ns" => texture(rest, at).map(|t| m.map_ns = Some(t)),
+        b"map_Bump" | b"map_bump" | b"bump" => {
+            texture(rest, at).map(|t| m.bump = Some((BumpKind::Height, t)))
+        }
+        b"norm" | b"map_norm" => texture(rest, at).map(|t| m.bump = Some((BumpKind::Normal, t))),
+        b"illum" if matches!(rest, b"0" | b"1" | b"2") => Some(()),
+        _ => return Statement::Unsupported,
+    };
+    match read {
+        Some(()) => Statement::Read,
+        None => Statement::Malformed,
+    }
+}
+
+/// `r g b` or one grey value.
+fn color(rest: &[u8]) -> Option<Vec3> {
+    let v: Vec<f32> = tokens(rest).map(parse_f32).collect::<Option<_>>()?;
+    match v[..] {
+        [r] => Some(Vec3::splat(r)),
+        [r, g, b] => Some(Vec3::new(r, g, b)),
+        _ => None,
+    }
 }
 
 /// The note for names that were not UTF-8 and were read as Latin-1.
