@@ -13,8 +13,11 @@ use crate::source::Span;
 /// An array parse error: message and the byte range (relative to the array's text).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ArrayError {
+    /// What is wrong, as a sentence.
     pub message: String,
+    /// Byte range within the array's text.
     pub start: usize,
+    /// End of that range (exclusive).
     pub end: usize,
 }
 

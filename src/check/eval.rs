@@ -205,6 +205,7 @@ impl Checker<'_> {
         }
     }
 
+    /// Reports a value of the wrong type where `expected` was wanted.
     pub fn type_error(&mut self, e: &Expr, expected: &str, found: &Value) {
         self.error(
             Diagnostic::error(

@@ -37,8 +37,11 @@ use value::Value;
 
 /// The checker's state for one compile.
 pub struct Checker<'s> {
+    /// Every source file, for snippets (arrays are read from the text).
     pub sources: &'s SourceMap,
+    /// Every error and warning found so far.
     pub diags: Vec<Diagnostic>,
+    /// The `let` constants evaluated so far, with where each was declared.
     pub lets: HashMap<String, (Value, Span)>,
     /// Constants whose value had an error: uses stay silent instead of cascading.
     pub poisoned: std::collections::HashSet<String>,
@@ -79,6 +82,7 @@ impl<'s> Checker<'s> {
         }
     }
 
+    /// Records a diagnostic (an error or a warning, despite the name).
     pub fn error(&mut self, d: Diagnostic) {
         self.diags.push(d);
     }

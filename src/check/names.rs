@@ -98,6 +98,7 @@ impl Checker<'_> {
         self.resolve_name(ns, name, e.span)
     }
 
+    /// Resolves `name` in `ns`, or reports it as unknown with a did-you-mean.
     pub fn resolve_name(&mut self, ns: Namespace, name: &str, span: Span) -> Option<usize> {
         let table = self.table(ns);
         if let Some(i) = table.get(name) {
@@ -113,6 +114,7 @@ impl Checker<'_> {
         None
     }
 
+    /// Whether `name` is declared in `ns` (no diagnostic).
     pub fn has(&mut self, ns: Namespace, name: &str) -> bool {
         self.table(ns).get(name).is_some()
     }

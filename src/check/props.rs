@@ -202,6 +202,7 @@ impl Checker<'_> {
         self.arity(p, 1, form).map(|v| v[0])
     }
 
+    /// A number (`expected` names it in the error otherwise).
     pub fn num(&mut self, e: &Expr, expected: &str) -> Option<f64> {
         match self.eval(e)? {
             Value::Num(x) => Some(x),
@@ -245,12 +246,14 @@ impl Checker<'_> {
         Some(x as u64)
     }
 
+    /// Reports a number outside its range; `msg` says which range.
     pub fn out_of_range(&mut self, span: Span, msg: &str) {
         self.error(
             Diagnostic::error(Code::CheckOutOfRange, msg.to_string()).at(span, "out of range"),
         );
     }
 
+    /// An angle in radians: a number with `deg` or `rad` (a bare number is an error).
     pub fn angle(&mut self, e: &Expr) -> Option<f64> {
         match self.eval(e)? {
             Value::Angle(a) => Some(a),
@@ -272,6 +275,7 @@ impl Checker<'_> {
         }
     }
 
+    /// A 3-vector `(x, y, z)`.
     pub fn vec3(&mut self, e: &Expr) -> Option<DVec3> {
         match self.eval(e)? {
             Value::Vec3(v) => Some(v),
@@ -340,6 +344,7 @@ impl Checker<'_> {
         Some(c)
     }
 
+    /// `true` or `false`.
     pub fn boolean(&mut self, e: &Expr) -> Option<bool> {
         match self.eval(e)? {
             Value::Bool(b) => Some(b),
@@ -350,6 +355,7 @@ impl Checker<'_> {
         }
     }
 
+    /// A string literal.
     pub fn string(&mut self, e: &Expr) -> Option<String> {
         match self.eval(e)? {
             Value::Str(s) => Some(s),

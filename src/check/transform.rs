@@ -15,6 +15,7 @@ use super::Checker;
 use crate::diag::{Code, Diagnostic};
 use crate::syntax::{Block, Expr, ExprKind};
 
+/// The keys of `transform { ... }`, applied in the order written.
 pub const TRANSFORM_KEYS: &[&str] = &["translate", "rotate", "scale", "look_at", "matrix"];
 
 /// The rigid frame at `eye` with +z towards `target` and +y towards `up`; `None` if degenerate.
@@ -55,6 +56,7 @@ impl Checker<'_> {
         }
     }
 
+    /// One `transform { ... }` block as a matrix (world from object).
     pub fn transform(&mut self, block: &Block) -> Option<Mat4> {
         let props = self.split(block, "a transform", TRANSFORM_KEYS, TRANSFORM_KEYS, &[]);
         let mut m = DMat4::IDENTITY;

@@ -9,14 +9,19 @@ use glam::{DVec2, DVec3};
 /// A folded constant. Colours are always linear RGB; angles always radians.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Value {
+    /// A plain number.
     Num(f64),
     /// Radians.
     Angle(f64),
+    /// `(u, v)`.
     Vec2(DVec2),
+    /// `(x, y, z)`.
     Vec3(DVec3),
     /// Linear RGB.
     Color(DVec3),
+    /// A string.
     Str(String),
+    /// `true` or `false`.
     Bool(bool),
 }
 
@@ -34,6 +39,7 @@ impl Value {
         }
     }
 
+    /// Whether every number in it is finite.
     pub fn is_finite(&self) -> bool {
         match self {
             Value::Num(x) | Value::Angle(x) => x.is_finite(),

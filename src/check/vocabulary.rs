@@ -55,11 +55,13 @@ pub const UNITS: &[&str] = &["deg", "rad"];
 /// Literal words that are values wherever an expression is: `visible true`.
 pub const BOOLEANS: &[&str] = &["true", "false"];
 
+/// `camera NAME { ... }`.
 pub const CAMERA_KEYS: &[&str] = &["eye", "target", "up", "fov"];
 words! {
     /// `material NAME = KIND { ... }`.
     MATERIAL_KINDS: MaterialKind { "phong" => Phong, }
 }
+/// `material NAME = phong { ... }`.
 pub const MATERIAL_KEYS: &[&str] = &[
     "diffuse",
     "specular",
@@ -77,8 +79,11 @@ words! {
     /// `texture NAME = KIND ...`.
     TEXTURE_KINDS: TextureKind { "image" => Image, "checker" => Checker, "constant" => Constant, }
 }
+/// `texture NAME = checker { ... }`.
 pub const CHECKER_KEYS: &[&str] = &["even", "odd", "scale"];
+/// `texture NAME = constant { ... }`.
 pub const CONSTANT_TEXTURE_KEYS: &[&str] = &["color"];
+/// `texture NAME = image("file") { ... }`.
 pub const IMAGE_TEXTURE_KEYS: &[&str] = &["wrap", "filter", "encoding"];
 words! {
     /// `wrap repeat`: texture coordinates outside [0, 1].
@@ -106,19 +111,29 @@ words! {
         "box" => Box,
     }
 }
+/// `mesh NAME = inline { ... }`.
 pub const INLINE_MESH_KEYS: &[&str] = &["positions", "normals", "uvs", "indices"];
+/// `mesh NAME = sphere { ... }`.
 pub const SPHERE_KEYS: &[&str] = &["radius", "segments"];
+/// `mesh NAME = quad { ... }`.
 pub const QUAD_KEYS: &[&str] = &["size"];
+/// `mesh NAME = box { ... }`.
 pub const BOX_KEYS: &[&str] = &["size"];
+/// `object MESH { ... }`.
 pub const OBJECT_KEYS: &[&str] = &["material"];
+/// `mesh NAME = obj("file") { ... }`.
 pub const OBJ_MESH_KEYS: &[&str] = &["material", "mtl"];
 words! {
     /// `light NAME = KIND { ... }`.
     LIGHT_KINDS: LightKind { "point" => Point, "area" => Area, "environment" => Environment, }
 }
+/// `light NAME = point { ... }`.
 pub const POINT_LIGHT_KEYS: &[&str] = &["position", "intensity"];
+/// `light NAME = area { ... }`.
 pub const AREA_LIGHT_KEYS: &[&str] = &["quad", "mesh", "radiance", "two_sided", "samples"];
+/// `light NAME = environment { ... }`.
 pub const ENVIRONMENT_LIGHT_KEYS: &[&str] = &["image", "color", "intensity", "rotate", "visible"];
+/// `render { ... }`.
 pub const RENDER_KEYS: &[&str] = &[
     "resolution",
     "samples",

@@ -7,15 +7,20 @@ use crate::source::Span;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize)]
 #[serde(rename_all = "lowercase")]
+/// How bad a diagnostic is.
 pub enum Severity {
+    /// Reported; never stops the pipeline.
     Warning,
+    /// Stops the pipeline after the stage that found it.
     Error,
 }
 
 /// A span with a short text shown under it.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Label {
+    /// Where.
     pub span: Span,
+    /// The text shown under it.
     pub message: String,
 }
 
@@ -31,13 +36,16 @@ pub struct ExternalLabel {
     pub text: String,
     /// Byte range within `text` to underline.
     pub start: u32,
+    /// End of that range (exclusive).
     pub end: u32,
+    /// The text shown under it.
     pub message: String,
 }
 
 /// One problem found in the user's input.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Diagnostic {
+    /// Error or warning.
     pub severity: Severity,
     /// Stable code, e.g. `scnc::check::unknown_material` (serialised as that string); editors
     /// and tests key on it, and `scnc explain` explains it.
@@ -104,11 +112,13 @@ impl Diagnostic {
         self
     }
 
+    /// Sets how to fix it.
     pub fn help(mut self, help: impl Into<String>) -> Diagnostic {
         self.help = Some(help.into());
         self
     }
 
+    /// Whether it is an error (not a warning).
     pub fn is_error(&self) -> bool {
         self.severity == Severity::Error
     }

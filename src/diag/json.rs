@@ -58,6 +58,10 @@ fn label<'a>(l: &'a Label, primary: bool, sources: &'a SourceMap) -> JsonLabel<'
 }
 
 /// All diagnostics as one pretty-printed JSON document.
+#[allow(
+    clippy::expect_used,
+    reason = "the report is plain strings and numbers, which always serialise"
+)]
 pub fn render_json(diags: &[Diagnostic], sources: &SourceMap) -> String {
     let report = JsonReport {
         diagnostics: diags

@@ -10,19 +10,27 @@ use crate::source::Span;
 /// A name as written, with its span.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Ident {
+    /// The name's text.
     pub name: String,
+    /// Where it is written.
     pub span: Span,
 }
 
+/// An arithmetic operator in an expression.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BinOp {
+    /// `+`.
     Add,
+    /// `-`.
     Sub,
+    /// `*`.
     Mul,
+    /// `/`.
     Div,
 }
 
 impl BinOp {
+    /// The operator as written.
     pub fn symbol(self) -> &'static str {
         match self {
             BinOp::Add => "+",
@@ -33,15 +41,19 @@ impl BinOp {
     }
 }
 
+/// What an expression is.
 #[derive(Debug, Clone, PartialEq)]
 pub enum ExprKind {
     /// A number literal, with its unit suffix if any (`30deg` has suffix `deg`).
     Number {
+        /// The number's value.
         value: f64,
+        /// The unit glued to it, if any.
         suffix: Option<Ident>,
     },
     /// `#rgb` / `#rrggbb`, the text after `#` (validated by `check`).
     HexColor(String),
+    /// A string literal, unescaped.
     Str(String),
     /// A name: a `let` constant, a declaration, or a keyword value (`true`, `repeat`, `y`).
     Name(String),
@@ -49,14 +61,22 @@ pub enum ExprKind {
     Paren(Box<Expr>),
     /// `(a, b)` or `(a, b, c)` (any arity here; `check` accepts 2 and 3).
     Tuple(Vec<Expr>),
+    /// `f(a, b)`.
     Call {
+        /// The function's name.
         func: Ident,
+        /// The arguments in order.
         args: Vec<Expr>,
     },
+    /// `-e`.
     Neg(Box<Expr>),
+    /// `lhs op rhs`.
     Binary {
+        /// The operator.
         op: BinOp,
+        /// The left operand.
         lhs: Box<Expr>,
+        /// The right operand.
         rhs: Box<Expr>,
     },
     /// `[ ... ]`: the span covers the brackets; parsed by `check::array`.
@@ -65,9 +85,12 @@ pub enum ExprKind {
     Error,
 }
 
+/// An expression with its span.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Expr {
+    /// What it is.
     pub kind: ExprKind,
+    /// Where it is written.
     pub span: Span,
 }
 
@@ -84,43 +107,62 @@ impl Expr {
 /// `{ ... }`: a flat list of items.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Block {
+    /// The items in order; `check` splits them into properties.
     pub items: Vec<Item>,
+    /// From `{` to `}`.
     pub span: Span,
 }
 
+/// One item of a block.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Item {
+    /// A key or a value (`check` decides which).
     Value(Expr),
+    /// `transform { ... }`.
     Transform(Block),
+    /// `object MESH { ... }` (inside a group).
     Object(ObjectStmt),
+    /// `group NAME { ... }` (inside a group).
     Group(GroupStmt),
 }
 
 /// `object MESH { ... }`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ObjectStmt {
+    /// The mesh it places.
     pub mesh: Ident,
+    /// Its properties (`material`, `transform`).
     pub body: Block,
+    /// The whole statement.
     pub span: Span,
 }
 
 /// `group NAME { ... }`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GroupStmt {
+    /// The group's name.
     pub name: Ident,
+    /// Its transform, objects and groups.
     pub body: Block,
+    /// The whole statement.
     pub span: Span,
 }
 
+/// The keyword of a declaration.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DeclKind {
+    /// `material`.
     Material,
+    /// `texture`.
     Texture,
+    /// `mesh`.
     Mesh,
+    /// `light`.
     Light,
 }
 
 impl DeclKind {
+    /// The keyword as written.
     pub fn keyword(self) -> &'static str {
         match self {
             DeclKind::Material => "material",
@@ -134,54 +176,81 @@ impl DeclKind {
 /// The right-hand side head of a declaration: `phong`, `image("wood.png")`, `sphere`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Ctor {
+    /// The kind's name (`phong`, `image`).
     pub name: Ident,
     /// `Some` when written as a call.
     pub args: Option<Vec<Expr>>,
+    /// From the name to the closing `)`.
     pub span: Span,
 }
 
 /// `material NAME = CTOR { ... }` and friends.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Decl {
+    /// Which keyword.
     pub kind: DeclKind,
+    /// The declared name.
     pub name: Ident,
+    /// What it is (`phong`, `obj("m.obj")`).
     pub ctor: Ctor,
+    /// Its properties, if a block follows.
     pub body: Option<Block>,
+    /// The whole declaration.
     pub span: Span,
 }
 
+/// A top-level statement.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Stmt {
     /// `scnc 1`.
     Version {
+        /// The version number.
         value: Expr,
+        /// The whole statement.
         span: Span,
     },
     /// `include "file.scn"` (expanded by the driver, kept for completeness).
     Include {
+        /// The file name (a string, or an error reported by the driver).
         path: Expr,
+        /// The whole statement.
         span: Span,
     },
+    /// `let NAME = EXPR`.
     Let {
+        /// The constant's name.
         name: Ident,
+        /// Its value.
         value: Expr,
+        /// The whole statement.
         span: Span,
     },
+    /// `camera NAME { ... }`.
     Camera {
+        /// The camera's name.
         name: Ident,
+        /// Its properties.
         body: Block,
+        /// The whole statement.
         span: Span,
     },
+    /// `material`/`texture`/`mesh`/`light NAME = ...`.
     Decl(Decl),
+    /// `object MESH { ... }`.
     Object(ObjectStmt),
+    /// `group NAME { ... }`.
     Group(GroupStmt),
+    /// `render { ... }`.
     Render {
+        /// Its settings.
         body: Block,
+        /// The whole statement.
         span: Span,
     },
 }
 
 impl Stmt {
+    /// The whole statement's span.
     pub fn span(&self) -> Span {
         match self {
             Stmt::Version { span, .. }
@@ -200,5 +269,6 @@ impl Stmt {
 /// the file had syntax errors (those are reported separately).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct SceneFile {
+    /// The statements in order.
     pub statements: Vec<Stmt>,
 }

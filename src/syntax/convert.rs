@@ -166,6 +166,10 @@ impl Converter {
         }
     }
 
+    #[allow(
+        clippy::expect_used,
+        reason = "the grammar makes every call part a child of its callee"
+    )]
     fn ctor(&self, pair: Pair<Rule>) -> Ctor {
         let span = self.span(&pair);
         let inner = part(&mut pair.into_inner(), "ctor is a call or a name");
@@ -200,6 +204,7 @@ impl Converter {
         }
     }
 
+    #[allow(clippy::expect_used, reason = "the grammar gives a transform a block")]
     fn block(&self, pair: Pair<Rule>) -> Block {
         let span = self.span(&pair);
         let items = pair
@@ -242,6 +247,10 @@ impl Converter {
     }
 
     /// `expr = term (op term)*`, folded with a two-level precedence by an explicit stack.
+    #[allow(
+        clippy::expect_used,
+        reason = "the grammar gives an expression at least one term"
+    )]
     pub fn expr(&self, pair: Pair<Rule>) -> Expr {
         if self.overflowed() {
             return self.error_expr(&pair);
@@ -290,6 +299,7 @@ impl Converter {
         }
     }
 
+    #[allow(clippy::expect_used, reason = "the grammar gives a term a primary")]
     fn term(&self, pair: Pair<Rule>) -> Expr {
         if self.overflowed() {
             return self.error_expr(&pair);
@@ -369,6 +379,10 @@ fn prec(op: BinOp) -> u8 {
     }
 }
 
+#[allow(
+    clippy::expect_used,
+    reason = "the operator stack holds two operands per binary operator"
+)]
 fn reduce(operands: &mut Vec<Expr>, op: BinOp) {
     let rhs = operands
         .pop()

@@ -20,9 +20,19 @@ use pest::Parser;
 use crate::diag::{Code, Diagnostic};
 use crate::source::{FileId, Span};
 
-#[derive(pest_derive::Parser)]
-#[grammar = "../grammar/scene.pest"]
-pub(crate) struct SceneParser;
+/// The pest parser generated from `grammar/scene.pest`.
+mod generated {
+    #![allow(
+        missing_docs,
+        reason = "pest_derive generates `Rule`, one variant per grammar rule"
+    )]
+
+    /// The parser of `grammar/scene.pest`.
+    #[derive(pest_derive::Parser)]
+    #[grammar = "../grammar/scene.pest"]
+    pub struct SceneParser;
+}
+pub(crate) use generated::{Rule, SceneParser};
 
 /// Parses one file. Returns every statement that parsed and a diagnostic per syntax error.
 pub fn parse(file: FileId, text: &str) -> (SceneFile, Vec<Diagnostic>) {
@@ -43,6 +53,10 @@ pub fn parse(file: FileId, text: &str) -> (SceneFile, Vec<Diagnostic>) {
 const BATCH_BYTES: usize = 64 * 1024;
 
 /// Parses `text[base..]` as a whole sequence of statements, or `None` on a syntax error.
+#[allow(
+    clippy::expect_used,
+    reason = "a successful parse of `file` yields exactly one pair"
+)]
 fn parse_range(file: FileId, text: &str, base: usize) -> Option<(SceneFile, Vec<Diagnostic>)> {
     let mut pairs = SceneParser::parse(Rule::file, &text[base..]).ok()?;
     let conv = convert::Converter::new(file, base);
@@ -54,6 +68,10 @@ fn parse_range(file: FileId, text: &str, base: usize) -> Option<(SceneFile, Vec<
 /// Fast path for valid files: parses batches of about [`BATCH_BYTES`] cut at resync points.
 /// A resync point can fall inside a statement (a name starting a continuation line), so any
 /// failing batch sends the caller back to parsing the file whole.
+#[allow(
+    clippy::expect_used,
+    reason = "a successful parse of `file` yields exactly one pair"
+)]
 fn parse_batched(
     file: FileId,
     text: &str,
@@ -86,6 +104,10 @@ fn parse_batched(
 }
 
 /// Error recovery: parse each chunk between resync points separately.
+#[allow(
+    clippy::expect_used,
+    reason = "a successful parse of `file` yields exactly one pair"
+)]
 fn parse_chunks(file: FileId, text: &str, scanned: &scan::Scan) -> (SceneFile, Vec<Diagnostic>) {
     // Record the literal tokens pest tried at the failure point (`=`, `}`), for the messages.
     // Only the error path turns this on; it never changes whether a parse succeeds.

@@ -25,37 +25,52 @@ pub struct TexRef {
     pub file: String,
     /// `-bm` of bump maps (1 when absent).
     pub bump_multiplier: f32,
+    /// The statement's line.
     pub at: Place,
 }
 
 /// How a bump statement was written: a height map (`bump`, `map_Bump`) or a normal map (`norm`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BumpKind {
+    /// Grey heights (`bump`, `map_Bump`).
     Height,
+    /// Tangent-space normals (`norm`).
     Normal,
 }
 
 /// One `newmtl` block.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct MtlMaterial {
+    /// The material's name (`usemtl` refers to it).
     pub name: String,
     /// The `newmtl` line.
     pub at: Place,
+    /// `Kd`: diffuse colour.
     pub kd: Option<Vec3>,
+    /// `Ks`: specular colour.
     pub ks: Option<Vec3>,
+    /// `Ka`: ambient colour.
     pub ka: Option<Vec3>,
+    /// `Ke`: emitted colour.
     pub ke: Option<Vec3>,
+    /// `Ns`: specular exponent.
     pub ns: Option<f32>,
+    /// `map_Kd`: diffuse texture.
     pub map_kd: Option<TexRef>,
+    /// `map_Ks`: specular texture.
     pub map_ks: Option<TexRef>,
+    /// `map_Ns`: exponent texture.
     pub map_ns: Option<TexRef>,
+    /// `bump`/`map_Bump`/`norm`: the last one given.
     pub bump: Option<(BumpKind, TexRef)>,
 }
 
 /// A parsed library and what it could not honour.
 #[derive(Debug, Clone, Default)]
 pub struct MtlLibrary {
+    /// Every `newmtl`, in file order.
     pub materials: Vec<MtlMaterial>,
+    /// What was skipped or guessed.
     pub warnings: Vec<Note>,
 }
 
