@@ -21,6 +21,7 @@ mod props;
 mod render;
 mod texture;
 pub mod transform;
+mod typed;
 pub mod value;
 pub mod vocabulary;
 

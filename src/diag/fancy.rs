@@ -204,3 +204,37 @@ pub fn render_fancy(d: &Diagnostic, sources: &SourceMap, color: bool) -> String 
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diag::Code;
+
+    #[test]
+    fn terminal_output_points_at_scnc_explain() {
+        let mut sources = SourceMap::new();
+        let file = sources.add(
+            "scene.scn",
+            "scene.scn",
+            "object ball { material shinny }\n",
+        );
+        let d = Diagnostic::error(Code::CheckUnknownMaterial, "unknown material `shinny`")
+            .at(
+                crate::source::Span::new(file, 23, 29),
+                "no material of this name",
+            )
+            .help("did you mean `shiny`?");
+        let out = render_fancy(&d, &sources, false);
+        assert!(out.contains("scnc::check::unknown_material"), "{out}");
+        assert!(out.contains("did you mean `shiny`?"), "{out}");
+        assert!(
+            out.contains("run `scnc explain scnc::check::unknown_material` for more"),
+            "{out}"
+        );
+        let plain = super::super::render_plain(&d, &sources, 100);
+        assert!(
+            !plain.contains("scnc explain"),
+            "plain output stays as snapshotted"
+        );
+    }
+}

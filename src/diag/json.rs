@@ -87,3 +87,20 @@ pub fn render_json(diags: &[Diagnostic], sources: &SourceMap) -> String {
     // ok: the report is plain strings and numbers, which always serialise.
     serde_json::to_string_pretty(&report).expect("plain data serialises")
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diag::Code;
+
+    #[test]
+    fn codes_are_their_strings_and_say_how_to_explain_them() {
+        let d = Diagnostic::warning(Code::CheckUnused, "material `red` is never used");
+        let json: serde_json::Value =
+            serde_json::from_str(&render_json(&[d], &SourceMap::new())).unwrap();
+        let d = &json["diagnostics"][0];
+        assert_eq!(d["code"], "scnc::check::unused");
+        assert_eq!(d["explain"], "scnc explain scnc::check::unused");
+        assert_eq!(json["warnings"], 1);
+    }
+}
