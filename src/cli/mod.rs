@@ -47,11 +47,13 @@ pub struct Cli {
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Check a scene: report every error and warning (exit 0 clean, 1 on errors); `scnc
-    /// explain CODE` explains a diagnostic's code.
+    /// Check a scene: report every error and warning (exit 0 clean, 1 on errors).
+    ///
+    /// Every diagnostic has a code; `scnc explain CODE` says what it means and how to fix it.
     Check(CheckArgs),
-    /// Render a scene to an image (PNG, EXR, HDR or PFM by extension); `scnc explain CODE`
-    /// explains a diagnostic's code.
+    /// Render a scene to an image (PNG, EXR, HDR or PFM by extension).
+    ///
+    /// Every diagnostic has a code; `scnc explain CODE` says what it means and how to fix it.
     Render(RenderArgs),
     /// Print a scene's validated intermediate representation as JSON.
     Ir(IrArgs),
@@ -62,8 +64,10 @@ pub enum Command {
     Inspect(InspectArgs),
     /// Measure the speed/accuracy curve: `scnc bench quality scene.scn [--out DIR]`.
     Bench(BenchArgs),
-    /// Explain a diagnostic code with an example of the mistake and the fix:
-    /// `scnc explain scnc::check::unknown_material`, `scnc explain --list`.
+    /// Explain a diagnostic code with an example of the mistake and the fix.
+    ///
+    /// `scnc explain scnc::check::unknown_material` (or `unknown_mesh`, a unique last
+    /// segment); `scnc explain --list` lists every code with its summary.
     Explain(ExplainArgs),
 }
 

@@ -3,7 +3,8 @@
 //! Each stage reports [`Diagnostic`] records, the one shape the CLI prints: [`render_fancy`] on
 //! a terminal (miette), [`render_plain`] in tests and logs (fixed width, no colour), and
 //! [`render_json`] for editors. A compile collects many diagnostics in one run; warnings never
-//! stop it.
+//! stop it. Every diagnostic's [`Code`] comes from one registry (`codes.rs`), which also holds
+//! each code's summary and explanation for `scnc explain`.
 
 mod code;
 mod codes;
