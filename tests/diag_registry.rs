@@ -108,6 +108,33 @@ fn every_explanation_example_shows_its_code() {
     assert!(wrong.is_empty(), "{wrong:#?}");
 }
 
+/// Build-stage codes whose examples need no files: built, the mistake shows its code and the
+/// fix does not.
+#[test]
+fn self_contained_build_examples_show_their_code() {
+    let loader = MemLoader::new();
+    let opts = BuildOptions::default();
+    for code in [
+        Code::BuildDegenerateMesh,
+        Code::BuildDegenerateTriangles,
+        Code::BuildSingularTransform,
+        Code::BuildLightFacesAway,
+    ] {
+        let mistake = example(code.explanation(), "Mistake").expect("a ```scn mistake");
+        let fix = example(code.explanation(), "Fix").expect("a ```scn fix");
+        let emitted = build_codes(mistake, &loader, &opts);
+        assert!(
+            emitted.contains(&code),
+            "{code}: the mistake emits {emitted:?}"
+        );
+        let emitted = build_codes(fix, &loader, &opts);
+        assert!(
+            !emitted.contains(&code),
+            "{code}: the fix emits {emitted:?}"
+        );
+    }
+}
+
 #[test]
 fn every_registered_code_is_emitted() {
     let mut emitted = BTreeSet::new();
