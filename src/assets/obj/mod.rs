@@ -33,8 +33,11 @@ pub use mtl::{parse_mtl, BumpKind, MtlLibrary, MtlMaterial, TexRef};
 /// A line of an OBJ or MTL file: its 1-based number and the byte range of its statement.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Place {
+    /// 1-based line number (of the first physical line, for a `\`-continued statement).
     pub line: u32,
+    /// Byte offset of the statement's start in the file's UTF-8 text.
     pub start: usize,
+    /// Byte offset one past the statement's end.
     pub end: usize,
 }
 
@@ -56,12 +59,16 @@ impl Place {
 pub struct Note {
     /// Stable code, e.g. `scnc::obj::lines_skipped`.
     pub code: &'static str,
+    /// What is wrong, as one sentence.
     pub message: String,
+    /// The line (and byte range) it is about.
     pub at: Place,
+    /// How to fix or silence it, when known.
     pub help: Option<String>,
 }
 
 impl Note {
+    /// A warning with no help yet.
     pub fn warning(code: &'static str, message: impl Into<String>, at: Place) -> Note {
         Note {
             code,
@@ -71,6 +78,7 @@ impl Note {
         }
     }
 
+    /// Adds how to fix it.
     pub fn help(mut self, help: impl Into<String>) -> Note {
         self.help = Some(help.into());
         self
@@ -80,13 +88,18 @@ impl Note {
 /// Why a file cannot be loaded, at the line where that became clear.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ObjError {
+    /// Stable code, e.g. `scnc::obj::missing_number`.
     pub code: &'static str,
+    /// What is wrong, as one sentence.
     pub message: String,
+    /// The line (and byte range) where loading stopped.
     pub at: Place,
+    /// How to fix it, when known.
     pub help: Option<String>,
 }
 
 impl ObjError {
+    /// An error with no help yet.
     pub fn new(code: &'static str, message: impl Into<String>, at: Place) -> ObjError {
         ObjError {
             code,
@@ -96,6 +109,7 @@ impl ObjError {
         }
     }
 
+    /// Adds how to fix it.
     pub fn help(mut self, help: impl Into<String>) -> ObjError {
         self.help = Some(help.into());
         self

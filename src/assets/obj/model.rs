@@ -27,7 +27,9 @@ use super::{Note, ObjError, Place};
 /// Triangles `start..` (up to the next run) use material `name` (`None`: before any `usemtl`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct MaterialRun {
+    /// Index of the run's first triangle in [`ObjModel::triangles`].
     pub start: usize,
+    /// The `usemtl` name; `None` before any `usemtl`.
     pub name: Option<String>,
     /// The `usemtl` line.
     pub at: Option<Place>,
@@ -36,12 +38,19 @@ pub struct MaterialRun {
 /// Counts for `scnc inspect`.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct ObjStats {
+    /// `v` statements read.
     pub positions: usize,
+    /// `vn` statements read.
     pub normals: usize,
+    /// `vt` statements read.
     pub uvs: usize,
+    /// `f` statements read (polygons, before triangulation).
     pub faces: usize,
+    /// `l` and `p` statements, skipped.
     pub lines_and_points: usize,
+    /// Triangles dropped for zero area or a non-finite corner.
     pub degenerate_dropped: usize,
+    /// `o` and `g` statements (accepted; they do not split the mesh).
     pub groups: usize,
 }
 
@@ -49,15 +58,24 @@ pub struct ObjStats {
 /// or empty, material runs in triangle order.
 #[derive(Debug, Clone, Default)]
 pub struct ObjModel {
+    /// Vertex positions, object space: the file's `v`s, then a copy of each one a face used with a
+    /// second `(vt, vn)` pair.
     pub positions: Vec<Vec3>,
+    /// One normal per vertex, or empty when the file has no `vn` (gaps filled from face normals).
     pub normals: Vec<Vec3>,
+    /// One UV per vertex, or empty when the file has no `vt`.
     pub uvs: Vec<Vec2>,
+    /// Indices into `positions` (and `normals`, `uvs`), with the file's winding.
     pub triangles: Vec<[u32; 3]>,
+    /// Which material each range of triangles uses, in order; never empty, the first starts at 0.
     pub runs: Vec<MaterialRun>,
     /// `mtllib` arguments as written, with their lines.
     pub mtllibs: Vec<(String, Place)>,
+    /// Counts of what the file held, for `scnc inspect`.
     pub stats: ObjStats,
+    /// The encoding the file was found in.
     pub encoding: Encoding,
+    /// Notes about the OBJ itself ([`LoadedObj`](super::LoadedObj) adds its libraries').
     pub warnings: Vec<Note>,
 }
 
