@@ -10,6 +10,8 @@
 //! - [`lexer`], [`number`]: lines, comments, tokens, floats and indices;
 //! - [`polygon`]: triangulation (shorter-diagonal quads, ear clipping, degenerates dropped);
 //! - [`model`]: OBJ statements, single indexing of `v/vt/vn` corners;
+//! - `model_notes`: the once-per-file warnings a parse leaves for the end;
+//! - `normals`: normals for the vertices a file with `vn`s left without one;
 //! - [`mtl`]: MTL statements;
 //! - [`load`]: the OBJ and its `mtllib`s through the `Loader`, with every warning placed.
 //!
@@ -20,7 +22,9 @@ pub mod encoding;
 pub mod lexer;
 pub mod load;
 pub mod model;
+mod model_notes;
 pub mod mtl;
+mod normals;
 pub mod number;
 pub mod phong;
 pub mod polygon;

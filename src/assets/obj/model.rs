@@ -19,7 +19,8 @@ use glam::{Vec2, Vec3};
 
 use super::encoding::{decode_name, to_utf8_bytes, Encoding};
 use super::lexer::{continues, keyword, strip_comment, tokens, Line, Lines};
-use super::mtl::latin1_note;
+use super::model_notes::Seen;
+use super::normals::fill_missing_normals;
 use super::number::{parse_f32, parse_index};
 use super::polygon::{triangulate, Scratch};
 use super::{Note, ObjError, Place};
@@ -138,10 +139,7 @@ struct Parser {
     pts: Vec<Vec3>,
     local: Vec<[u32; 3]>,
     scratch: Scratch,
-    first_skipped: Option<Place>,
-    latin1: Option<Place>,
-    fanned: Option<Place>,
-    unsupported: Vec<(String, usize, Place)>,
+    seen: Seen,
 }
 
 impl Parser {
@@ -171,7 +169,7 @@ impl Parser {
             b"f" | b"fo" => self.face(rest, at)?,
             b"l" | b"p" => {
                 self.model.stats.lines_and_points += 1;
-                self.first_skipped.get_or_insert(at);
+                self.seen.first_skipped.get_or_insert(at);
             }
             b"usemtl" => {
                 let name = self.name(rest, at);
@@ -198,12 +196,7 @@ impl Parser {
             b"s" => {}
             _ => {
                 let (word, _) = decode_name(kw);
-                let full = self.unsupported.len() >= 32;
-                match self.unsupported.iter_mut().find(|(w, _, _)| *w == word) {
-                    Some((_, n, _)) => *n += 1,
-                    None if !full => self.unsupported.push((word, 1, at)),
-                    None => {}
-                }
+                self.seen.unsupported_statement(word, at);
             }
         }
         Ok(())
@@ -212,7 +205,7 @@ impl Parser {
     fn name(&mut self, rest: &[u8], at: Place) -> String {
         let (name, latin1) = decode_name(rest);
         if latin1 {
-            self.latin1.get_or_insert(at);
+            self.seen.latin1.get_or_insert(at);
         }
         name
     }
@@ -290,7 +283,7 @@ impl Parser {
         let o = triangulate(&self.pts, &mut self.local, &mut self.scratch);
         self.model.stats.degenerate_dropped += o.dropped;
         if o.fanned {
-            self.fanned.get_or_insert(at);
+            self.seen.fanned.get_or_insert(at);
         }
         let corners = &self.corners;
         self.model
@@ -368,69 +361,8 @@ impl Parser {
         }
         m.runs
             .retain(|r| r.start < m.triangles.len() || r.start == 0);
-        self.warnings(&mut m);
+        self.seen.notes(&mut m);
         m
-    }
-
-    fn warnings(&mut self, m: &mut ObjModel) {
-        if m.encoding != Encoding::Utf8 {
-            m.warnings.push(
-                Note::warning(
-                    "scnc::obj::utf16",
-                    format!("this file is {}; it was transcoded", m.encoding.name()),
-                    Place {
-                        line: 1,
-                        start: 0,
-                        end: 0,
-                    },
-                )
-                .help("OBJ files are normally ASCII or UTF-8"),
-            );
-        }
-        if let Some(at) = self.latin1 {
-            m.warnings.push(latin1_note(at));
-        }
-        if let Some(at) = self.first_skipped {
-            m.warnings.push(
-                Note::warning(
-                    "scnc::obj::lines_skipped",
-                    format!(
-                        "{} line (`l`) and point (`p`) elements skipped: only faces become surfaces",
-                        m.stats.lines_and_points
-                    ),
-                    at,
-                )
-                .help("convert polylines to faces (or tubes) in the modelling tool to render them"),
-            );
-        }
-        if let Some(at) = self.fanned {
-            m.warnings.push(Note::warning(
-                "scnc::obj::polygon_fanned",
-                format!(
-                    "a face with more than {} corners was triangulated as a fan (correct only if it is convex)",
-                    super::polygon::EAR_CLIP_MAX
-                ),
-                at,
-            ));
-        }
-        if let Some((_, _, first)) = self.unsupported.first() {
-            let list: Vec<String> = self
-                .unsupported
-                .iter()
-                .map(|(w, n, at)| match n {
-                    1 => format!("`{w}` (line {})", at.line),
-                    _ => format!("`{w}` ({n}×, first on line {})", at.line),
-                })
-                .collect();
-            m.warnings.push(
-                Note::warning(
-                    "scnc::obj::unsupported_statement",
-                    format!("OBJ statements scnc does not read were ignored: {}", list.join(", ")),
-                    *first,
-                )
-                .help("scnc reads polygonal faces (v, vt, vn, f) with their materials; curves and surfaces are not tessellated"),
-            );
-        }
     }
 }
 
@@ -456,35 +388,4 @@ fn resolve(tok: &[u8], len: usize, at: Place, what: &str) -> Result<u32, ObjErro
         .help("indices count from 1; negative ones count back from the last one read"));
     }
     Ok(resolved as u32)
-}
-
-/// Vertices with no (or a zero or non-finite) normal get the area-weighted normal of the faces
-/// around them, so that one corner without `vn` does not cost the whole mesh its normals.
-fn fill_missing_normals(positions: &[Vec3], tris: &[[u32; 3]], normals: &mut [Vec3]) {
-    let bad = |n: Vec3| !n.is_finite() || n.length_squared() == 0.0;
-    if !normals.iter().any(|&n| bad(n)) {
-        return;
-    }
-    let missing: Vec<bool> = normals.iter().map(|&n| bad(n)).collect();
-    for n in normals.iter_mut().filter(|n| bad(**n)) {
-        *n = Vec3::ZERO;
-    }
-    for t in tris {
-        let [a, b, c] = t.map(|i| positions[i as usize]);
-        let face = (b - a).cross(c - a);
-        if !face.is_finite() {
-            continue;
-        }
-        for &i in t {
-            if missing[i as usize] {
-                normals[i as usize] += face;
-            }
-        }
-    }
-    for (n, _) in normals.iter_mut().zip(&missing).filter(|(_, &m)| m) {
-        if n.length_squared() == 0.0 || !n.is_finite() {
-            // A vertex no face uses: any unit vector will do.
-            *n = Vec3::Z;
-        }
-    }
 }
