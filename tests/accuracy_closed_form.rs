@@ -253,7 +253,8 @@ fn cornell_floor_points_that_see_the_whole_light_have_the_closed_form_radiance()
     let loader = FsLoader::new();
     let compiled = compile_file(&root.join("examples/cornell.scn"), &loader);
     let desc = compiled.scene.expect("examples/cornell.scn compiles");
-    let scene = build_scene(&desc, &compiled.sources, &loader, &BuildOptions::default())
+    let scene = build_scene(&desc, &loader, &BuildOptions::default())
+        .value
         .expect("examples/cornell.scn builds");
     let corners = [
         Vec3::new(343.0, 548.7, 227.0),

@@ -367,9 +367,9 @@ fn degenerate_triangles_are_dropped_counted_and_do_not_poison_the_bvh() {
     desc.materials = vec![phong("white", Vec3::ONE, 0.0, 1.0)];
     desc.objects = vec![object(0, 0, Mat4::IDENTITY)];
     desc.lights = vec![point_light(Vec3::new(2.0, 3.0, -4.0), 20.0)];
-    let scene = build(&desc, AccelKind::Bvh);
-    assert_eq!(scene.warnings.len(), 1);
-    let w = &scene.warnings[0];
+    let (scene, warnings) = build_warned(&desc, AccelKind::Bvh);
+    assert_eq!(warnings.len(), 1);
+    let w = &warnings[0];
     assert_eq!(w.code, "scnc::build::degenerate_triangles");
     assert!(
         w.message.starts_with(&format!("6 of {}", good + 7)),

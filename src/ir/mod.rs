@@ -24,7 +24,8 @@ pub use mesh::{
     AssetPath, BuiltinShape, InlineMesh, Mesh, MeshSource, ObjMaterialOverride, ObjOptions,
 };
 pub use render_settings::{
-    Output, OutputFormat, Quality, RenderSettings, SamplePattern, ToneMap, DEFAULT_MAX_SAMPLES,
+    Output, OutputFormat, Quality, RenderSettings, SamplePattern, SettingFlags, ToneMap,
+    DEFAULT_MAX_SAMPLES,
 };
 pub use texture::{Filter, Texture, TextureEncoding, TextureSource, WrapMode};
 

@@ -27,19 +27,13 @@ use super::{BuildError, BuildOptions, BuildTimings, Scene, SceneInstance, Surfac
 
 use crate::assets::Loader;
 use crate::bvh::{Accel, Instance, MeshRef};
-use crate::diag::{Diagnostic, Severity};
+use crate::diag::{Diagnostic, Severity, Staged};
 use crate::ir::{self, EnvSource};
-use crate::source::{SourceMap, Span};
+use crate::source::Span;
 
-/// Builds the scene. `_sources` holds the `.scn` files every span points into (diagnostics are
-/// labelled there; nothing is read from them here). On failure, returns every error found
-/// together with the warnings; on success, warnings are in [`Scene::warnings`].
-pub fn build(
-    desc: &ir::SceneDesc,
-    _sources: &SourceMap,
-    loader: &dyn Loader,
-    options: &BuildOptions,
-) -> Result<Scene, Vec<Diagnostic>> {
+/// Stage entry: builds the scene. On failure, the value is `None` and the diagnostics hold
+/// every error found (errors first) together with the warnings; on success, the warnings.
+pub fn build(desc: &ir::SceneDesc, loader: &dyn Loader, options: &BuildOptions) -> Staged<Scene> {
     build_with(desc, loader, options, None)
 }
 
@@ -48,13 +42,23 @@ pub fn build(
 /// back with [`BuildCache::recycle`] when done; [`BuildCache::report`] says what was rebuilt.
 pub fn build_cached(
     desc: &ir::SceneDesc,
-    _sources: &SourceMap,
     loader: &dyn Loader,
     options: &BuildOptions,
     cache: &mut BuildCache,
-) -> Result<Scene, Vec<Diagnostic>> {
+) -> Staged<Scene> {
     cache.begin();
     build_with(desc, loader, options, Some(cache))
+}
+
+/// What the asset phase made, before the acceleration structure.
+struct Assembled {
+    camera: ir::Camera,
+    materials: Vec<super::SurfaceMaterial>,
+    textures: super::Textures,
+    instances: Vec<SceneInstance>,
+    parts: PartTables,
+    lights: Lights,
+    tangents: Vec<Vec<Vec4>>,
 }
 
 fn build_with(
@@ -62,7 +66,7 @@ fn build_with(
     loader: &dyn Loader,
     options: &BuildOptions,
     cache: Option<&mut BuildCache>,
-) -> Result<Scene, Vec<Diagnostic>> {
+) -> Staged<Scene> {
     let start = Instant::now();
     let mut b = Builder {
         desc,
@@ -72,32 +76,83 @@ fn build_with(
         meshes: Vec::new(),
         mesh_slots: vec![None; desc.meshes.len()],
     };
-    let camera_index = options.camera.unwrap_or(desc.active_camera);
-    let camera = desc.cameras.get(camera_index).cloned();
-    if camera.is_none() {
-        b.problems.push(BuildError::NoCamera {
-            which: match options.camera {
-                Some(i) => format!("number {i}"),
-                None => "to render from".into(),
-            },
-        });
-    }
-
-    let (mut materials, mut textures) = b.materials();
-    let mut parts = PartTables::default();
-    let environment = b.environment();
-
     let assets_start = Instant::now();
-    let mut instances = Vec::new();
-    for object in &desc.objects {
-        let Some(mesh) = b.mesh(object.mesh) else {
-            continue;
-        };
-        if let Some((world_from_object, normal_from_object)) =
-            b.transform(object.world_from_object, object.span)
-        {
+    let assembled = b.assemble(options);
+    let asset_load = assets_start.elapsed();
+
+    let mut diags: Vec<Diagnostic> = b.problems.iter().map(BuildError::to_diagnostic).collect();
+    let (Some(a), false) = (
+        assembled,
+        diags.iter().any(|d| d.severity == Severity::Error),
+    ) else {
+        diags.sort_by_key(|d| std::cmp::Reverse(d.severity));
+        if let Some(cache) = b.cache {
+            cache.give_back(b.meshes, None);
+        }
+        return Staged::failed(diags);
+    };
+
+    let accel_start = Instant::now();
+    let accel = b.accel(&a.instances, options);
+    let accel_build = if accel.is_some() {
+        accel_start.elapsed()
+    } else {
+        Default::default()
+    };
+
+    let scene = Scene {
+        camera: a.camera,
+        settings: desc.render.clone(),
+        meshes: b.meshes,
+        instances: a.instances,
+        accel,
+        materials: a.materials,
+        part_surfaces: a.parts.surfaces,
+        textures: a.textures,
+        tangents: a.tangents,
+        lights: a.lights,
+        light_sampling: Default::default(),
+        strategy: Default::default(),
+        timings: BuildTimings {
+            asset_load,
+            accel_build,
+            total: start.elapsed(),
+        },
+    };
+    Staged::new(Some(scene), diags)
+}
+
+impl Builder<'_> {
+    /// Loads and places everything the scene uses; `None` without a camera (recorded as a
+    /// problem). Problems of every other kind are recorded and the rest still built, so one
+    /// build reports them all.
+    fn assemble(&mut self, options: &BuildOptions) -> Option<Assembled> {
+        let desc = self.desc;
+        let camera_index = options.camera.unwrap_or(desc.active_camera);
+        let camera = desc.cameras.get(camera_index).cloned();
+        if camera.is_none() {
+            self.problems.push(BuildError::NoCamera {
+                which: match options.camera {
+                    Some(i) => format!("number {i}"),
+                    None => "to render from".into(),
+                },
+            });
+        }
+        let (mut materials, mut textures) = self.materials();
+        let mut parts = PartTables::default();
+        let environment = self.environment();
+        let mut instances = Vec::new();
+        for object in &desc.objects {
+            let Some(mesh) = self.mesh(object.mesh) else {
+                continue;
+            };
+            let Some((world_from_object, normal_from_object)) =
+                self.transform(object.world_from_object, object.span)
+            else {
+                continue;
+            };
             let part_base = parts.place(
-                &b.meshes[mesh as usize],
+                &self.meshes[mesh as usize],
                 &desc.meshes[object.mesh as usize].obj,
                 object.material,
                 world_from_object,
@@ -112,64 +167,40 @@ fn build_with(
                 part_base,
             });
         }
+        let lights = self.lights(&mut instances, environment, &mut parts);
+        self.problems.append(&mut parts.unknown);
+        let tangents = self.uvs_and_tangents();
+        Some(Assembled {
+            camera: camera?,
+            materials,
+            textures,
+            instances,
+            parts,
+            lights,
+            tangents,
+        })
     }
-    let lights = b.lights(&mut instances, environment, &mut parts);
-    b.problems.append(&mut parts.unknown);
-    let tangents = b.uvs_and_tangents();
-    let asset_load = assets_start.elapsed();
 
-    let mut diags: Vec<Diagnostic> = b.problems.iter().map(BuildError::to_diagnostic).collect();
-    let (Some(camera), false) = (camera, diags.iter().any(|d| d.severity == Severity::Error))
-    else {
-        diags.sort_by_key(|d| std::cmp::Reverse(d.severity));
-        if let Some(cache) = b.cache {
-            cache.give_back(b.meshes, None);
+    /// The acceleration structure over every instance (from the cache when there is one);
+    /// `None` when there are no triangles.
+    fn accel(&mut self, instances: &[SceneInstance], options: &BuildOptions) -> Option<Accel> {
+        let triangles: usize = instances
+            .iter()
+            .map(|i| self.meshes[i.mesh as usize].triangles.len())
+            .sum();
+        if triangles == 0 {
+            return None;
         }
-        return Err(diags);
-    };
-
-    let accel_start = Instant::now();
-    let triangles: usize = instances
-        .iter()
-        .map(|i| b.meshes[i.mesh as usize].triangles.len())
-        .sum();
-    let accel = (triangles > 0).then(|| {
-        if let Some(cache) = b.cache.as_deref_mut() {
-            return cache.accel(&b.meshes, &instances, options.accel);
+        if let Some(cache) = self.cache.as_deref_mut() {
+            return Some(cache.accel(&self.meshes, instances, options.accel));
         }
-        let refs: Vec<MeshRef<'_>> = b.meshes.iter().map(TriMesh::as_mesh_ref).collect();
+        let refs: Vec<MeshRef<'_>> = self.meshes.iter().map(TriMesh::as_mesh_ref).collect();
         let accel_instances: Vec<Instance> = instances
             .iter()
             .map(|i| Instance::new(i.mesh, i.world_from_object))
             .collect();
-        Accel::build(&refs, &accel_instances, options.accel)
-    });
-    let accel_build = if accel.is_some() {
-        accel_start.elapsed()
-    } else {
-        Default::default()
-    };
-
-    Ok(Scene {
-        camera,
-        settings: desc.render.clone(),
-        meshes: b.meshes,
-        instances,
-        accel,
-        materials,
-        part_surfaces: parts.surfaces,
-        textures,
-        tangents,
-        lights,
-        light_sampling: Default::default(),
-        strategy: Default::default(),
-        timings: BuildTimings {
-            asset_load,
-            accel_build,
-            total: start.elapsed(),
-        },
-        warnings: diags,
-    })
+        Some(Accel::build(&refs, &accel_instances, options.accel))
+    }
 }
 
 struct Builder<'a> {

@@ -4,8 +4,9 @@
 //!
 //! Input syntax this stage gives meaning to: `mesh … = obj(…) | inline {…} | quad | box |
 //! sphere`, `object … { mesh m  material p  transform {…} }`, `light … = point | area |
-//! environment`, `texture … = image | checker | constant`, `normal_map`. Errors are [`BuildError`]s converted to
-//! diagnostics labelled at the path literal or declaration in the `.scn`.
+//! environment`, `texture … = image | checker | constant`, `normal_map`. Errors and warnings are [`BuildError`]s
+//! converted to diagnostics labelled at the path literal or declaration in the `.scn`, returned
+//! beside the scene in the [`Staged`](crate::diag::Staged) shape of every stage.
 
 mod build;
 pub mod cache;
@@ -40,7 +41,6 @@ pub use mesh::{MeshPart, TriMesh};
 pub use texture::{Texture, Textures};
 
 use crate::bvh::{Accel, AccelKind, AccelStats};
-use crate::diag::Diagnostic;
 use crate::ir;
 
 /// Choices the command line makes about the build.
@@ -162,8 +162,6 @@ pub struct Scene {
     /// How direct light from area lights and the environment is sampled (tests switch it).
     pub strategy: DirectStrategy,
     pub timings: BuildTimings,
-    /// Warnings found while building (degenerate triangles dropped, empty meshes).
-    pub warnings: Vec<Diagnostic>,
 }
 
 impl Scene {

@@ -111,9 +111,10 @@ pub fn run(args: &WatchArgs) -> ExitCode {
         status.begin(&changed);
         let outcome = session.compile();
         watcher.set(outcome.files);
-        match outcome.result {
-            Ok(ready) => {
-                status.compiled(&outcome.figures, &outcome.warnings, &outcome.sources);
+        let diagnostics = outcome.built.diagnostics;
+        match outcome.built.value {
+            Some(ready) => {
+                status.compiled(&outcome.figures, &diagnostics, &outcome.sources);
                 job = Some(RenderJob::start(
                     ready,
                     Arc::new(outcome.sources),
@@ -122,7 +123,7 @@ pub fn run(args: &WatchArgs) -> ExitCode {
                     preview.clone(),
                 ));
             }
-            Err(diags) => status.error(&diags, &outcome.sources),
+            None => status.error(&diagnostics, &outcome.sources),
         }
         status.watching(watcher.len());
         match wait_for_change(&rx, &mut watcher) {
