@@ -1,14 +1,21 @@
 //! scnc: a declarative scene-language compiler and direct-lighting ray tracer.
 //!
 //! ```text
-//! scene.scn ─ syntax::parse ─▶ SceneFile (AST, every node spanned)        error: ParseError
-//!           ─ check::check  ─▶ ir::SceneDesc (typed, names resolved,      errors: CheckError + warnings
+//! scene.scn ─ syntax::parse ─▶ SceneFile (AST, every node spanned)        Staged<SceneFile>
+//!           ─ check::check  ─▶ ir::SceneDesc (typed, names resolved,      Staged<SceneDesc>
 //!                               units normalised, validated, no I/O)
-//!           ─ scene::build  ─▶ Scene (world triangles + BVH, textures,    error: BuildError
+//!             (compile::compile: parse + includes + check, through the Loader)
+//!           ─ scene::build  ─▶ Scene (world triangles + BVH, textures,    Staged<Scene>
 //!              (via Loader)     light tables, camera): only what is used
 //!           ─ render::render ─▶ Film (linear RGB radiance per pixel)     deterministic, cancellable
-//!           ─ film::write    ─▶ PNG (sRGB 8-bit), EXR / HDR / PFM          error: WriteError; atomic
+//!           ─ film::write    ─▶ PNG (sRGB 8-bit), EXR / HDR / PFM          Staged<()>; atomic
 //! ```
+//!
+//! Every stage returns [`diag::Staged`]: its value (if it could make one) and every
+//! [`diag::Diagnostic`] (error or warning, with spans into the `source::SourceMap`) found so
+//! far, so `cli` chains the stages with `Staged::and_then` and reports once. Only
+//! cancellation ends a render early (`render::Cancelled`); its settings are resolved before it
+//! starts (`ir::RenderSettings::resolve`).
 
 pub mod assets;
 pub mod bvh;

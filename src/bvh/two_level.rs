@@ -29,6 +29,7 @@ pub(super) struct Placed {
     pub world_bounds: Aabb,
 }
 
+/// The two-level acceleration structure: instances over shared per-mesh BVHs.
 #[derive(Debug)]
 pub struct TwoLevel {
     /// Bottom-level BVHs: one per mesh that some non-merged instance places (empty for the
@@ -254,6 +255,7 @@ impl TwoLevel {
         })
     }
 
+    /// The nearest hit along `ray` before its `t_max` (none for a non-finite ray).
     pub fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
         if !(ray.origin.is_finite() && ray.dir.is_finite()) || ray.t_max.is_nan() {
             return None;
@@ -264,6 +266,7 @@ impl TwoLevel {
         }
     }
 
+    /// Whether anything blocks `ray` before its `t_max` (shadow rays).
     pub fn any_hit(&self, ray: &Ray) -> bool {
         if !(ray.origin.is_finite() && ray.dir.is_finite()) || ray.t_max.is_nan() {
             return false;
@@ -274,6 +277,7 @@ impl TwoLevel {
         }
     }
 
+    /// Node, leaf and triangle counts and memory, for `--stats`.
     pub fn stats(&self) -> AccelStats {
         let leaves = |w: &Wide| {
             let inner: usize = w

@@ -20,6 +20,7 @@ use crate::assets::{FsLoader, Loader};
 use crate::diag::{Diagnostic, Severity};
 use crate::source::SourceMap;
 
+/// `scnc inspect`'s arguments.
 #[derive(Debug, Clone, Args)]
 pub struct InspectArgs {
     /// The OBJ file.
@@ -36,6 +37,7 @@ pub struct InspectArgs {
     pub no_mtl: bool,
 }
 
+/// `scnc inspect`: load the OBJ, print its summary and warnings.
 pub fn run(args: &InspectArgs) -> ExitCode {
     let loader = FsLoader::new();
     let shown = args.file.display().to_string();

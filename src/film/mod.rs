@@ -27,6 +27,7 @@ pub struct Film {
 }
 
 impl Film {
+    /// A black film.
     pub fn new(width: u32, height: u32) -> Film {
         Film {
             width,
@@ -35,14 +36,17 @@ impl Film {
         }
     }
 
+    /// Width in pixels.
     pub fn width(&self) -> u32 {
         self.width
     }
 
+    /// Height in pixels.
     pub fn height(&self) -> u32 {
         self.height
     }
 
+    /// Every pixel, row-major from the top.
     pub fn pixels(&self) -> &[Vec3] {
         &self.pixels
     }
@@ -56,6 +60,7 @@ impl Film {
         }
     }
 
+    /// Sets the pixel at column `x`, row `y` (ignored outside the image).
     pub fn set(&mut self, x: u32, y: u32, value: Vec3) {
         if x < self.width && y < self.height {
             self.pixels[y as usize * self.width as usize + x as usize] = value;

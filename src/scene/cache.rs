@@ -58,6 +58,7 @@ pub enum MeshKey {
 }
 
 impl MeshKey {
+    /// The key of a mesh declaration's source and OBJ options.
     pub fn of(source: &MeshSource, obj: &crate::ir::ObjOptions) -> MeshKey {
         let json = match source {
             MeshSource::Obj(path) => return MeshKey::Obj(path.path.clone(), obj.ignore_mtl),
@@ -154,6 +155,7 @@ pub struct BuildCache {
 }
 
 impl BuildCache {
+    /// An empty cache.
     pub fn new() -> BuildCache {
         BuildCache::default()
     }

@@ -31,9 +31,13 @@ pub struct Built {
 /// per-sample loop checks them through the same data, never more).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Features {
+    /// A used material looks up a texture.
     pub textures: bool,
+    /// A used material has a specular lobe.
     pub specular: bool,
+    /// The scene has an environment light.
     pub environment: bool,
+    /// The scene has area lights (emitting geometry).
     pub area_lights: bool,
 }
 

@@ -170,6 +170,7 @@ impl MapReader<'_> {
 /// Surfaces of OBJ parts, per placement, and the area lights of their emissive parts.
 #[derive(Debug, Default)]
 pub(super) struct PartTables {
+    /// Every placement's part surfaces, in placement order.
     pub surfaces: Vec<Surface>,
     /// (index into `surfaces`, the light): numbered once every other light is known.
     pending: Vec<(usize, AreaLight)>,

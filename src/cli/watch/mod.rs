@@ -36,8 +36,10 @@ use crate::scene::BuildCache;
 /// How often files that do not exist yet are looked for.
 const POLL: Duration = Duration::from_millis(250);
 
+/// `scnc watch`'s arguments.
 #[derive(Debug, Clone, Args)]
 pub struct WatchArgs {
+    /// The scene file.
     #[command(flatten)]
     pub scene: SceneArg,
     /// Output image (written after every pass); default: the scene's outputs, or the scene
@@ -64,6 +66,7 @@ pub struct WatchArgs {
     pub events: EventsFormat,
 }
 
+/// `scnc watch`: compile, build and render in a loop, on every change of what was read.
 pub fn run(args: &WatchArgs) -> ExitCode {
     let (tx, rx) = channel();
     {
