@@ -185,7 +185,10 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             eprintln!("render cancelled; no image written");
             ExitCode::from(130)
         }
-        Some(Finished::Rendered(scene, stats)) => {
+        Some(Finished::Rendered(scene, stats, written)) => {
+            for line in written {
+                eprintln!("{line}");
+            }
             if stats.noise.target.is_some() {
                 eprintln!("{}", stats.noise.summary());
             }
@@ -200,8 +203,9 @@ pub fn run(args: &RenderArgs) -> ExitCode {
 
 /// How a render that got as far as the renderer ended.
 enum Finished {
-    /// Rendered (and written, or the write's diagnostics say why not).
-    Rendered(Box<Scene>, RenderStats),
+    /// Rendered, with a line per file written (the write's diagnostics say why any other
+    /// was not).
+    Rendered(Box<Scene>, RenderStats, Vec<String>),
     /// Ctrl-C: nothing written.
     Cancelled,
 }
@@ -267,28 +271,29 @@ fn render_and_write(
     };
     phases.render = rendered.stats.wall;
     let t = Instant::now();
-    let written = write_outputs(args, desc, &scene, &rendered);
+    let (written, diagnostics) = write_outputs(args, desc, &scene, &rendered);
     phases.write = t.elapsed();
     Staged::new(
-        Some(Finished::Rendered(Box::new(scene), rendered.stats)),
-        written,
+        Some(Finished::Rendered(Box::new(scene), rendered.stats, written)),
+        diagnostics,
     )
 }
 
 /// Writes the image to every output target and the standard error to `--variance-out`;
-/// returns the diagnostics of the writes that failed (the others still happen).
+/// returns a line per file written and the diagnostics of the writes that failed (the others
+/// still happen).
 fn write_outputs(
     args: &RenderArgs,
     desc: &ir::SceneDesc,
     scene: &Scene,
     rendered: &render::Rendered,
-) -> Vec<Diagnostic> {
+) -> (Vec<String>, Vec<Diagnostic>) {
     let settings = WriteSettings::from_render(&scene.settings);
-    let mut diagnostics = Vec::new();
+    let (mut lines, mut diagnostics) = (Vec::new(), Vec::new());
     for (path, span) in output_targets(args.output.as_deref(), &args.scene.file, desc) {
         let written = film::write(&rendered.film, &path, &settings, span);
         if written.value.is_some() {
-            eprintln!("wrote {}", path.display());
+            lines.push(format!("wrote {}", path.display()));
         }
         diagnostics.extend(written.diagnostics);
     }
@@ -296,11 +301,14 @@ fn write_outputs(
         // Float formats store the values as they are: the settings only matter for PNG.
         let written = film::write(&rendered.std_error, path, &WriteSettings::default(), None);
         if written.value.is_some() {
-            eprintln!("wrote {} (standard error of each pixel)", path.display());
+            lines.push(format!(
+                "wrote {} (standard error of each pixel)",
+                path.display()
+            ));
         }
         diagnostics.extend(written.diagnostics);
     }
-    diagnostics
+    (lines, diagnostics)
 }
 
 fn progress_bar() -> Option<indicatif::ProgressBar> {
