@@ -1,6 +1,6 @@
 //! Stage 5, film: the rendered image as linear RGB radiance, and its output files.
 //!
-//! Syntax: `render { output "cornell.png"  exposure 0  tonemap filmic }`. [`write`] picks the
+//! Syntax: `render { output "cornell.png"  exposure 0  tonemap filmic }`. [`write()`] picks the
 //! format from the extension: `.png` (8-bit sRGB after exposure and tone mapping), `.exr`
 //! (linear float OpenEXR), `.hdr` (Radiance RGBE), `.pfm` (portable float map). Writes are
 //! atomic: a temporary file in the target's directory, fsync, rename over the target.
