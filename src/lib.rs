@@ -21,5 +21,6 @@ pub mod geom;
 pub mod ir;
 pub mod render;
 pub mod scene;
+pub mod shade;
 pub mod source;
 pub mod syntax;

@@ -15,7 +15,8 @@ use scnc::assets::MemLoader;
 use scnc::compile::compile_source;
 use scnc::diag::Severity;
 use scnc::render::{render, RenderOptions, RenderStats};
-use scnc::scene::{build, BuildOptions, Features, Scene, Texture};
+use scnc::scene::{build, BuildOptions, Features, Scene};
+use scnc::shade::Texture;
 
 fn build_src(src: &str, loader: &MemLoader) -> (Scene, scnc::source::SourceMap) {
     let compiled = compile_source("scene.scn", src, loader);

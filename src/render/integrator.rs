@@ -31,15 +31,16 @@
 
 use glam::{Vec2, Vec3};
 
-use super::brdf::Phong;
-use super::footprint;
-use super::normal_map;
 use super::rng::Sampler;
-use super::spherical;
-use super::surface::{offset_origin, surface_hit, SurfaceHit};
 use crate::geom::triangle::moller_trumbore;
 use crate::geom::Ray;
-use crate::scene::{AreaLight, DirectStrategy, Light, LightSampling, Picked, Scene, Surface};
+use crate::scene::{DirectStrategy, LightSampling, Scene, Surface};
+use crate::shade::brdf::Phong;
+use crate::shade::light::spherical;
+use crate::shade::normal_map;
+use crate::shade::surface::{offset_origin, surface_hit, SurfaceHit};
+use crate::shade::texture::footprint;
+use crate::shade::{AreaLight, Light, Picked};
 
 /// Rays traced, by kind, and how often the per-sample loop took the paths of optional features
 /// (so a test can prove a scene without them never pays for them).
@@ -347,5 +348,3 @@ impl Shading<'_> {
         (!blocked).then_some(cos)
     }
 }
-
-pub use super::sampling::cosine_hemisphere;

@@ -23,10 +23,11 @@ use glam::Vec3;
 
 use super::integrator::{RayCounts, Shading, STREAM_BRDF, STREAM_ENVIRONMENT};
 use super::rng::Sampler;
-use super::sampling::power_heuristic;
-use super::spherical;
 use crate::geom::Ray;
-use crate::scene::{AreaLight, DirectStrategy, Environment, Light, LightSampling, Surface};
+use crate::scene::{DirectStrategy, LightSampling, Surface};
+use crate::shade::light::spherical;
+use crate::shade::sampling::power_heuristic;
+use crate::shade::{AreaLight, Environment, Light};
 
 impl Shading<'_> {
     /// The MIS weight of a light sample in direction `wi` whose effective density is

@@ -39,9 +39,9 @@ pub struct MeshPart {
 /// filtered trilinearly with repeat wrapping, as MTL's default `-clamp off` says.
 #[derive(Debug, Clone, Default)]
 pub struct PartMaps {
-    pub diffuse: Option<std::sync::Arc<super::image_texture::ImageData>>,
-    pub specular: Option<std::sync::Arc<super::image_texture::ImageData>>,
-    pub normal: Option<(std::sync::Arc<super::image_texture::ImageData>, f32)>,
+    pub diffuse: Option<std::sync::Arc<crate::shade::texture::image::ImageData>>,
+    pub specular: Option<std::sync::Arc<crate::shade::texture::image::ImageData>>,
+    pub normal: Option<(std::sync::Arc<crate::shade::texture::image::ImageData>, f32)>,
 }
 
 impl PartialEq for PartMaps {
@@ -67,7 +67,7 @@ impl PartMaps {
     pub fn set(
         &mut self,
         key: &str,
-        data: std::sync::Arc<super::image_texture::ImageData>,
+        data: std::sync::Arc<crate::shade::texture::image::ImageData>,
         bump_multiplier: f32,
     ) {
         match key {

@@ -20,8 +20,8 @@
 
 use glam::Vec3;
 
-use super::surface::SurfaceHit;
 use crate::scene::Scene;
+use crate::shade::surface::SurfaceHit;
 
 /// The spread angle of one pixel of a camera with vertical field of view `fov_y_rad` rendering
 /// `height_px` rows.

@@ -12,7 +12,10 @@ use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 
-use super::image_texture::ImageData;
+pub mod footprint;
+pub mod image;
+
+use self::image::ImageData;
 use crate::ir::{ColorInput, Filter, ScalarInput, WrapMode};
 
 /// A texture the renderer can evaluate.
