@@ -9,6 +9,10 @@
 //!           ─ render::render ─▶ Film (linear RGB radiance per pixel)     deterministic, cancellable
 //!           ─ film::write    ─▶ PNG (sRGB 8-bit), EXR / HDR / PFM          error: WriteError; atomic
 //! ```
+//!
+//! [`shade`] is the layer between `scene::build` and `render`: what a hit point needs to be
+//! shaded (BRDF, lights with `sample` beside `pdf`, textures, the environment map, sampling
+//! routines and distributions). The scene stores its types; the integrator calls them.
 
 pub mod assets;
 pub mod bvh;

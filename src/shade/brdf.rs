@@ -1,4 +1,4 @@
-//! Stage 4: the energy-normalised Phong BRDF (`material m = phong { diffuse …  specular …
+//! Shading layer: the energy-normalised Phong BRDF (`material m = phong { diffuse …  specular …
 //! shininess n  ambient … }`).
 //!
 //! ```text
@@ -35,8 +35,11 @@ use super::sampling::{cosine_hemisphere, phong_lobe};
 /// A Phong lobe evaluated at one hit (inputs already looked up from textures).
 #[derive(Debug, Clone, Copy)]
 pub struct Phong {
+    /// `kd`: the diffuse albedo.
     pub diffuse: Vec3,
+    /// `ks`: the specular lobe's albedo at normal incidence.
     pub specular: Vec3,
+    /// `n`: the lobe's exponent (negative values count as 0).
     pub shininess: f32,
 }
 

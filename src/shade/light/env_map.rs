@@ -47,6 +47,7 @@ pub struct EnvMap {
 pub struct EnvSample {
     /// Unit world direction.
     pub wi: Vec3,
+    /// Radiance arriving from `wi`.
     pub radiance: Vec3,
     /// Density over solid angle of the whole environment's sampling (all its parts).
     pub pdf_solid_angle: f32,
@@ -83,10 +84,12 @@ impl EnvMap {
         })
     }
 
+    /// `(width, height)` in texels.
     pub fn size(&self) -> (usize, usize) {
         (self.width, self.height)
     }
 
+    /// Solid-angle-weighted mean radiance.
     pub fn average(&self) -> Vec3 {
         self.average
     }
@@ -107,6 +110,7 @@ impl EnvMap {
         self.distribution.is_some()
     }
 
+    /// Whether the sampling table was built.
     pub fn has_distribution(&self) -> bool {
         self.distribution.is_some()
     }

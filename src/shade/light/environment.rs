@@ -19,7 +19,9 @@ use crate::shade::sampling::uniform_sphere;
 /// The scene's environment: a constant part plus an optional map.
 #[derive(Debug, Clone)]
 pub struct Environment {
+    /// The sum of the scene's constant environments (radiance from every direction).
     pub constant: Vec3,
+    /// The image environment, if any (added to `constant`).
     pub map: Option<EnvMap>,
     /// Whether escaped camera rays show it.
     pub visible: bool,
@@ -31,6 +33,8 @@ pub struct Environment {
 }
 
 impl Environment {
+    /// An environment whose sampling is not prepared yet (see
+    /// [`Environment::prepare_sampling`]).
     pub fn new(constant: Vec3, map: Option<EnvMap>, visible: bool) -> Environment {
         Environment {
             constant,

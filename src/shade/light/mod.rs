@@ -1,15 +1,20 @@
-//! Stage 3: render-ready lights and their sampling tables.
+//! Lights: the closed set of emitters ([`Light`]: point and area lights, plus the scene's
+//! [`Environment`]) and the table that picks one by power.
 //!
 //! Syntax: `light bulb = point { position (0, 4, 0)  intensity rgb(10, 10, 10) }`,
 //! `light panel = area { mesh panel  transform { ... }  radiance 5  two_sided false  samples 4 }`,
 //! `light sky = environment { rgb(0.2, 0.3, 0.5)  intensity 1  visible true }`.
 //!
-//! Area lights keep their triangles in world space with a CDF over triangle areas, so a point
-//! is sampled uniformly by area over the whole mesh (`pdf_area = 1 / total_area`). Point and area
-//! lights are picked by power through one [`Distribution1D`], so a scene with 100 lights traces
-//! the same number of shadow rays per shading point as a scene with one. The environment, when
-//! the scene has one and geometry to light, is the table's last entry (index `lights.len()`),
-//! with the power estimate of [`Environment::power`].
+//! One file per light type, each keeping its `sample` beside its `pdf` (pbrt's `SampleLi`
+//! beside `PDF_Li`): `point` (a delta: sample only, pdf 0), `area` (triangles by area, then by
+//! solid angle or area; the spherical-triangle maths in `spherical`), `environment` (a constant
+//! and/or the map of `env_map`). The scene build creates them; the integrator picks one with
+//! [`Lights::pick`] and calls its `sample`; MIS calls the `pdf` of what a BRDF ray reached.
+//!
+//! Point and area lights are picked by power through one [`Distribution1D`], so a scene with 100
+//! lights traces the same number of shadow rays per shading point as a scene with one. The
+//! environment, when the scene has one and geometry to light, is the table's last entry (index
+//! `lights.len()`), with the power estimate of [`Environment::power`].
 
 pub mod area;
 pub mod env_map;
@@ -17,35 +22,44 @@ pub mod environment;
 pub mod point;
 pub mod spherical;
 
-pub use area::{AreaLight, LightPoint};
+pub use area::{AreaLight, AreaSample, LightPoint};
 pub use env_map::{EnvMap, EnvSample};
 pub use environment::Environment;
-pub use point::PointLight;
+pub use point::{PointLight, PointSample};
 
 use crate::shade::distribution::Distribution1D;
 
+/// A light the build placed in the scene (the environment is kept apart, in
+/// [`Lights::environment`]: it has no position and is also what escaped rays see).
 #[derive(Debug, Clone)]
 pub enum Light {
+    /// `light … = point { … }`.
     Point(PointLight),
+    /// `light … = area { … }`, or an OBJ material's `Ke`.
     Area(AreaLight),
 }
 
 /// Every light of the scene, with the table that picks one by power.
 #[derive(Debug, Clone, Default)]
 pub struct Lights {
+    /// Point and area lights; an instance's `Surface::Emitter(i)` is `lights[i]`.
     pub lights: Vec<Light>,
     /// `None` when there is no light with positive power: no shadow rays at all.
     pub by_power: Option<Distribution1D>,
+    /// The environment, if the scene has one that emits or shows.
     pub environment: Option<Environment>,
     /// Whether `by_power` has the environment as its entry `lights.len()`.
     environment_in_table: bool,
+    /// Whether any light is an area light.
     has_emitters: bool,
 }
 
 /// What [`Lights::pick`] chose.
 #[derive(Debug, Clone, Copy)]
 pub enum Picked<'a> {
+    /// `lights[i]` and the light itself.
     Light(usize, &'a Light),
+    /// The environment.
     Environment(&'a Environment),
 }
 
