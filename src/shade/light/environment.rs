@@ -116,6 +116,7 @@ impl Environment {
     }
 
     /// The density of [`Environment::sample`] at world direction `d` (unit).
+    #[inline]
     pub fn pdf(&self, d: Vec3) -> f32 {
         let f = self.map_fraction;
         let map = self.map.as_ref().map_or(0.0, |m| m.pdf(d));
