@@ -16,6 +16,10 @@
 //! far, so `cli` chains the stages with `Staged::and_then` and reports once. Only
 //! cancellation ends a render early (`render::Cancelled`); its settings are resolved before it
 //! starts (`ir::RenderSettings::resolve`).
+//!
+//! [`shade`] is the layer between `scene::build` and `render`: what a hit point needs to be
+//! shaded (BRDF, lights with `sample` beside `pdf`, textures, the environment map, sampling
+//! routines and distributions). The scene stores its types; the integrator calls them.
 
 pub mod assets;
 pub mod bvh;
@@ -28,5 +32,6 @@ pub mod geom;
 pub mod ir;
 pub mod render;
 pub mod scene;
+pub mod shade;
 pub mod source;
 pub mod syntax;

@@ -25,10 +25,10 @@ use scnc::assets::FsLoader;
 use scnc::bvh::AccelKind;
 use scnc::compile::compile_file;
 use scnc::geom::Ray;
-use scnc::render::brdf::Phong;
 use scnc::render::integrator::{radiance, RayCounts};
 use scnc::render::rng::Sampler;
 use scnc::scene::{build as build_scene, BuildOptions, LightSampling, Scene};
+use scnc::shade::brdf::Phong;
 
 /// Irradiance at `p` (unit normal `n`) from a uniform Lambertian polygon of radiance 1 that is
 /// wholly above `p`'s horizon (Lambert 1760): `E = ½ Σ βᵢ n·γᵢ`.

@@ -15,7 +15,8 @@ use scnc::assets::MemLoader;
 use scnc::compile::compile_source;
 use scnc::diag::Severity;
 use scnc::render::{render, RenderOptions, RenderStats};
-use scnc::scene::{build, BuildOptions, Features, Scene, Texture};
+use scnc::scene::{build, BuildOptions, Features, Scene};
+use scnc::shade::Texture;
 
 /// The scene (set to 4 samples per pixel, as `render_small` renders it), its sources and its
 /// build warnings.

@@ -30,8 +30,8 @@ use scnc::bvh::AccelKind;
 use scnc::geom::triangle::{moller_trumbore, watertight, WatertightRay};
 use scnc::geom::Ray;
 use scnc::ir::{InlineMesh, Mesh, MeshSource};
-use scnc::render::surface::{offset_origin, surface_hit};
 use scnc::scene::Scene;
+use scnc::shade::surface::{offset_origin, surface_hit};
 
 /// splitmix64: a seeded stream with no dependency.
 struct Rng(u64);
@@ -199,7 +199,7 @@ fn hits_from_behind(
     normal: Vec3,
     d: f32,
     n: usize,
-) -> Vec<scnc::render::surface::SurfaceHit> {
+) -> Vec<scnc::shade::surface::SurfaceHit> {
     let (t1, t2) = normal.any_orthonormal_pair();
     let eye = centre - d * normal;
     let accel = scene.accel.as_ref().expect("the plane has triangles");
@@ -222,7 +222,7 @@ fn hits_from_behind(
 /// the ray. Returns how many were blocked.
 fn blocked(
     scene: &Scene,
-    hits: &[scnc::render::surface::SurfaceHit],
+    hits: &[scnc::shade::surface::SurfaceHit],
     light: Vec3,
     fixed: bool,
 ) -> usize {

@@ -6,7 +6,8 @@ use std::path::Path;
 
 use scnc::assets::{FsLoader, Loader, MemLoader};
 use scnc::compile::compile_file;
-use scnc::scene::{build, BuildOptions, Light, Surface};
+use scnc::scene::{build, BuildOptions, Surface};
+use scnc::shade::Light;
 
 #[test]
 fn mtl_parts_become_materials_and_an_area_light() {
@@ -202,7 +203,7 @@ fn mtl_colour_and_normal_maps_become_image_textures() {
     // map_Kd and map_Ks name one file with one encoding: decoded once, shared; the normal map
     // is data (decoded raw), a second decode.
     let image = |id: u32| match &scene.textures.slots[id as usize] {
-        Some(scnc::scene::Texture::Image { data, .. }) => data.clone(),
+        Some(scnc::shade::Texture::Image { data, .. }) => data.clone(),
         other => panic!("an image texture: {other:?}"),
     };
     assert!(std::sync::Arc::ptr_eq(&image(kd), &image(ks)));

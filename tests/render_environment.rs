@@ -380,7 +380,7 @@ fn the_example_sky_has_its_sun_where_the_benchmark_puts_it() {
     let (el, az) = (30f32.to_radians(), 40f32.to_radians());
     let sun = Vec3::new(el.cos() * az.cos(), el.sin(), el.cos() * az.sin());
     for rotation in [0.0f32, 0.5] {
-        let m = scnc::scene::EnvMap::new(1024, 512, img.pixels.clone(), rotation).expect("sizes");
+        let m = scnc::shade::EnvMap::new(1024, 512, img.pixels.clone(), rotation).expect("sizes");
         // Map azimuth φ appears at world azimuth φ − rotation.
         let world_sun = Vec3::new(
             el.cos() * (az - rotation).cos(),

@@ -21,7 +21,8 @@ use scnc::geom::Ray;
 use scnc::ir::*;
 use scnc::render::integrator::{radiance, RayCounts};
 use scnc::render::rng::Sampler;
-use scnc::scene::{DirectStrategy, EnvMap, Environment};
+use scnc::scene::DirectStrategy;
+use scnc::shade::{EnvMap, Environment};
 use scnc::source::{SourceMap, Span};
 
 const W: usize = 64;

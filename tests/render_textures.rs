@@ -16,10 +16,11 @@ use scnc::assets::MemLoader;
 use scnc::compile::compile_source;
 use scnc::diag::{Diagnostic, Severity};
 use scnc::geom::Ray;
-use scnc::render::footprint::{pixel_spread_angle, uv_footprint};
-use scnc::render::surface::surface_hit;
 use scnc::render::{render, RenderOptions};
-use scnc::scene::{build, BuildOptions, Scene, Texture};
+use scnc::scene::{build, BuildOptions, Scene};
+use scnc::shade::surface::surface_hit;
+use scnc::shade::texture::footprint::{pixel_spread_angle, uv_footprint};
+use scnc::shade::Texture;
 
 fn encode(img: DynamicImage, format: ImageFormat) -> Vec<u8> {
     let mut out = Cursor::new(Vec::new());

@@ -10,18 +10,12 @@
 //! the relative standard error of its mean is below the target (see [`estimate`]); every render
 //! also estimates each pixel's standard error ([`render_with_error`]) for `--variance-out`.
 
-pub mod brdf;
 pub mod camera;
 pub mod estimate;
-pub mod footprint;
 pub mod integrator;
 mod mis;
-pub mod normal_map;
 pub mod pattern;
 pub mod rng;
-pub mod sampling;
-pub mod spherical;
-pub mod surface;
 
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};

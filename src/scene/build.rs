@@ -17,9 +17,7 @@ use glam::{Affine3A, Mat3, Vec3, Vec4};
 
 use super::cache::BuildCache;
 use super::env_load::load_env_map;
-use super::environment::Environment;
 use super::facing::{faces_away, world_boxes};
-use super::lights::{AreaLight, Light, Lights, PointLight};
 use super::load::load_mesh;
 use super::mesh::TriMesh;
 use super::obj_parts::PartTables;
@@ -29,6 +27,7 @@ use super::{BuildError, BuildOptions, BuildTimings, Scene, SceneInstance, Surfac
 use crate::assets::Loader;
 use crate::diag::{Diagnostic, Severity, Staged};
 use crate::ir::{self, EnvSource};
+use crate::shade::{AreaLight, Environment, Light, Lights, PointLight};
 use crate::source::Span;
 
 /// Stage entry: builds the scene. On failure, the value is `None` and the diagnostics hold

@@ -9,11 +9,11 @@
 
 use glam::Vec3;
 
-use super::environment::EnvMap;
 use super::BuildError;
 use crate::assets::hdr_image::{decode_float_image, FloatImage, ImageError, MAX_HEIGHT, MAX_WIDTH};
 use crate::assets::Loader;
 use crate::ir::AssetPath;
+use crate::shade::EnvMap;
 
 /// The map scaled by `intensity` (`None` if it failed or is black), and the problems found.
 pub fn load_env_map(

@@ -12,8 +12,9 @@ use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 
-use super::image_texture::ImageData;
-use super::{Light, Scene, Texture};
+use super::Scene;
+use crate::shade::texture::image::ImageData;
+use crate::shade::{Light, Texture};
 
 /// One kind of built structure.
 #[derive(Debug, Clone, PartialEq, Eq)]

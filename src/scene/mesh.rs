@@ -46,11 +46,11 @@ pub struct MeshPart {
 #[derive(Debug, Clone, Default)]
 pub struct PartMaps {
     /// `map_Kd`.
-    pub diffuse: Option<std::sync::Arc<super::image_texture::ImageData>>,
+    pub diffuse: Option<std::sync::Arc<crate::shade::texture::image::ImageData>>,
     /// `map_Ks`.
-    pub specular: Option<std::sync::Arc<super::image_texture::ImageData>>,
+    pub specular: Option<std::sync::Arc<crate::shade::texture::image::ImageData>>,
     /// `norm` and its strength.
-    pub normal: Option<(std::sync::Arc<super::image_texture::ImageData>, f32)>,
+    pub normal: Option<(std::sync::Arc<crate::shade::texture::image::ImageData>, f32)>,
 }
 
 impl PartialEq for PartMaps {
@@ -76,7 +76,7 @@ impl PartMaps {
     pub fn set(
         &mut self,
         key: &str,
-        data: std::sync::Arc<super::image_texture::ImageData>,
+        data: std::sync::Arc<crate::shade::texture::image::ImageData>,
         bump_multiplier: f32,
     ) {
         match key {

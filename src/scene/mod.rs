@@ -10,21 +10,15 @@
 
 mod build;
 pub mod cache;
-pub mod distribution;
-pub mod distribution2d;
 mod env_load;
-pub mod environment;
 mod error;
 mod facing;
-pub mod image_texture;
 mod inventory;
-pub mod lights;
 mod load;
 pub mod mesh;
 mod obj_parts;
 pub mod shapes;
 pub mod tangents;
-pub mod texture;
 mod texture_load;
 
 use std::time::Duration;
@@ -33,15 +27,13 @@ use glam::{Affine3A, Mat3, Vec3, Vec4};
 
 pub use build::{build, build_cached};
 pub use cache::{BuildCache, CacheReport};
-pub use environment::{EnvMap, EnvSample, Environment};
 pub use error::BuildError;
 pub use inventory::{Built, Features};
-pub use lights::{AreaLight, Light, Lights, Picked, PointLight};
 pub use mesh::{MeshPart, TriMesh};
-pub use texture::{Texture, Textures};
 
 use crate::bvh::{Accel, AccelKind, AccelStats};
 use crate::ir;
+use crate::shade::{Lights, Textures};
 
 /// Choices the command line makes about the build.
 #[derive(Debug, Clone, Copy)]

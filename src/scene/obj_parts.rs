@@ -7,15 +7,12 @@
 
 use glam::{Affine3A, Vec3};
 
-use super::lights::{AreaLight, Light};
 use super::mesh::{MeshPart, TriMesh};
 use super::{BuildError, Scene, SceneInstance, Surface, SurfaceMaterial};
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use super::image_texture::ImageData;
 use super::mesh::PartMaps;
-use super::texture::{Texture, Textures};
 use crate::assets::obj::phong::{phong_of, renders_map, ObjPhong};
 use crate::assets::obj::report::{line_label, mtl_display_name};
 use crate::assets::obj::{LoadedObj, TexRef};
@@ -25,6 +22,8 @@ use crate::diag::Diagnostic;
 use crate::ir::{
     ColorInput, Filter, GreenConvention, NormalMap, ObjOptions, ScalarInput, WrapMode,
 };
+use crate::shade::texture::image::ImageData;
+use crate::shade::{AreaLight, Light, Texture, Textures};
 use crate::source::Span;
 
 /// `SceneInstance::part_base` of an instance whose mesh has no parts.

@@ -4,13 +4,13 @@
 
 use glam::Vec4;
 
-use super::super::lights::Lights;
 use super::super::mesh::TriMesh;
 use super::super::obj_parts::PartTables;
 use super::super::{BuildError, BuildOptions, SceneInstance, Surface, SurfaceMaterial, Textures};
 use super::Builder;
 use crate::bvh::{Accel, Instance, MeshRef};
 use crate::ir;
+use crate::shade::Lights;
 
 /// What the asset phase made, before the acceleration structure.
 pub(super) struct Assembled {
