@@ -49,10 +49,8 @@ fn build_codes(scn: &str, loader: &dyn Loader, options: &BuildOptions) -> Vec<Co
     let compiled = compile_source("scene.scn", scn, loader);
     let mut codes: Vec<Code> = codes_of(&compiled).collect();
     if let Some(desc) = &compiled.scene {
-        match scene::build(desc, &compiled.sources, loader, options) {
-            Ok(s) => codes.extend(s.warnings.iter().map(|d| d.code)),
-            Err(problems) => codes.extend(problems.iter().map(|d| d.code)),
-        }
+        let built = scene::build(desc, loader, options);
+        codes.extend(built.diagnostics.iter().map(|d| d.code));
     }
     codes
 }
@@ -382,7 +380,7 @@ fn write_codes() -> Vec<Code> {
     let dir = std::env::temp_dir().join("scnc_diag_registry_no_such_dir");
     [dir.join("out.unknown"), dir.join("out.png")]
         .iter()
-        .filter_map(|p| scnc::film::write(&film, p, &settings).err())
+        .filter_map(|p| scnc::film::write_image(&film, p, &settings).err())
         .map(|e| e.code())
         .collect()
 }

@@ -13,7 +13,9 @@ use crate::source::Span;
 /// (the checker guarantees it: `up` is re-orthogonalised against `forward`).
 #[derive(Debug, Clone, Serialize)]
 pub struct Camera {
+    /// The name after `camera`, which `--camera` selects by.
     pub name: String,
+    /// Position of the pin-hole, world space.
     pub eye: Vec3,
     /// Unit view direction.
     pub forward: Vec3,
@@ -23,5 +25,6 @@ pub struct Camera {
     pub right: Vec3,
     /// Vertical field of view in radians, in (0, π).
     pub fov_y_rad: f32,
+    /// The `camera` declaration, for diagnostics raised while building.
     pub span: Span,
 }

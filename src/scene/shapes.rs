@@ -12,6 +12,7 @@ use glam::{Vec2, Vec3};
 use super::mesh::TriMesh;
 use crate::ir::BuiltinShape;
 
+/// The triangles of a built-in shape (`quad`, `box`, `sphere`).
 pub fn tessellate(shape: &BuiltinShape) -> TriMesh {
     match *shape {
         BuiltinShape::Quad { size } => {

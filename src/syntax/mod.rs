@@ -17,7 +17,7 @@ pub use convert::MAX_EXPR_NODES;
 
 use pest::Parser;
 
-use crate::diag::{Code, Diagnostic};
+use crate::diag::{Code, Diagnostic, Staged};
 use crate::source::{FileId, Span};
 
 /// The pest parser generated from `grammar/scene.pest`.
@@ -34,8 +34,14 @@ mod generated {
 }
 pub(crate) use generated::{Rule, SceneParser};
 
-/// Parses one file. Returns every statement that parsed and a diagnostic per syntax error.
-pub fn parse(file: FileId, text: &str) -> (SceneFile, Vec<Diagnostic>) {
+/// Parses one file: every statement that parsed (always a value: the parser recovers at the next
+/// statement) and a diagnostic per syntax error.
+pub fn parse(file: FileId, text: &str) -> Staged<SceneFile> {
+    let (parsed, diagnostics) = parse_recovering(file, text);
+    Staged::new(Some(parsed), diagnostics)
+}
+
+fn parse_recovering(file: FileId, text: &str) -> (SceneFile, Vec<Diagnostic>) {
     let scanned = scan::scan(text);
     if scanned.too_deep_at.is_none() {
         if let Some(ok) = parse_batched(file, text, &scanned) {
@@ -152,9 +158,9 @@ mod tests {
     use super::*;
 
     fn parse_ok(src: &str) -> SceneFile {
-        let (f, d) = parse(FileId(0), src);
+        let (f, d) = parse(FileId(0), src).into_parts();
         assert!(d.is_empty(), "{d:#?}");
-        f
+        f.unwrap_or_default()
     }
 
     #[test]
@@ -196,9 +202,9 @@ mod tests {
     fn recovers_at_next_statement() {
         let src =
             "scnc 1\ncamera c { eye (1,2 }\nmaterial m = phong { }\nmesh = quad\nrender { }\n";
-        let (f, d) = parse(FileId(0), src);
+        let (f, d) = parse(FileId(0), src).into_parts();
         assert_eq!(d.len(), 2, "{d:#?}");
-        assert_eq!(f.statements.len(), 3);
+        assert_eq!(f.map(|f| f.statements.len()), Some(3));
     }
 
     #[test]
@@ -208,14 +214,14 @@ mod tests {
             "(".repeat(5000),
             ")".repeat(5000)
         );
-        let (_, d) = parse(FileId(0), &src);
+        let (_, d) = parse(FileId(0), &src).into_parts();
         assert_eq!(d[0].code, Code::SyntaxTooDeep);
     }
 
     #[test]
     fn long_expressions_are_capped() {
         let src = format!("scnc 1\nlet a = 1{}\n", " + 1".repeat(300));
-        let (_, d) = parse(FileId(0), &src);
+        let (_, d) = parse(FileId(0), &src).into_parts();
         assert_eq!(d[0].code, Code::SyntaxExpressionTooLarge);
     }
 }
