@@ -1,14 +1,15 @@
 //! Stage 1, syntax: pest parse tree → AST ([`SceneFile`]).
 //!
 //! Every node gets a [`Span`] in the file it came from (`base` shifts positions when a chunk of
-//! the file was parsed alone during error recovery). Expressions are folded into a tree with
-//! the usual precedence (`* /` over `+ -`, left-associative) by an explicit operator stack, not
-//! recursion, so long expressions cannot overflow the stack; nesting depth is bounded earlier by
-//! the bracket pre-scan in `recover`.
+//! the file was parsed alone during error recovery). Statements, declarations and blocks are
+//! here; expressions, folded by precedence with an explicit operator stack, in `convert/expr.rs`.
+//! Nesting depth is bounded earlier by the bracket pre-scan (`scan.rs`).
 
 use std::cell::{Cell, RefCell};
 
 use pest::iterators::{Pair, Pairs};
+
+mod expr;
 
 use super::ast::*;
 use super::Rule;
@@ -245,121 +246,6 @@ impl Converter {
             .collect();
         (func, args)
     }
-
-    /// `expr = term (op term)*`, folded with a two-level precedence by an explicit stack.
-    #[allow(
-        clippy::expect_used,
-        reason = "the grammar gives an expression at least one term"
-    )]
-    pub fn expr(&self, pair: Pair<Rule>) -> Expr {
-        if self.overflowed() {
-            return self.error_expr(&pair);
-        }
-        let mut operands: Vec<Expr> = Vec::new();
-        let mut ops: Vec<BinOp> = Vec::new();
-        let whole = pair.clone();
-        for p in pair.into_inner() {
-            if self.overflowed() {
-                // Stop building: the caller replaces the whole expression anyway.
-                return self.error_expr(&whole);
-            }
-            if p.as_rule() == Rule::bin_op {
-                let op = match p.as_str() {
-                    "+" => BinOp::Add,
-                    "-" => BinOp::Sub,
-                    "*" => BinOp::Mul,
-                    _ => BinOp::Div,
-                };
-                while let Some(&top) = ops.last() {
-                    if prec(top) >= prec(op) {
-                        ops.pop();
-                        reduce(&mut operands, top);
-                    } else {
-                        break;
-                    }
-                }
-                ops.push(op);
-            } else {
-                self.count();
-                operands.push(self.term(p));
-            }
-        }
-        while let Some(op) = ops.pop() {
-            reduce(&mut operands, op);
-        }
-        operands
-            .pop()
-            .expect("grammar: an expression has at least one term")
-    }
-
-    fn error_expr(&self, pair: &Pair<Rule>) -> Expr {
-        Expr {
-            kind: ExprKind::Error,
-            span: self.span(pair),
-        }
-    }
-
-    #[allow(clippy::expect_used, reason = "the grammar gives a term a primary")]
-    fn term(&self, pair: Pair<Rule>) -> Expr {
-        if self.overflowed() {
-            return self.error_expr(&pair);
-        }
-        self.count();
-        let span = self.span(&pair);
-        let mut negs = 0usize;
-        let mut primary = None;
-        for p in pair.into_inner() {
-            if p.as_rule() == Rule::neg {
-                negs += 1;
-            } else {
-                primary = Some(self.primary(p));
-            }
-        }
-        let mut e = primary.expect("grammar: a term has a primary");
-        // `--x` is `x`: collapsing keeps the tree shallow however many signs are written.
-        if negs % 2 == 1 {
-            e = Expr {
-                kind: ExprKind::Neg(Box::new(e)),
-                span,
-            };
-        }
-        e
-    }
-
-    fn primary(&self, pair: Pair<Rule>) -> Expr {
-        let span = self.span(&pair);
-        let kind = match pair.as_rule() {
-            Rule::number => {
-                let mut inner = pair.into_inner();
-                let digits = part(&mut inner, "a number has digits");
-                // The grammar only admits well-formed decimal literals, which f64 parses; the
-                // fallback is for literals too long to matter.
-                let value = digits.as_str().parse::<f64>().unwrap_or(f64::NAN);
-                let suffix = inner.next().map(|s| self.ident(s));
-                ExprKind::Number { value, suffix }
-            }
-            Rule::hex_color => ExprKind::HexColor(pair.as_str()[1..].to_string()),
-            Rule::string => {
-                let raw = pair.into_inner().next().map_or("", |p| p.as_str());
-                ExprKind::Str(unescape(raw))
-            }
-            Rule::call => {
-                let (func, args) = self.call_parts(pair);
-                ExprKind::Call { func, args }
-            }
-            Rule::paren => {
-                let mut parts: Vec<Expr> = pair.into_inner().map(|p| self.expr(p)).collect();
-                if parts.len() == 1 {
-                    ExprKind::Paren(Box::new(parts.remove(0)))
-                } else {
-                    ExprKind::Tuple(parts)
-                }
-            }
-            Rule::array => ExprKind::Array,
-            _ => ExprKind::Name(pair.as_str().to_string()),
-        };
-        Expr { kind, span }
-    }
 }
 
 /// The next child of a parse-tree node whose rule in `grammar/scene.pest` always has it (`what`
@@ -370,51 +256,4 @@ fn part<'i>(pairs: &mut Pairs<'i, Rule>, what: &str) -> Pair<'i, Rule> {
         Some(pair) => pair,
         None => unreachable!("grammar: {what}"),
     }
-}
-
-fn prec(op: BinOp) -> u8 {
-    match op {
-        BinOp::Add | BinOp::Sub => 1,
-        BinOp::Mul | BinOp::Div => 2,
-    }
-}
-
-#[allow(
-    clippy::expect_used,
-    reason = "the operator stack holds two operands per binary operator"
-)]
-fn reduce(operands: &mut Vec<Expr>, op: BinOp) {
-    let rhs = operands
-        .pop()
-        .expect("operator stack: a binary op has a right operand");
-    let lhs = operands
-        .pop()
-        .expect("operator stack: a binary op has a left operand");
-    let span = lhs.span.join(rhs.span);
-    operands.push(Expr {
-        kind: ExprKind::Binary {
-            op,
-            lhs: Box::new(lhs),
-            rhs: Box::new(rhs),
-        },
-        span,
-    });
-}
-
-fn unescape(raw: &str) -> String {
-    let mut out = String::with_capacity(raw.len());
-    let mut chars = raw.chars();
-    while let Some(c) = chars.next() {
-        if c == '\\' {
-            match chars.next() {
-                Some('n') => out.push('\n'),
-                Some('t') => out.push('\t'),
-                Some(other) => out.push(other),
-                None => out.push('\\'),
-            }
-        } else {
-            out.push(c);
-        }
-    }
-    out
 }
