@@ -3,6 +3,7 @@
 //! Syntax: `mesh tall = obj("meshes/tall.obj")`; `mesh tri = inline { positions [(0,0,0)
 //! (1,0,0) (0,1,0)]  normals [...]  uvs [(0,0) (1,0) (0,1)]  indices [0 1 2] }`;
 //! `mesh ball = sphere { radius 1  segments 48 }` (defaults 1 and 32; segments 3..=4096);
+//! `mesh gem = icosphere { subdivisions 5  radius 1 }` (see `icosphere.rs`);
 //! `mesh floor = quad { size (2, 2) }` (xz-plane facing +y; default 1 × 1);
 //! `mesh crate = box { size (1, 1, 1) }` (default unit cube). A number for `size` means all sides.
 //! Triangles are front-facing where their winding is counter-clockwise seen from the front:
@@ -63,6 +64,7 @@ impl Checker<'_> {
                     segments: segments? as u32,
                 })
             }
+            ("icosphere", None) => ir::MeshSource::Builtin(self.icosphere(body)?),
             ("quad", None) => {
                 let props = self.split(body, "a quad", super::vocabulary::QUAD_KEYS, &[], &[]);
                 let size = match props.get("size") {
@@ -93,7 +95,7 @@ impl Checker<'_> {
             }
             (name, _) => {
                 let help = if KINDS.contains(&name) {
-                    "write `obj(\"file.obj\")`, or `inline`, `sphere`, `quad`, `box` with a block"
+                    "write `obj(\"file.obj\")`, or `inline`, `sphere`, `icosphere`, `quad`, `box` with a block"
                         .to_string()
                 } else {
                     suggest::help_for(name, KINDS, "mesh kinds")

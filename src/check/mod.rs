@@ -11,6 +11,7 @@
 pub mod array;
 mod camera;
 mod eval;
+mod icosphere;
 mod light;
 mod material;
 mod mesh;

@@ -33,9 +33,11 @@ pub const IMAGE_TEXTURE_KEYS: &[&str] = &["wrap", "filter", "encoding"];
 pub const WRAP_WORDS: &[&str] = &["repeat", "clamp", "mirror"];
 pub const FILTER_WORDS: &[&str] = &["nearest", "bilinear", "trilinear"];
 pub const ENCODING_WORDS: &[&str] = &["srgb", "data"];
-pub const MESH_KINDS: &[&str] = &["obj", "inline", "sphere", "quad", "box"];
+pub const MESH_KINDS: &[&str] = &["obj", "inline", "sphere", "icosphere", "quad", "box"];
 pub const INLINE_MESH_KEYS: &[&str] = &["positions", "normals", "uvs", "indices"];
 pub const SPHERE_KEYS: &[&str] = &["radius", "segments"];
+/// `mesh ball = icosphere { subdivisions 5  radius 0.6 }`.
+pub const ICOSPHERE_KEYS: &[&str] = &["subdivisions", "radius"];
 pub const QUAD_KEYS: &[&str] = &["size"];
 pub const BOX_KEYS: &[&str] = &["size"];
 pub const OBJECT_KEYS: &[&str] = &["material"];
@@ -72,6 +74,7 @@ pub const PROPERTY_KEYS: &[&[&str]] = &[
     IMAGE_TEXTURE_KEYS,
     INLINE_MESH_KEYS,
     SPHERE_KEYS,
+    ICOSPHERE_KEYS,
     QUAD_KEYS,
     BOX_KEYS,
     OBJECT_KEYS,
