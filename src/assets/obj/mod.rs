@@ -9,6 +9,7 @@
 //! - [`encoding`]: UTF-16 transcoding, Latin-1 fallback for names;
 //! - [`lexer`], [`number`]: lines, comments, tokens, floats and indices;
 //! - [`polygon`]: triangulation (shorter-diagonal quads, ear clipping, degenerates dropped);
+//! - [`polygon_check`]: faces that repeat their corners, triangles that miss the Newell area;
 //! - [`model`]: OBJ statements, single indexing of `v/vt/vn` corners;
 //! - [`mtl`]: MTL statements;
 //! - [`load`]: the OBJ and its `mtllib`s through the `Loader`, with every warning placed.
@@ -24,6 +25,7 @@ pub mod mtl;
 pub mod number;
 pub mod phong;
 pub mod polygon;
+pub mod polygon_check;
 pub mod report;
 
 pub use load::{load_obj, LoadedObj, MtlSource};

@@ -22,6 +22,7 @@ use super::lexer::{continues, keyword, strip_comment, tokens, Line, Lines};
 use super::mtl::latin1_note;
 use super::number::{parse_f32, parse_index};
 use super::polygon::{triangulate, Scratch};
+use super::polygon_check::PolygonWarnings;
 use super::{Note, ObjError, Place};
 
 /// Triangles `start..` (up to the next run) use material `name` (`None`: before any `usemtl`).
@@ -123,6 +124,7 @@ struct Parser {
     first_skipped: Option<Place>,
     latin1: Option<Place>,
     fanned: Option<Place>,
+    polygons: PolygonWarnings,
     unsupported: Vec<(String, usize, Place)>,
 }
 
@@ -274,6 +276,9 @@ impl Parser {
         if o.fanned {
             self.fanned.get_or_insert(at);
         }
+        let corners = self.corners.len();
+        self.polygons
+            .record(at, corners, o.loop_len, o.area_mismatch);
         let corners = &self.corners;
         self.model
             .triangles
@@ -395,6 +400,7 @@ impl Parser {
                 at,
             ));
         }
+        m.warnings.extend(self.polygons.notes());
         if let Some((_, _, first)) = self.unsupported.first() {
             let list: Vec<String> = self
                 .unsupported

@@ -10,22 +10,32 @@
 //!   the loop always ends. Polygons above [`EAR_CLIP_MAX`] corners are fanned (the caller warns):
 //!   ear clipping is quadratic, and such faces are in practice convex caps.
 //! - Results of zero area (or with a NaN corner) are dropped and counted.
+//! - A face that lists the same corners several times over is triangulated from its first loop,
+//!   and every polygon of more than three corners has its triangles' area compared with its
+//!   Newell area (both in [`polygon_check`](super::polygon_check); the caller warns).
 //!
 //! For a planar simple polygon the triangles' areas sum to the Newell area (tests below and in
 //! `tests/obj_corpus.rs`).
 
 use glam::{Vec2, Vec3};
 
+use super::polygon_check::{area_mismatch, repeated_loop, AreaMismatch};
+
 /// Largest polygon that is ear-clipped; larger ones are fanned.
 pub const EAR_CLIP_MAX: usize = 4096;
 
 /// What triangulating one polygon did, besides appending triangles.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Outcome {
     /// Triangles of zero area (or with a non-finite corner) dropped.
     pub dropped: usize,
     /// Too large to ear-clip: fanned.
     pub fanned: bool,
+    /// How many of the corners were triangulated: all, or the first loop of a face that goes
+    /// round the same corners several times.
+    pub loop_len: usize,
+    /// The triangles do not cover the polygon's Newell area (more than three corners only).
+    pub area_mismatch: Option<AreaMismatch>,
 }
 
 /// Reusable buffers, so that a million faces allocate nothing.
@@ -53,6 +63,18 @@ pub fn newell(pts: &[Vec3]) -> Vec3 {
 
 /// Appends the triangles of polygon `pts` to `out`, as index triples into `pts`.
 pub fn triangulate(pts: &[Vec3], out: &mut Vec<[u32; 3]>, scratch: &mut Scratch) -> Outcome {
+    let loop_len = repeated_loop(pts).unwrap_or(pts.len());
+    let first = out.len();
+    let mut o = triangulate_loop(&pts[..loop_len], out, scratch);
+    o.loop_len = loop_len;
+    if loop_len > 3 {
+        o.area_mismatch = area_mismatch(&pts[..loop_len], &out[first..]);
+    }
+    o
+}
+
+/// [`triangulate`] for a polygon that goes round once.
+fn triangulate_loop(pts: &[Vec3], out: &mut Vec<[u32; 3]>, scratch: &mut Scratch) -> Outcome {
     let mut o = Outcome::default();
     let mut emit = |t: [usize; 3], o: &mut Outcome| {
         if degenerate(pts[t[0]], pts[t[1]], pts[t[2]]) {
@@ -279,6 +301,16 @@ mod tests {
     }
 
     #[test]
+    fn a_face_wound_several_times_is_triangulated_once() {
+        let comb = comb(3);
+        let (once, o) = run(&comb);
+        assert_eq!((o.loop_len, o.area_mismatch), (comb.len(), None));
+        let (thrice, o) = run(&comb.repeat(3));
+        assert_eq!(thrice, once, "the first loop, triangulated as alone");
+        assert_eq!((o.loop_len, o.area_mismatch), (comb.len(), None));
+    }
+
+    #[test]
     fn self_intersecting_and_nan_polygons_terminate() {
         let bow = [
             Vec3::ZERO,
@@ -289,6 +321,10 @@ mod tests {
         ];
         let (tris, o) = run(&bow);
         assert!(tris.len() + o.dropped <= 3);
+        assert!(
+            o.area_mismatch.is_some(),
+            "a bow tie has no exact triangulation"
+        );
         let nan = [Vec3::ZERO, Vec3::X, Vec3::NAN, Vec3::Y, Vec3::ONE];
         let (tris, o) = run(&nan);
         assert_eq!(tris.len() + o.dropped, 3);
