@@ -51,7 +51,7 @@ impl Checker<'_> {
                 );
                 return None;
             }
-            let m = self.transforms(&props.transforms, "a camera")?.as_dmat4();
+            let m = self.transforms(&props.transforms, "a camera")?;
             (
                 m.transform_point3(DVec3::ZERO),
                 m.transform_vector3(DVec3::Z),
@@ -120,7 +120,7 @@ impl Checker<'_> {
         let up = right.cross(forward);
         Some(ir::Camera {
             name: name.name.clone(),
-            eye: eye.as_vec3(),
+            eye,
             forward: forward.as_vec3(),
             up: up.as_vec3(),
             right: right.as_vec3(),

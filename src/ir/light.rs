@@ -9,7 +9,7 @@
 //! light sky     = environment { image("sky.hdr")  intensity 1  rotate 90deg  visible true }
 //! ```
 
-use glam::{Mat4, Vec3};
+use glam::{DMat4, DVec3, Vec3};
 use serde::Serialize;
 
 use super::{AssetPath, MeshId};
@@ -26,7 +26,8 @@ pub enum Light {
 #[derive(Debug, Clone, Serialize)]
 pub struct PointLight {
     pub name: String,
-    pub position: Vec3,
+    /// World position, in f64 until the build (see `Object::world_from_object`).
+    pub position: DVec3,
     /// Radiant intensity (W/sr per channel, linear RGB).
     pub intensity: Vec3,
     pub span: Span,
@@ -38,7 +39,8 @@ pub struct PointLight {
 pub struct AreaLight {
     pub name: String,
     pub mesh: MeshId,
-    pub world_from_object: Mat4,
+    /// In f64 until the build (see `Object::world_from_object`).
+    pub world_from_object: DMat4,
     /// Emitted radiance (linear RGB), non-negative.
     pub radiance: Vec3,
     pub two_sided: bool,

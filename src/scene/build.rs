@@ -9,10 +9,12 @@
 //! triangles.
 
 mod materials;
+mod origin;
+mod placement;
 
 use std::time::Instant;
 
-use glam::{Affine3A, Mat3, Vec3, Vec4};
+use glam::{Affine3A, DVec3, Mat3, Vec3, Vec4};
 
 use super::cache::BuildCache;
 use super::env_load::load_env_map;
@@ -71,9 +73,10 @@ fn build_with(
         problems: Vec::new(),
         meshes: Vec::new(),
         mesh_slots: vec![None; desc.meshes.len()],
+        origin: DVec3::ZERO,
     };
     let camera_index = options.camera.unwrap_or(desc.active_camera);
-    let camera = desc.cameras.get(camera_index).cloned();
+    let mut camera = desc.cameras.get(camera_index).cloned();
     if camera.is_none() {
         b.problems.push(BuildError::NoCamera {
             which: match options.camera {
@@ -88,6 +91,10 @@ fn build_with(
     let environment = b.environment();
 
     let assets_start = Instant::now();
+    b.origin = b.world_origin();
+    if let Some(c) = camera.as_mut() {
+        c.eye -= b.origin;
+    }
     let mut instances = Vec::new();
     for object in &desc.objects {
         let Some(mesh) = b.mesh(object.mesh) else {
@@ -111,6 +118,7 @@ fn build_with(
                 normal_from_object,
                 part_base,
             });
+            b.check_resolution(object, mesh);
         }
     }
     let lights = b.lights(&mut instances, environment, &mut parts);
@@ -151,6 +159,7 @@ fn build_with(
     };
 
     Ok(Scene {
+        world_origin: b.origin,
         camera,
         settings: desc.render.clone(),
         meshes: b.meshes,
@@ -180,6 +189,8 @@ struct Builder<'a> {
     meshes: Vec<TriMesh>,
     /// Per `ir::MeshId`: not tried yet, or `Some(index into meshes)` / `Some(None)` if it failed.
     mesh_slots: Vec<Option<Option<u32>>>,
+    /// World position of the render-ready scene's (0, 0, 0) (see `origin`).
+    origin: DVec3,
 }
 
 impl Builder<'_> {
@@ -290,7 +301,7 @@ impl Builder<'_> {
         for light in &self.desc.lights {
             match light {
                 ir::Light::Point(p) => lights.push(Light::Point(PointLight {
-                    position: p.position,
+                    position: origin::relative(p.position, self.origin),
                     intensity: p.intensity,
                 })),
                 ir::Light::Area(a) => {
@@ -340,8 +351,8 @@ impl Builder<'_> {
     }
 
     /// The affine map and its normal matrix, or an error if it cannot place anything.
-    fn transform(&mut self, m: glam::Mat4, span: Span) -> Option<(Affine3A, Mat3)> {
-        let affine = Affine3A::from_mat4(m);
+    fn transform(&mut self, m: glam::DMat4, span: Span) -> Option<(Affine3A, Mat3)> {
+        let affine = origin::recentred(m, self.origin);
         let linear = Mat3::from(affine.matrix3);
         let det = linear.determinant();
         if !(det.is_finite() && det != 0.0 && m.is_finite()) {

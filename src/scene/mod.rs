@@ -144,6 +144,9 @@ pub enum DirectStrategy {
 /// Everything the renderer needs, ready to trace.
 #[derive(Debug)]
 pub struct Scene {
+    /// Where the scene's (0, 0, 0) is in the world the `.scn` describes: every position here
+    /// (instances, lights, the camera's eye) is relative to it (`build/origin.rs`).
+    pub world_origin: glam::DVec3,
     pub camera: ir::Camera,
     pub settings: ir::RenderSettings,
     pub meshes: Vec<TriMesh>,
