@@ -91,3 +91,42 @@ fn level_5_matches_the_env_benchmark_spheres() {
         (vertices[1000] * 0.6f32 as f64).as_vec3()
     );
 }
+
+#[test]
+fn the_checker_defaults_and_bounds_the_keys() {
+    let loader = scnc::assets::MemLoader::new();
+    let compile = |body: &str| {
+        let text = format!("scnc 1\nmesh gem = icosphere {{ {body} }}\n");
+        scnc::compile::compile_source("gem.scn", &text, &loader)
+    };
+    let codes = |body: &str| -> Vec<&'static str> {
+        compile(body).diagnostics.iter().map(|d| d.code).collect()
+    };
+    for bad in [
+        "subdivisions 9",
+        "subdivisions 1.5",
+        "radius 0",
+        "radius -1",
+        "segments 4",
+    ] {
+        let found = codes(bad);
+        assert!(
+            found.iter().any(|c| c.starts_with("scnc::check::")),
+            "`{bad}` should be an error: {found:?}"
+        );
+    }
+    let text = "scnc 1\ncamera c { eye (0, 0, -5)  target (0, 0, 0)  up (0, 1, 0)  fov 40deg }\n\
+                material m = phong { diffuse rgb(0.5, 0.5, 0.5) }\n\
+                mesh gem = icosphere { }\nobject gem { material m }\n";
+    let compiled = scnc::compile::compile_source("gem.scn", text, &loader);
+    let desc = compiled
+        .scene
+        .unwrap_or_else(|| panic!("{:#?}", compiled.diagnostics));
+    assert!(matches!(
+        desc.meshes[0].source,
+        scnc::ir::MeshSource::Builtin(scnc::ir::BuiltinShape::Icosphere {
+            radius: 1.0,
+            subdivisions: 3
+        })
+    ));
+}

@@ -118,7 +118,7 @@ fn build_with(
                 normal_from_object,
                 part_base,
             });
-            b.check_resolution(object, mesh);
+            b.check_resolution(object.mesh, object.world_from_object, object.span, mesh);
         }
     }
     let lights = b.lights(&mut instances, environment, &mut parts);
@@ -313,6 +313,7 @@ impl Builder<'_> {
                     else {
                         continue;
                     };
+                    self.check_resolution(a.mesh, a.world_from_object, a.span, mesh);
                     let m = &self.meshes[mesh as usize];
                     let world: Vec<[Vec3; 3]> = m
                         .triangles

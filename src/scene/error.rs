@@ -113,7 +113,7 @@ pub enum BuildError {
         material: String,
         span: Span,
     },
-    #[error("object placing mesh `{mesh}` is resolved only to {step:.1e} in f32, {:.2}% of its size {size:.1e}", 100.0 * step / size)]
+    #[error("the placement of mesh `{mesh}` is resolved only to {step:.1e} in f32, {:.2}% of its size {size:.1e}", 100.0 * step / size)]
     #[diagnostic(code(scnc::build::precision_lost), severity(Warning))]
     PrecisionLost {
         /// The mesh the object places.

@@ -48,22 +48,29 @@ impl Builder<'_> {
         lo.cmple(hi).all().then_some((lo, hi))
     }
 
-    /// Warns when `object` (placing loaded mesh `mesh`) cannot be resolved to a thousandth of
-    /// its size in f32, relative to the world origin.
-    pub(super) fn check_resolution(&mut self, object: &ir::Object, mesh: u32) {
+    /// Warns when a placement of loaded mesh `mesh` (IR mesh `id`, by `world_from_object`, at
+    /// `span`: an object or an area light) cannot be resolved to a thousandth of its size in
+    /// f32, relative to the world origin.
+    pub(super) fn check_resolution(
+        &mut self,
+        id: ir::MeshId,
+        world_from_object: glam::DMat4,
+        span: crate::source::Span,
+        mesh: u32,
+    ) {
         let Some((lo, hi)) = self.mesh_bounds(mesh) else {
             return;
         };
-        let Some((step, size)) = resolution(lo, hi, object.world_from_object, self.origin) else {
+        let Some((step, size)) = resolution(lo, hi, world_from_object, self.origin) else {
             return;
         };
         if size > 0.0 && step > WARN_FRACTION * size {
-            let name = self.desc.meshes.get(object.mesh as usize);
+            let name = self.desc.meshes.get(id as usize);
             self.problems.push(BuildError::PrecisionLost {
                 mesh: name.map(|m| m.name.clone()).unwrap_or_default(),
                 step,
                 size,
-                span: object.span,
+                span,
             });
         }
     }
