@@ -65,17 +65,25 @@ pub fn newell(pts: &[Vec3]) -> Vec3 {
 pub fn triangulate(pts: &[Vec3], out: &mut Vec<[u32; 3]>, scratch: &mut Scratch) -> Outcome {
     let loop_len = repeated_loop(pts).unwrap_or(pts.len());
     let first = out.len();
-    let mut o = triangulate_loop(&pts[..loop_len], out, scratch);
+    let (mut o, exact) = triangulate_loop(&pts[..loop_len], out, scratch);
     o.loop_len = loop_len;
-    if loop_len > 3 {
+    if !exact {
         o.area_mismatch = area_mismatch(&pts[..loop_len], &out[first..]);
     }
     o
 }
 
-/// [`triangulate`] for a polygon that goes round once.
-fn triangulate_loop(pts: &[Vec3], out: &mut Vec<[u32; 3]>, scratch: &mut Scratch) -> Outcome {
+/// [`triangulate`] for a polygon that goes round once; `true` when the triangles are known to
+/// cover the Newell area without measuring it: a triangle, or a quad split along a diagonal
+/// whose two halves both face along the Newell normal (their projected areas then add up to
+/// it exactly). Quads are most faces of most files, and this keeps their cost as it was.
+fn triangulate_loop(
+    pts: &[Vec3],
+    out: &mut Vec<[u32; 3]>,
+    scratch: &mut Scratch,
+) -> (Outcome, bool) {
     let mut o = Outcome::default();
+    let mut exact = pts.len() <= 3;
     let mut emit = |t: [usize; 3], o: &mut Outcome| {
         if degenerate(pts[t[0]], pts[t[1]], pts[t[2]]) {
             o.dropped += 1;
@@ -94,6 +102,7 @@ fn triangulate_loop(pts: &[Vec3], out: &mut Vec<[u32; 3]>, scratch: &mut Scratch
             let a_ok = inside(0, 1, 2) && inside(0, 2, 3);
             let b_ok = inside(1, 2, 3) && inside(1, 3, 0);
             let a_shorter = pts[0].distance_squared(pts[2]) <= pts[1].distance_squared(pts[3]);
+            exact = a_ok || b_ok;
             if b_ok && (!a_ok || !a_shorter) {
                 emit([1, 2, 3], &mut o);
                 emit([1, 3, 0], &mut o);
@@ -110,7 +119,7 @@ fn triangulate_loop(pts: &[Vec3], out: &mut Vec<[u32; 3]>, scratch: &mut Scratch
         }
         _ => ear_clip(pts, scratch, |t| emit(t, &mut o)),
     }
-    o
+    (o, exact)
 }
 
 fn degenerate(a: Vec3, b: Vec3, c: Vec3) -> bool {
