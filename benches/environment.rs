@@ -14,7 +14,7 @@ use std::time::{Duration, Instant};
 
 use glam::{Vec2, Vec3};
 use scnc::render::rng::Sampler;
-use scnc::scene::{EnvMap, Environment};
+use scnc::shade::{EnvMap, Environment};
 
 fn sky(width: usize, height: usize) -> Vec<Vec3> {
     let sun = Vec3::new(0.66, 0.5, 0.56).normalize();

@@ -62,13 +62,19 @@ fn parse_args() -> Result<Args, String> {
     Ok(args)
 }
 
-fn load(path: &Path) -> Result<Scene, String> {
+/// The scene at `path`, with `--spp` (if given) as its sample count.
+fn load(path: &Path, spp: Option<u32>) -> Result<Scene, String> {
     let loader = FsLoader::new();
     let compiled = compile_file(path, &loader);
-    let desc = compiled
+    let mut desc = compiled
         .scene
         .ok_or_else(|| format!("{}: does not compile", path.display()))?;
-    scene::build(&desc, &compiled.sources, &loader, &BuildOptions::default())
+    if let Some(spp) = spp {
+        desc.render.fix_samples(spp);
+    }
+    scene::build(&desc, &loader, &BuildOptions::default())
+        .into_result()
+        .map(|(scene, _)| scene)
         .map_err(|e| format!("{}: does not build: {e:?}", path.display()))
 }
 
@@ -87,7 +93,7 @@ fn main() {
     };
     println!("scene, threads, spp, median ms, Mrays/s, rays");
     for path in &args.scenes {
-        let scene = match load(path) {
+        let scene = match load(path, args.spp) {
             Ok(s) => s,
             Err(e) => {
                 eprintln!("skipped: {e}");
@@ -101,7 +107,6 @@ fn main() {
         let mut medians = Vec::new();
         for &threads in &args.threads {
             let options = RenderOptions {
-                spp: args.spp,
                 threads: Some(threads),
             };
             let mut walls = Vec::new();

@@ -16,8 +16,8 @@ use std::time::{Duration, Instant};
 use glam::{Vec2, Vec4};
 use scnc::ir::{ColorInput, Filter, WrapMode};
 use scnc::render::rng::Sampler;
-use scnc::scene::image_texture::ImageData;
-use scnc::scene::{Texture, Textures};
+use scnc::shade::texture::image::ImageData;
+use scnc::shade::{Texture, Textures};
 
 fn image(w: u32, h: u32) -> Vec<Vec4> {
     (0..h)

@@ -122,20 +122,22 @@ fn camera_edit_vs_rebuild() {
         let compiled = compile_source("dense.scn", &dense(-4.2), &loader);
         let desc = compiled.scene.expect("dense scene compiles");
         let t = Instant::now();
-        let s = scene::build(&desc, &compiled.sources, &loader, &opts).expect("builds");
+        let s = scene::build(&desc, &loader, &opts).value.expect("builds");
         full.push(t.elapsed().as_secs_f64() * 1e3);
         triangles = s.triangle_count();
         drop(s);
 
         if i == 0 {
-            let s = scene::build_cached(&desc, &compiled.sources, &loader, &opts, &mut cache)
+            let s = scene::build_cached(&desc, &loader, &opts, &mut cache)
+                .value
                 .expect("builds");
             cache.recycle(s);
         }
         let t = Instant::now();
         let compiled = compile_source("dense.scn", &dense(-4.0 - i as f32 * 0.1), &loader);
         let desc = compiled.scene.expect("compiles");
-        let s = scene::build_cached(&desc, &compiled.sources, &loader, &opts, &mut cache)
+        let s = scene::build_cached(&desc, &loader, &opts, &mut cache)
+            .value
             .expect("builds");
         camera.push(t.elapsed().as_secs_f64() * 1e3);
         assert!(

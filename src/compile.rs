@@ -4,12 +4,17 @@
 //! non-UTF-8 input, parses each file, expands `include "file.scn"` in place (paths relative to
 //! the including file; each file at most once; cycles reported with the include chain), checks
 //! that every file starts with `scnc 1`, then runs `check::check` over all statements.
+//!
+//! [`compile`] is the stage entry of the pipeline: it returns the [`Staged`] shape of every
+//! stage, the files it read going into a [`SourceMap`] the caller keeps for reporting (every
+//! later stage's spans point into it). [`compile_file`] and [`compile_source`] bundle the two
+//! into [`Compiled`] for callers that look at one compile on its own (tests, benches).
 
 use std::path::{Component, Path, PathBuf};
 
 use crate::assets::Loader;
 use crate::check;
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, Staged};
 use crate::ir;
 use crate::source::{FileId, SourceMap, Span};
 use crate::syntax::{self, ExprKind, Stmt};
@@ -19,18 +24,36 @@ pub const VERSION: f64 = 1.0;
 /// Deepest chain of nested includes.
 pub const MAX_INCLUDE_DEPTH: usize = 32;
 
-/// Everything one compile produced. `scene` is `None` when any diagnostic is an error.
+/// Everything one compile produced: [`compile`]'s result and its sources, side by side.
+/// `scene` is `None` when any diagnostic is an error.
 #[derive(Debug)]
 pub struct Compiled {
+    /// The scene file and its includes; every span of `diagnostics` points into it.
     pub sources: SourceMap,
+    /// The checked scene, when nothing is an error.
     pub scene: Option<ir::SceneDesc>,
+    /// Every error and warning, in reading order.
     pub diagnostics: Vec<Diagnostic>,
 }
 
 impl Compiled {
+    /// Whether any diagnostic is an error.
     pub fn has_errors(&self) -> bool {
         self.diagnostics.iter().any(Diagnostic::is_error)
     }
+
+    /// The compile as a pipeline stage: its sources, and its [`Staged`] result.
+    pub fn into_staged(self) -> (SourceMap, Staged<ir::SceneDesc>) {
+        (self.sources, Staged::new(self.scene, self.diagnostics))
+    }
+}
+
+/// Stage entry: compiles the scene file at `path`, reading it and its includes through
+/// `loader`. `sources` receives every file read (it is replaced, so pass an empty map).
+pub fn compile(path: &Path, loader: &dyn Loader, sources: &mut SourceMap) -> Staged<ir::SceneDesc> {
+    let (read, staged) = compile_file(path, loader).into_staged();
+    *sources = read;
+    staged
 }
 
 /// Compiles the scene file at `path`, reading it and its includes through `loader`.
@@ -115,8 +138,9 @@ impl<'l> Driver<'l> {
             );
             return;
         }
-        let (file, diags) = syntax::parse(id, &text);
+        let (file, diags) = syntax::parse(id, &text).into_parts();
         self.diags.extend(diags);
+        let file = file.unwrap_or_default();
         self.check_version(id, &text, &file.statements);
         self.stack.push((path, from));
         for stmt in file.statements {
@@ -259,7 +283,7 @@ impl<'l> Driver<'l> {
         } = self;
         let parse_failed = diags.iter().any(Diagnostic::is_error);
         let scene = if sources.files().next().is_some() {
-            let (scene, check_diags) = check::check(&statements, &sources);
+            let (scene, check_diags) = check::check(&statements, &sources).into_parts();
             // When parsing failed, statements are missing: suppress checker errors that only
             // say something is missing, unknown or unused, which would be noise.
             diags.extend(

@@ -1,14 +1,25 @@
 //! scnc: a declarative scene-language compiler and direct-lighting ray tracer.
 //!
 //! ```text
-//! scene.scn ─ syntax::parse ─▶ SceneFile (AST, every node spanned)        error: ParseError
-//!           ─ check::check  ─▶ ir::SceneDesc (typed, names resolved,      errors: CheckError + warnings
+//! scene.scn ─ syntax::parse ─▶ SceneFile (AST, every node spanned)        Staged<SceneFile>
+//!           ─ check::check  ─▶ ir::SceneDesc (typed, names resolved,      Staged<SceneDesc>
 //!                               units normalised, validated, no I/O)
-//!           ─ scene::build  ─▶ Scene (world triangles + BVH, textures,    error: BuildError
+//!             (compile::compile: parse + includes + check, through the Loader)
+//!           ─ scene::build  ─▶ Scene (world triangles + BVH, textures,    Staged<Scene>
 //!              (via Loader)     light tables, camera): only what is used
 //!           ─ render::render ─▶ Film (linear RGB radiance per pixel)     deterministic, cancellable
-//!           ─ film::write    ─▶ PNG (sRGB 8-bit), EXR / HDR / PFM          error: WriteError; atomic
+//!           ─ film::write    ─▶ PNG (sRGB 8-bit), EXR / HDR / PFM          Staged<()>; atomic
 //! ```
+//!
+//! Every stage returns [`diag::Staged`]: its value (if it could make one) and every
+//! [`diag::Diagnostic`] (error or warning, with spans into the `source::SourceMap`) found so
+//! far, so `cli` chains the stages with `Staged::and_then` and reports once. Only
+//! cancellation ends a render early (`render::Cancelled`); its settings are resolved before it
+//! starts (`ir::RenderSettings::resolve`).
+//!
+//! [`shade`] is the layer between `scene::build` and `render`: what a hit point needs to be
+//! shaded (BRDF, lights with `sample` beside `pdf`, textures, the environment map, sampling
+//! routines and distributions). The scene stores its types; the integrator calls them.
 
 pub mod assets;
 pub mod bvh;
@@ -21,5 +32,6 @@ pub mod geom;
 pub mod ir;
 pub mod render;
 pub mod scene;
+pub mod shade;
 pub mod source;
 pub mod syntax;

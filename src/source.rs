@@ -18,12 +18,16 @@ pub struct FileId(pub u32);
 /// A byte range `start..end` inside one source file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Span {
+    /// The file the range lies in.
     pub file: FileId,
+    /// Byte offset of the first byte, from the start of the file's text.
     pub start: u32,
+    /// Byte offset one past the last byte; equal to `start` for an empty span.
     pub end: u32,
 }
 
 impl Span {
+    /// The byte range `start..end` of `file` (`start ≤ end`, asserted in debug builds).
     pub fn new(file: FileId, start: usize, end: usize) -> Span {
         debug_assert!(start <= end, "span start {start} after end {end}");
         Span {
@@ -43,14 +47,17 @@ impl Span {
         }
     }
 
+    /// Length in bytes.
     pub fn len(&self) -> usize {
         (self.end - self.start) as usize
     }
 
+    /// Whether the span covers no bytes (a position, such as the end of the input).
     pub fn is_empty(&self) -> bool {
         self.start == self.end
     }
 
+    /// The byte range, for slicing the file's text.
     pub fn range(&self) -> std::ops::Range<usize> {
         self.start as usize..self.end as usize
     }
@@ -75,6 +82,7 @@ pub struct SourceFile {
     pub path: PathBuf,
     /// The name shown in diagnostics: the path as the user or the including file wrote it.
     pub name: String,
+    /// The whole text as read; spans index it by byte. Shared with diagnostics without copying.
     pub text: Arc<str>,
 }
 
@@ -85,10 +93,12 @@ pub struct SourceMap {
 }
 
 impl SourceMap {
+    /// An empty map.
     pub fn new() -> SourceMap {
         SourceMap::default()
     }
 
+    /// Stores a file and returns its id; ids count up from 0 in the order files are added.
     pub fn add(
         &mut self,
         path: impl Into<PathBuf>,
@@ -104,11 +114,13 @@ impl SourceMap {
         id
     }
 
+    /// The file `id` names. `id` must come from this map's [`SourceMap::add`].
     pub fn get(&self, id: FileId) -> &SourceFile {
         // ok: FileIds are only minted by `add` on this map.
         &self.files[id.0 as usize]
     }
 
+    /// Every file with its id, in the order they were added.
     pub fn files(&self) -> impl Iterator<Item = (FileId, &SourceFile)> {
         self.files
             .iter()
@@ -116,6 +128,7 @@ impl SourceMap {
             .map(|(i, f)| (FileId(i as u32), f))
     }
 
+    /// The id of the file read from `path` (compared as written, not canonicalised).
     pub fn find(&self, path: &Path) -> Option<FileId> {
         self.files
             .iter()

@@ -25,10 +25,10 @@ use scnc::assets::FsLoader;
 use scnc::bvh::AccelKind;
 use scnc::compile::compile_file;
 use scnc::geom::Ray;
-use scnc::render::brdf::Phong;
 use scnc::render::integrator::{radiance, RayCounts};
 use scnc::render::rng::Sampler;
 use scnc::scene::{build as build_scene, BuildOptions, LightSampling, Scene};
+use scnc::shade::brdf::Phong;
 
 /// Irradiance at `p` (unit normal `n`) from a uniform Lambertian polygon of radiance 1 that is
 /// wholly above `p`'s horizon (Lambert 1760): `E = ½ Σ βᵢ n·γᵢ`.
@@ -253,7 +253,8 @@ fn cornell_floor_points_that_see_the_whole_light_have_the_closed_form_radiance()
     let loader = FsLoader::new();
     let compiled = compile_file(&root.join("examples/cornell.scn"), &loader);
     let desc = compiled.scene.expect("examples/cornell.scn compiles");
-    let scene = build_scene(&desc, &compiled.sources, &loader, &BuildOptions::default())
+    let scene = build_scene(&desc, &loader, &BuildOptions::default())
+        .value
         .expect("examples/cornell.scn builds");
     let corners = [
         Vec3::new(343.0, 548.7, 227.0),

@@ -28,14 +28,12 @@ fn outcome(src: &str) -> Result<(Film, RenderStats), Vec<Diagnostic>> {
     if compiled.has_errors() {
         return Err(compiled.diagnostics);
     }
-    let desc = compiled.scene.expect("no errors, so a scene");
-    let scene = build_scene(&desc, &compiled.sources, &loader, &BuildOptions::default())?;
+    let mut desc = compiled.scene.expect("no errors, so a scene");
+    desc.render.fix_samples(1);
+    let (scene, _) = build_scene(&desc, &loader, &BuildOptions::default()).into_result()?;
     let out = render(
         &scene,
-        &RenderOptions {
-            spp: Some(1),
-            threads: Some(2),
-        },
+        &RenderOptions { threads: Some(2) },
         &|_| {},
         &AtomicBool::new(false),
     )

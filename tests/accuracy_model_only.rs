@@ -15,24 +15,29 @@ use scnc::assets::MemLoader;
 use scnc::compile::compile_source;
 use scnc::diag::Severity;
 use scnc::render::{render, RenderOptions, RenderStats};
-use scnc::scene::{build, BuildOptions, Features, Scene, Texture};
+use scnc::scene::{build, BuildOptions, Features, Scene};
+use scnc::shade::Texture;
 
-fn build_src(src: &str, loader: &MemLoader) -> (Scene, scnc::source::SourceMap) {
+/// The scene (set to 4 samples per pixel, as `render_small` renders it), its sources and its
+/// build warnings.
+fn build_src(
+    src: &str,
+    loader: &MemLoader,
+) -> (Scene, scnc::source::SourceMap, Vec<scnc::diag::Diagnostic>) {
     let compiled = compile_source("scene.scn", src, loader);
     assert!(!compiled.has_errors(), "{:#?}", compiled.diagnostics);
-    let desc = compiled.scene.expect("compiles");
-    let scene = build(&desc, &compiled.sources, loader, &BuildOptions::default())
+    let mut desc = compiled.scene.expect("compiles");
+    desc.render.fix_samples(4);
+    let (scene, warnings) = build(&desc, loader, &BuildOptions::default())
+        .into_result()
         .unwrap_or_else(|d| panic!("{d:#?}"));
-    (scene, compiled.sources)
+    (scene, compiled.sources, warnings)
 }
 
 fn render_small(scene: &Scene) -> RenderStats {
     render(
         scene,
-        &RenderOptions {
-            spp: Some(4),
-            threads: Some(2),
-        },
+        &RenderOptions { threads: Some(2) },
         &|_| {},
         &AtomicBool::new(false),
     )
@@ -73,7 +78,7 @@ fn what_was_built(scene: &Scene) -> Vec<&'static str> {
 
 #[test]
 fn a_plain_scene_builds_and_runs_nothing_it_does_not_use() {
-    let (scene, _) = build_src(PLAIN, &MemLoader::new());
+    let (scene, _, _) = build_src(PLAIN, &MemLoader::new());
     assert_eq!(
         scene.features(),
         Features {
@@ -104,7 +109,7 @@ fn a_rich_scene_builds_and_uses_each_structure() {
         .map(|k| Vec3::splat(0.1 + k as f32 * 0.05))
         .collect();
     loader.insert("sky.pfm", pfm_bytes(8, 4, &texels));
-    let (scene, _) = build_src(RICH, &loader);
+    let (scene, _, _) = build_src(RICH, &loader);
     assert_eq!(
         scene.features(),
         Features {
@@ -166,7 +171,7 @@ render {{ resolution 24 x 16 }}
     loader.insert("a.png", png());
     loader.insert("b.png", png());
     // Nearest only: one image, one level; the trilinear texture is not used, not loaded.
-    let (scene, _) = build_src(&scene_with("diffuse near"), &loader);
+    let (scene, _, _) = build_src(&scene_with("diffuse near"), &loader);
     let images: Vec<usize> = scene
         .textures
         .slots
@@ -195,7 +200,7 @@ render {{ resolution 24 x 16 }}
     assert!(render_small(&scene).counts.textured > 0);
     // Trilinear: the pyramid 4x2, 2x1, 1x1; a normal map (data: a second decode of a.png)
     // brings tangents for the floor.
-    let (scene, _) = build_src(&scene_with("diffuse tri  normal_map bumps"), &loader);
+    let (scene, _, _) = build_src(&scene_with("diffuse tri  normal_map bumps"), &loader);
     let d = detail(&scene);
     assert!(d.contains("2 image from 2 files"), "{d}");
     assert!(
@@ -222,7 +227,7 @@ render { resolution 8 x 8 }
 "#;
     let mut loader = MemLoader::new();
     loader.insert("sky.pfm", pfm_bytes(2, 1, &[Vec3::ONE, Vec3::splat(2.0)]));
-    let (scene, _) = build_src(src, &loader);
+    let (scene, _, _) = build_src(src, &loader);
     assert_eq!(what_was_built(&scene), ["environment map"]);
     assert!(scene.accel.is_none());
 }
@@ -239,13 +244,12 @@ fn a_one_sided_light_facing_away_from_everything_is_warned_about() {
     };
     // Corners counter-clockwise seen from above: the front faces up, away from the scene.
     let up = "light panel = area { quad (-1, 3, -1) (-1, 3, 1) (1, 3, 1) (1, 3, -1)  radiance 4 }";
-    let (scene, sources) = build_src(&with_light(up), &MemLoader::new());
-    let w: Vec<_> = scene
-        .warnings
+    let (_, sources, warnings) = build_src(&with_light(up), &MemLoader::new());
+    let w: Vec<_> = warnings
         .iter()
         .filter(|d| d.code == "scnc::build::light_faces_away")
         .collect();
-    assert_eq!(w.len(), 1, "{:#?}", scene.warnings);
+    assert_eq!(w.len(), 1, "{warnings:#?}");
     assert_eq!(w[0].severity, Severity::Warning);
     assert!(w[0].message.contains("`panel`"), "{}", w[0].message);
     let label = w[0].primary.as_ref().expect("labelled at the light");
@@ -261,14 +265,12 @@ fn a_one_sided_light_facing_away_from_everything_is_warned_about() {
     let two_sided = "light panel = area { quad (-1, 3, -1) (-1, 3, 1) (1, 3, 1) (1, 3, -1)  radiance 4  two_sided true }";
     let low = "light panel = area { quad (-1, 0.7, -1) (-1, 0.7, 1) (1, 0.7, 1) (1, 0.7, -1)  radiance 4 }";
     for light in [down, two_sided, low] {
-        let (scene, _) = build_src(&with_light(light), &MemLoader::new());
+        let (_, _, warnings) = build_src(&with_light(light), &MemLoader::new());
         assert!(
-            scene
-                .warnings
+            warnings
                 .iter()
                 .all(|d| d.code != "scnc::build::light_faces_away"),
-            "{light}: {:#?}",
-            scene.warnings
+            "{light}: {warnings:#?}"
         );
     }
 }

@@ -40,7 +40,7 @@ fn load(name: &str) -> SceneDesc {
     let mut desc = compiled.scene.expect("the example compiles");
     desc.render.width = SIZE;
     desc.render.height = SIZE;
-    desc.render.samples_per_pixel = SPP;
+    desc.render.fix_samples(SPP);
     desc
 }
 
@@ -70,12 +70,11 @@ fn placed(desc: &SceneDesc, s: f64, t: DVec3) -> SceneDesc {
 
 fn render_desc(desc: &SceneDesc) -> Film {
     let loader = FsLoader::new();
-    let scene = build(desc, &Default::default(), &loader, &BuildOptions::default())
+    let scene = build(desc, &loader, &BuildOptions::default())
+        .into_result()
+        .map(|(scene, _)| scene)
         .unwrap_or_else(|d| panic!("builds: {d:#?}"));
-    let options = RenderOptions {
-        spp: Some(SPP),
-        threads: Some(2),
-    };
+    let options = RenderOptions { threads: Some(2) };
     render(&scene, &options, &|_| {}, &AtomicBool::new(false))
         .expect("not cancelled")
         .0
@@ -196,19 +195,13 @@ fn an_object_f32_cannot_resolve_is_warned_about_and_renders_finite() {
     let desc = compiled
         .scene
         .unwrap_or_else(|| panic!("{:#?}", compiled.diagnostics));
-    let scene = build(&desc, &compiled.sources, &loader, &BuildOptions::default()).expect("builds");
-    let codes: Vec<_> = scene.warnings.iter().map(|d| d.code).collect();
-    assert_eq!(
-        codes,
-        vec!["scnc::build::precision_lost"],
-        "{:#?}",
-        scene.warnings
-    );
-    println!("{}", scene.warnings[0].message);
-    let options = RenderOptions {
-        spp: Some(4),
-        threads: Some(1),
-    };
+    let (scene, warnings) = build(&desc, &loader, &BuildOptions::default())
+        .into_result()
+        .unwrap_or_else(|d| panic!("builds: {d:#?}"));
+    let codes: Vec<_> = warnings.iter().map(|d| d.code).collect();
+    assert_eq!(codes, vec!["scnc::build::precision_lost"], "{warnings:#?}");
+    println!("{}", warnings[0].message);
+    let options = RenderOptions { threads: Some(1) };
     let film = render(&scene, &options, &|_| {}, &AtomicBool::new(false))
         .expect("renders")
         .0;

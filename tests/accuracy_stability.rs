@@ -30,8 +30,8 @@ use scnc::bvh::AccelKind;
 use scnc::geom::triangle::{moller_trumbore, watertight, WatertightRay};
 use scnc::geom::Ray;
 use scnc::ir::{InlineMesh, Mesh, MeshSource};
-use scnc::render::surface::{offset_origin, surface_hit};
 use scnc::scene::Scene;
+use scnc::shade::surface::{offset_origin, surface_hit};
 
 /// splitmix64: a seeded stream with no dependency.
 struct Rng(u64);
@@ -212,7 +212,7 @@ fn hits_from_behind(
     normal: Vec3,
     d: f32,
     n: usize,
-) -> Vec<scnc::render::surface::SurfaceHit> {
+) -> Vec<scnc::shade::surface::SurfaceHit> {
     let (t1, t2) = normal.any_orthonormal_pair();
     let eye = centre - d * normal;
     let accel = scene.accel.as_ref().expect("the plane has triangles");
@@ -235,7 +235,7 @@ fn hits_from_behind(
 /// the ray. Returns how many were blocked.
 fn blocked(
     scene: &Scene,
-    hits: &[scnc::render::surface::SurfaceHit],
+    hits: &[scnc::shade::surface::SurfaceHit],
     light: Vec3,
     fixed: bool,
 ) -> usize {
@@ -380,9 +380,9 @@ fn degenerate_triangles_are_dropped_counted_and_do_not_poison_the_bvh() {
     desc.materials = vec![phong("white", Vec3::ONE, 0.0, 1.0)];
     desc.objects = vec![object(0, 0, Mat4::IDENTITY)];
     desc.lights = vec![point_light(Vec3::new(2.0, 3.0, -4.0), 20.0)];
-    let scene = build(&desc, AccelKind::Bvh);
-    assert_eq!(scene.warnings.len(), 1);
-    let w = &scene.warnings[0];
+    let (scene, warnings) = build_warned(&desc, AccelKind::Bvh);
+    assert_eq!(warnings.len(), 1);
+    let w = &warnings[0];
     assert_eq!(w.code, "scnc::build::degenerate_triangles");
     assert!(
         w.message.starts_with(&format!("6 of {}", good + 7)),

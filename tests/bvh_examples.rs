@@ -51,7 +51,9 @@ fn scene_with(path: &str, accel: AccelKind) -> Scene {
         accel,
         ..BuildOptions::default()
     };
-    build(&desc, &compiled.sources, &loader, &options).unwrap_or_else(|_| panic!("{path} builds"))
+    build(&desc, &loader, &options)
+        .value
+        .unwrap_or_else(|| panic!("{path} builds"))
 }
 
 fn near_edge(h: &Hit) -> bool {

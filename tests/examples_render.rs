@@ -125,17 +125,17 @@ fn every_example_renders_and_matches_its_summary_and_golden() {
         let aspect = desc.render.height as f32 / desc.render.width as f32;
         desc.render.width = WIDTH;
         desc.render.height = ((WIDTH as f32 * aspect).round() as u32).max(1);
-        let scene = build(&desc, &compiled.sources, &loader, &BuildOptions::default())
+        desc.render.fix_samples(SPP);
+        let scene = build(&desc, &loader, &BuildOptions::default())
+            .into_result()
+            .map(|(scene, _)| scene)
             .unwrap_or_else(|d| {
                 panic!(
                     "{name} does not build:\n{}",
                     render_plain_all(&d, &compiled.sources, 100)
                 )
             });
-        let options = RenderOptions {
-            spp: Some(SPP),
-            threads: Some(2),
-        };
+        let options = RenderOptions { threads: Some(2) };
         let (film, _) =
             render(&scene, &options, &|_| {}, &AtomicBool::new(false)).expect("not cancelled");
         assert!(

@@ -6,15 +6,18 @@ use std::path::Path;
 
 use scnc::assets::{FsLoader, Loader, MemLoader};
 use scnc::compile::compile_file;
-use scnc::scene::{build, BuildOptions, Light, Surface};
+use scnc::scene::{build, BuildOptions, Surface};
+use scnc::shade::Light;
 
 #[test]
 fn mtl_parts_become_materials_and_an_area_light() {
     let loader = FsLoader::new();
     let compiled = compile_file(Path::new("examples/obj_import.scn"), &loader);
     let desc = compiled.scene.expect("compiles");
-    let scene = build(&desc, &compiled.sources, &loader, &BuildOptions::default()).expect("builds");
-    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let (scene, warnings) = build(&desc, &loader, &BuildOptions::default())
+        .into_result()
+        .expect("builds");
+    assert!(warnings.is_empty(), "{:?}", warnings);
     // The point light, then the lamp part.
     assert_eq!(scene.lights.lights.len(), 2);
     let Light::Area(lamp) = &scene.lights.lights[1] else {
@@ -56,7 +59,11 @@ fn mtl_parts_become_materials_and_an_area_light() {
     assert!(scene.materials[3].is_textured() && scene.materials[3].normal_map.is_some());
 }
 
-fn build_mem(scn: &str, obj: &str, mtl: &str) -> (scnc::scene::Scene, usize) {
+fn build_mem(
+    scn: &str,
+    obj: &str,
+    mtl: &str,
+) -> (scnc::scene::Scene, usize, Vec<scnc::diag::Diagnostic>) {
     let mut loader = MemLoader::new();
     loader.insert("s.scn", scn.as_bytes().to_vec());
     loader.insert("m.obj", obj.as_bytes().to_vec());
@@ -65,8 +72,10 @@ fn build_mem(scn: &str, obj: &str, mtl: &str) -> (scnc::scene::Scene, usize) {
     assert!(!compiled.has_errors(), "{:?}", compiled.diagnostics);
     let desc = compiled.scene.expect("compiles");
     let n = desc.materials.len();
-    let scene = build(&desc, &compiled.sources, &loader, &BuildOptions::default()).expect("builds");
-    (scene, n)
+    let (scene, warnings) = build(&desc, &loader, &BuildOptions::default())
+        .into_result()
+        .expect("builds");
+    (scene, n, warnings)
 }
 
 const HEAD: &str = "scnc 1\ncamera c { eye (0, 1, -4)  target (0, 0, 0)  fov 40deg }\n\
@@ -78,26 +87,26 @@ const MTL: &str = "newmtl my red\nKd 1 0 0\nnewmtl lamp\nKe 3 3 3\n";
 #[test]
 fn scn_overrides_replace_obj_materials_by_name_and_mtl_false_skips_the_library() {
     let scn = format!("{HEAD}mesh o = obj(\"m.obj\") {{ material \"my red\" gold  material nothing m }}\nobject o {{ material m }}\n");
-    let (scene, n) = build_mem(&scn, OBJ, MTL);
+    let (scene, n, warnings) = build_mem(&scn, OBJ, MTL);
     let inst = &scene.instances[0];
     let mesh = &scene.meshes[inst.mesh as usize];
     let gold = 1; // materials are numbered in declaration order (both used)
     assert_eq!(n, 2);
     assert_eq!(scene.surface_of(inst, mesh, 0), Surface::Material(gold));
     assert_eq!(scene.surface_of(inst, mesh, 1), Surface::Emitter(1));
-    let codes: Vec<&str> = scene.warnings.iter().map(|w| w.code).collect();
+    let codes: Vec<&str> = warnings.iter().map(|w| w.code).collect();
     assert_eq!(codes, ["scnc::obj::unknown_override"]);
 
     // `mtl false`: the library is not read; no emitter, the object's material everywhere
     // except the override.
     let scn = format!("{HEAD}mesh o = obj(\"m.obj\") {{ mtl false  material lamp gold }}\nobject o {{ material m }}\n");
-    let (scene, _) = build_mem(&scn, OBJ, MTL);
+    let (scene, _, warnings) = build_mem(&scn, OBJ, MTL);
     let inst = &scene.instances[0];
     let mesh = &scene.meshes[inst.mesh as usize];
     assert_eq!(scene.lights.lights.len(), 1);
     assert_eq!(scene.surface_of(inst, mesh, 0), Surface::Material(0));
     assert_eq!(scene.surface_of(inst, mesh, 1), Surface::Material(gold));
-    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    assert!(warnings.is_empty(), "{:?}", warnings);
 }
 
 #[test]
@@ -110,9 +119,10 @@ fn mtl_texture_maps_warn_at_the_mtl_line_when_missing_or_corrupt() {
     loader.insert("red tex.png", b"not really a png".to_vec());
     let compiled = compile_file(Path::new("s.scn"), &loader);
     let desc = compiled.scene.expect("compiles");
-    let scene = build(&desc, &compiled.sources, &loader, &BuildOptions::default()).expect("builds");
-    let got: Vec<(&str, u32)> = scene
-        .warnings
+    let (_scene, warnings) = build(&desc, &loader, &BuildOptions::default())
+        .into_result()
+        .expect("builds");
+    let got: Vec<(&str, u32)> = warnings
         .iter()
         .map(|w| (w.code, w.external.first().map_or(0, |e| e.line)))
         .collect();
@@ -157,10 +167,11 @@ fn mtl_colour_and_normal_maps_become_image_textures() {
     loader.insert("n.png", two_texel_png());
     let compiled = compile_file(Path::new("s.scn"), &loader);
     let desc = compiled.scene.expect("compiles");
-    let scene = build(&desc, &compiled.sources, &loader, &BuildOptions::default()).expect("builds");
+    let (scene, warnings) = build(&desc, &loader, &BuildOptions::default())
+        .into_result()
+        .expect("builds");
     // map_Ns keeps the constant exponent, with one warning at its MTL line.
-    let got: Vec<(&str, u32)> = scene
-        .warnings
+    let got: Vec<(&str, u32)> = warnings
         .iter()
         .map(|w| (w.code, w.external.first().map_or(0, |e| e.line)))
         .collect();
@@ -192,7 +203,7 @@ fn mtl_colour_and_normal_maps_become_image_textures() {
     // map_Kd and map_Ks name one file with one encoding: decoded once, shared; the normal map
     // is data (decoded raw), a second decode.
     let image = |id: u32| match &scene.textures.slots[id as usize] {
-        Some(scnc::scene::Texture::Image { data, .. }) => data.clone(),
+        Some(scnc::shade::Texture::Image { data, .. }) => data.clone(),
         other => panic!("an image texture: {other:?}"),
     };
     assert!(std::sync::Arc::ptr_eq(&image(kd), &image(ks)));

@@ -23,12 +23,13 @@ fn example(name: &str) -> Scene {
     let mut desc = compiled.scene.expect("the example compiles");
     desc.render.width = SIDE;
     desc.render.height = SIDE;
-    build(&desc, &compiled.sources, &loader, &BuildOptions::default()).expect("builds")
+    build(&desc, &loader, &BuildOptions::default())
+        .value
+        .expect("builds")
 }
 
 fn run(scene: &Scene, threads: usize) -> Rendered {
     let options = RenderOptions {
-        spp: None,
         threads: Some(threads),
     };
     render_with_error(scene, &options, &|_| {}, &AtomicBool::new(false)).expect("not cancelled")

@@ -45,7 +45,7 @@ impl Fixture {
     }
 
     /// A scene placing the OBJ mesh once, built with `loader`.
-    fn build_obj(&self, loader: &dyn Loader) -> Result<Scene, Vec<Diagnostic>> {
+    fn build_obj(&self, loader: &dyn Loader) -> Result<(Scene, Vec<Diagnostic>), Vec<Diagnostic>> {
         let mut desc = empty_desc(
             camera(Vec3::new(0.0, 0.0, -3.0), Vec3::ZERO, Vec3::Y, 40.0),
             settings(8, 8, 1),
@@ -62,7 +62,7 @@ impl Fixture {
             object(0, 0, Mat4::from_translation(Vec3::X)),
         ];
         desc.lights = vec![point_light(Vec3::new(0.0, 0.0, -2.0), 1.0)];
-        scene::build(&desc, &self.sources, loader, &BuildOptions::default())
+        scene::build(&desc, loader, &BuildOptions::default()).into_result()
     }
 
     /// Builds with `bytes` as the OBJ file and returns the one error diagnostic.
@@ -125,8 +125,8 @@ fn corrupt_obj_bytes() {
         "scenes/meshes/m.obj",
         b"\xff\xfe\x00\x01binary junk".to_vec(),
     );
-    let scene = fx.build_obj(&loader).expect("loads, with warnings");
-    let codes: Vec<&str> = scene.warnings.iter().map(|w| w.code).collect();
+    let (_scene, warnings) = fx.build_obj(&loader).expect("loads, with warnings");
+    let codes: Vec<&str> = warnings.iter().map(|w| w.code).collect();
     assert_eq!(
         codes,
         [
@@ -159,10 +159,10 @@ fn obj_with_a_nan_vertex() {
         "scenes/meshes/m.obj",
         format!("{TRIANGLE}v nan 0 0\nv 0 inf 0\nf 1 2 3\nf 1 2 4\nf 5 2 3\n").into_bytes(),
     );
-    let scene = fx.build_obj(&loader).expect("one good triangle");
+    let (scene, warnings) = fx.build_obj(&loader).expect("one good triangle");
     assert_eq!(scene.meshes[0].triangles.len(), 1);
-    assert_eq!(scene.warnings[0].code, "scnc::build::degenerate_triangles");
-    assert!(scene.warnings[0].message.starts_with("2 of 3"));
+    assert_eq!(warnings[0].code, "scnc::build::degenerate_triangles");
+    assert!(warnings[0].message.starts_with("2 of 3"));
     assert!(scene.meshes[0].positions.iter().all(|p| p.is_finite()));
 }
 
@@ -178,12 +178,12 @@ fn all_degenerate_is_an_error_some_degenerate_a_warning() {
         "scenes/meshes/m.obj",
         format!("{TRIANGLE}v 2 0 0\nf 1 2 3\nf 1 2 4\n").into_bytes(),
     );
-    let scene = fx.build_obj(&loader).expect("one good triangle");
+    let (scene, warnings) = fx.build_obj(&loader).expect("one good triangle");
     assert_eq!(scene.meshes[0].triangles.len(), 1);
-    assert_eq!(scene.warnings.len(), 1);
-    assert_eq!(scene.warnings[0].code, "scnc::build::degenerate_triangles");
-    assert_eq!(scene.warnings[0].severity, Severity::Warning);
-    fx.assert_at_path(&scene.warnings[0]);
+    assert_eq!(warnings.len(), 1);
+    assert_eq!(warnings[0].code, "scnc::build::degenerate_triangles");
+    assert_eq!(warnings[0].severity, Severity::Warning);
+    fx.assert_at_path(&warnings[0]);
 }
 
 #[test]
@@ -195,7 +195,7 @@ fn a_good_obj_loads_once_for_two_instances_and_renders() {
         "mtllib m.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvn 0 0 -1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
          usemtl red\nf 1/1/1 4/4/1 3/3/1 2/2/1\n",
     );
-    let scene = fx.build_obj(&loader).expect("valid");
+    let (scene, warnings) = fx.build_obj(&loader).expect("valid");
     assert_eq!(scene.meshes.len(), 1);
     assert_eq!(scene.instances.len(), 2);
     assert_eq!(scene.meshes[0].triangles.len(), 2);
@@ -204,12 +204,12 @@ fn a_good_obj_loads_once_for_two_instances_and_renders() {
     // The BVH stores the shared mesh's triangles once, however many instances place it.
     assert_eq!(scene.accel_stats().triangles, 2);
     // Its MTL is absent: warnings at the OBJ's lines, the default material is used.
-    let codes: Vec<&str> = scene.warnings.iter().map(|w| w.code).collect();
+    let codes: Vec<&str> = warnings.iter().map(|w| w.code).collect();
     assert_eq!(
         codes,
         ["scnc::obj::missing_mtl", "scnc::obj::unknown_material"]
     );
-    assert_eq!(scene.warnings[0].external[0].line, 1);
+    assert_eq!(warnings[0].external[0].line, 1);
     let (film, _) = render_with(&scene, 1);
     assert!(
         film.get(4, 4).x > 0.0,
@@ -252,13 +252,9 @@ fn a_missing_image_texture_and_environment_map_are_missing_at_their_paths() {
         visible: true,
         span: span(),
     })];
-    let diags = scene::build(
-        &desc,
-        &fx.sources,
-        &MemLoader::new(),
-        &BuildOptions::default(),
-    )
-    .expect_err("missing files");
+    let diags = scene::build(&desc, &MemLoader::new(), &BuildOptions::default())
+        .into_result()
+        .expect_err("missing files");
     let mut labelled: Vec<(&str, &str)> = diags
         .iter()
         .map(|d| {
@@ -281,7 +277,6 @@ fn a_missing_image_texture_and_environment_map_are_missing_at_their_paths() {
 
 #[test]
 fn no_camera_and_singular_transforms_are_errors() {
-    let fx = Fixture::new();
     let mut desc = empty_desc(
         camera(Vec3::new(0.0, 0.0, -3.0), Vec3::ZERO, Vec3::Y, 40.0),
         settings(8, 8, 1),
@@ -293,7 +288,9 @@ fn no_camera_and_singular_transforms_are_errors() {
         camera: Some(3),
         ..BuildOptions::default()
     };
-    let diags = scene::build(&desc, &fx.sources, &MemLoader::new(), &opts).expect_err("bad");
+    let diags = scene::build(&desc, &MemLoader::new(), &opts)
+        .into_result()
+        .expect_err("bad");
     let codes: Vec<&str> = diags.iter().map(|d| d.code).collect();
     assert_eq!(
         codes,

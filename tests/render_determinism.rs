@@ -77,10 +77,7 @@ fn cancelling_stops_the_render_and_progress_reaches_one() {
     let progress = |f: f32| seen.lock().expect("no panics while held").push(f);
     render(
         &scene,
-        &RenderOptions {
-            spp: Some(1),
-            threads: Some(2),
-        },
+        &RenderOptions { threads: Some(2) },
         &progress,
         &cancel,
     )
@@ -92,15 +89,7 @@ fn cancelling_stops_the_render_and_progress_reaches_one() {
     // Cancelling from the progress callback (as Ctrl-C would, mid-render).
     let cancel = AtomicBool::new(false);
     let stop = |_: f32| cancel.store(true, Ordering::Relaxed);
-    let r = render(
-        &scene,
-        &RenderOptions {
-            spp: Some(1),
-            threads: Some(1),
-        },
-        &stop,
-        &cancel,
-    );
+    let r = render(&scene, &RenderOptions { threads: Some(1) }, &stop, &cancel);
     assert_eq!(r.err(), Some(Cancelled));
 }
 

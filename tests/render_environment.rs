@@ -24,7 +24,6 @@ use scnc::render::integrator::{radiance, RayCounts};
 use scnc::render::rng::Sampler;
 use scnc::scene::shapes::tessellate;
 use scnc::scene::{DirectStrategy, Scene};
-use scnc::source::SourceMap;
 
 const STRATEGIES: [DirectStrategy; 3] = [
     DirectStrategy::LightOnly,
@@ -210,8 +209,8 @@ fn with_a_tiny_bright_sun_mis_beats_cosine_sampling_tenfold() {
         span: span(),
     };
     desc.lights = vec![environment(EnvSource::Image(file), 1.0, 0.3, true)];
-    let mut scene = build_with(&desc, &SourceMap::new(), &loader).expect("builds");
-    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let (mut scene, warnings) = build_with(&desc, &loader).expect("builds");
+    assert!(warnings.is_empty(), "{warnings:?}");
 
     let reference = render_spp(&mut scene, DirectStrategy::Mis, 32 * 32);
     let mis = render_spp(&mut scene, DirectStrategy::Mis, 4);
@@ -284,8 +283,8 @@ pub fn env_example(width: u32, height: u32, spp: u32) -> SceneDesc {
 fn the_env_example_renders_with_the_real_sky() {
     let desc = env_example(64, 48, 1);
     let loader = FsLoader::new();
-    let scene = build_with(&desc, &SourceMap::new(), &loader).expect("builds");
-    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let (scene, warnings) = build_with(&desc, &loader).expect("builds");
+    assert!(warnings.is_empty(), "{warnings:?}");
     let (film, stats) = render_with(&scene, 2);
     assert!(film.pixels().iter().all(|p| p.is_finite()));
     assert!(film.mean().min_element() > 0.05, "mean {}", film.mean());
@@ -333,13 +332,9 @@ fn an_area_light_and_a_sky_together_give_the_closed_form_for_every_strategy() {
         ),
         environment(EnvSource::Constant(Vec3::splat(sky)), 1.0, 0.0, true),
     ];
-    let mut scene = scnc::scene::build(
-        &desc,
-        &SourceMap::new(),
-        &MemLoader::new(),
-        &Default::default(),
-    )
-    .expect("builds");
+    let mut scene = scnc::scene::build(&desc, &MemLoader::new(), &Default::default())
+        .value
+        .expect("builds");
     // Both are in the power table.
     let pmf_env = scene.lights.pmf_environment();
     assert!(pmf_env > 0.0 && pmf_env < 1.0, "{pmf_env}");
@@ -385,7 +380,7 @@ fn the_example_sky_has_its_sun_where_the_benchmark_puts_it() {
     let (el, az) = (30f32.to_radians(), 40f32.to_radians());
     let sun = Vec3::new(el.cos() * az.cos(), el.sin(), el.cos() * az.sin());
     for rotation in [0.0f32, 0.5] {
-        let m = scnc::scene::EnvMap::new(1024, 512, img.pixels.clone(), rotation).expect("sizes");
+        let m = scnc::shade::EnvMap::new(1024, 512, img.pixels.clone(), rotation).expect("sizes");
         // Map azimuth φ appears at world azimuth φ − rotation.
         let world_sun = Vec3::new(
             el.cos() * (az - rotation).cos(),

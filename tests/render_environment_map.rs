@@ -21,7 +21,8 @@ use scnc::geom::Ray;
 use scnc::ir::*;
 use scnc::render::integrator::{radiance, RayCounts};
 use scnc::render::rng::Sampler;
-use scnc::scene::{DirectStrategy, EnvMap, Environment};
+use scnc::scene::DirectStrategy;
+use scnc::shade::{EnvMap, Environment};
 use scnc::source::{SourceMap, Span};
 
 const W: usize = 64;
@@ -214,12 +215,12 @@ fn fixture() -> (SourceMap, scnc::source::FileId) {
 
 #[test]
 fn a_diffuse_plane_under_the_map_renders_its_irradiance_for_every_strategy() {
-    let (sources, file) = fixture();
+    let (_sources, file) = fixture();
     let rotation = 0.8;
     let mut loader = MemLoader::new();
     loader.insert("sky.pfm", pfm_bytes(W, H, &sky_texels()));
     let desc = plane_under(asset(file, SCN, "sky.pfm"), rotation);
-    let mut scene = build_with(&desc, &sources, &loader).expect("builds");
+    let (mut scene, _) = build_with(&desc, &loader).expect("builds");
     // E = ∫ L cos θ dω over the upper hemisphere, L looked up exactly as the renderer does.
     let m = map(rotation);
     let irradiance = sphere_integral(|d| (2.0 * m.radiance(d).x * d.y.max(0.0)) as f64);
@@ -248,19 +249,14 @@ fn a_diffuse_plane_under_the_map_renders_its_irradiance_for_every_strategy() {
 }
 
 /// Builds the plane scene with `bytes` as `sky.pfm` (or no file at all).
-fn build_sky(
-    bytes: Option<Vec<u8>>,
-) -> (
-    SourceMap,
-    Result<scnc::scene::Scene, Vec<scnc::diag::Diagnostic>>,
-) {
+fn build_sky(bytes: Option<Vec<u8>>) -> (SourceMap, Built) {
     let (sources, file) = fixture();
     let mut loader = MemLoader::new();
     if let Some(b) = bytes {
         loader.insert("sky.pfm", b);
     }
     let desc = plane_under(asset(file, SCN, "sky.pfm"), 0.0);
-    let result = build_with(&desc, &sources, &loader);
+    let result = build_with(&desc, &loader);
     (sources, result)
 }
 
@@ -297,9 +293,9 @@ fn nan_and_negative_pixels_are_black_with_one_warning() {
     px[9] = Vec3::new(-2.0, 0.5, 0.5);
     px[20] = Vec3::new(f32::INFINITY, 0.0, 0.0);
     let (sources, result) = build_sky(Some(pfm_bytes(8, 4, &px)));
-    let scene = result.expect("warnings only");
-    assert_eq!(scene.warnings.len(), 1, "{:?}", scene.warnings);
-    let w = &scene.warnings[0];
+    let (scene, warnings) = result.expect("warnings only");
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    let w = &warnings[0];
     assert_eq!(w.code, "scnc::build::invalid_environment_pixels");
     assert_eq!(w.severity, Severity::Warning);
     assert!(w.message.starts_with("3 of 32 pixels"), "{}", w.message);
@@ -315,9 +311,9 @@ fn nan_and_negative_pixels_are_black_with_one_warning() {
 #[test]
 fn an_all_black_map_warns_and_lights_nothing() {
     let (_, result) = build_sky(Some(pfm_bytes(8, 4, &[Vec3::ZERO; 32])));
-    let scene = result.expect("a warning only");
-    assert_eq!(scene.warnings.len(), 1);
-    assert_eq!(scene.warnings[0].code, "scnc::build::black_environment");
+    let (scene, warnings) = result.expect("a warning only");
+    assert_eq!(warnings.len(), 1);
+    assert_eq!(warnings[0].code, "scnc::build::black_environment");
     assert!(scene.lights.by_power.is_none(), "nothing to sample");
     let (film, stats) = render_with(&scene, 1);
     assert!(film.pixels().iter().all(|&p| p == Vec3::ZERO));
@@ -329,7 +325,7 @@ fn a_surface_facing_away_from_the_sun_is_not_noisier_with_mis_than_with_cosine_s
     // The plane's normal leans 60° away from the sun (map azimuth 1 rad), so the sun is below
     // its horizon and only the dim sky lights it: MIS's light samples spent on the sun must
     // not cost more than the power heuristic gives back.
-    let (sources, file) = fixture();
+    let (_sources, file) = fixture();
     let mut loader = MemLoader::new();
     loader.insert("sky.pfm", pfm_bytes(W, H, &sky_texels()));
     let mut desc = plane_under(asset(file, SCN, "sky.pfm"), 0.0);
@@ -340,7 +336,7 @@ fn a_surface_facing_away_from_the_sun_is_not_noisier_with_mis_than_with_cosine_s
         0,
         Mat4::from_axis_angle(axis, 60f32.to_radians()),
     )];
-    let mut scene = build_with(&desc, &sources, &loader).expect("builds");
+    let (mut scene, _) = build_with(&desc, &loader).expect("builds");
     let normal = Mat4::from_axis_angle(axis, 60f32.to_radians()).transform_vector3(Vec3::Y);
     let eye = normal * 1.5 + Vec3::Y * 0.1;
     let ray = Ray::new(eye, -eye.normalize());

@@ -4,7 +4,9 @@ use std::fs;
 use std::path::PathBuf;
 
 use glam::Vec3;
-use scnc::film::{format_for_path, write, write_atomic_with, Film, WriteError, WriteSettings};
+use scnc::film::{
+    format_for_path, write_atomic_with, write_image as write, Film, WriteError, WriteSettings,
+};
 use scnc::ir::{OutputFormat, ToneMap};
 
 fn scratch(name: &str) -> PathBuf {

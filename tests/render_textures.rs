@@ -16,10 +16,11 @@ use scnc::assets::MemLoader;
 use scnc::compile::compile_source;
 use scnc::diag::{Diagnostic, Severity};
 use scnc::geom::Ray;
-use scnc::render::footprint::{pixel_spread_angle, uv_footprint};
-use scnc::render::surface::surface_hit;
 use scnc::render::{render, RenderOptions};
-use scnc::scene::{build, BuildOptions, Scene, Texture};
+use scnc::scene::{build, BuildOptions, Scene};
+use scnc::shade::surface::surface_hit;
+use scnc::shade::texture::footprint::{pixel_spread_angle, uv_footprint};
+use scnc::shade::Texture;
 
 fn encode(img: DynamicImage, format: ImageFormat) -> Vec<u8> {
     let mut out = Cursor::new(Vec::new());
@@ -48,11 +49,16 @@ fn normal_exr(n: Vec3) -> Vec<u8> {
     encode(DynamicImage::ImageRgb32F(img), ImageFormat::OpenExr)
 }
 
-fn try_build(src: &str, loader: &MemLoader) -> (Result<Scene, Vec<Diagnostic>>, String) {
+/// The build's scene and warnings (or every diagnostic), and the compile's codes.
+#[allow(clippy::type_complexity, reason = "a test helper's one-off shape")]
+fn try_build(
+    src: &str,
+    loader: &MemLoader,
+) -> (Result<(Scene, Vec<Diagnostic>), Vec<Diagnostic>>, String) {
     let compiled = compile_source("scene.scn", src, loader);
     assert!(!compiled.has_errors(), "{:#?}", compiled.diagnostics);
     let desc = compiled.scene.as_ref().expect("compiles");
-    let built = build(desc, &compiled.sources, loader, &BuildOptions::default());
+    let built = build(desc, loader, &BuildOptions::default()).into_result();
     let warnings: Vec<String> = compiled
         .diagnostics
         .iter()
@@ -65,13 +71,12 @@ fn build_ok(src: &str, loader: &MemLoader) -> Scene {
     try_build(src, loader)
         .0
         .unwrap_or_else(|d| panic!("{d:#?}"))
+        .0
 }
 
-fn pixels(scene: &Scene, spp: u32) -> Vec<Vec3> {
-    let options = RenderOptions {
-        spp: Some(spp),
-        threads: Some(2),
-    };
+fn pixels(scene: &mut Scene, spp: u32) -> Vec<Vec3> {
+    scene.settings.fix_samples(spp);
+    let options = RenderOptions { threads: Some(2) };
     let (film, _) = render(scene, &options, &|_| {}, &AtomicBool::new(false)).expect("renders");
     film.pixels().to_vec()
 }
@@ -156,13 +161,13 @@ fn trilinear_halves_the_horizon_error_of_nearest_at_four_samples() {
     let mut loader = MemLoader::new();
     // 64 texels, 8 squares per UV unit (one UV unit per metre).
     loader.insert("checker.png", checker_png(64, 8));
-    let nearest = build_ok(&horizon("nearest"), &loader);
-    let trilinear = build_ok(&horizon("trilinear"), &loader);
+    let mut nearest = build_ok(&horizon("nearest"), &loader);
+    let mut trilinear = build_ok(&horizon("trilinear"), &loader);
     // Nearest lookups point-sample the texture itself: at many samples they converge to the
     // exact pixel average of the checkerboard.
-    let reference = pixels(&nearest, 1024);
-    let e_nearest = rmse(&pixels(&nearest, 4), &reference);
-    let e_trilinear = rmse(&pixels(&trilinear, 4), &reference);
+    let reference = pixels(&mut nearest, 1024);
+    let e_nearest = rmse(&pixels(&mut nearest, 4), &reference);
+    let e_trilinear = rmse(&pixels(&mut trilinear, 4), &reference);
     println!("horizon RMSE at 4 spp: nearest {e_nearest:.4}, trilinear {e_trilinear:.4}");
     assert!(e_nearest > 0.01, "the test must alias: {e_nearest}");
     assert!(
@@ -193,8 +198,8 @@ fn a_flat_normal_map_changes_nothing_and_a_tilted_one_shades_in_closed_form() {
     plain = plain.replace("texture bumps", "texture unused");
     let flat = lit_plane("normal_map bumps").replace("1 x 1  samples 1", "8 x 8  samples 4");
     let (a, b) = (
-        pixels(&build_ok(&plain, &loader), 4),
-        pixels(&build_ok(&flat, &loader), 4),
+        pixels(&mut build_ok(&plain, &loader), 4),
+        pixels(&mut build_ok(&flat, &loader), 4),
     );
     for (x, y) in a.iter().zip(&b) {
         assert!(
@@ -210,7 +215,7 @@ fn a_flat_normal_map_changes_nothing_and_a_tilted_one_shades_in_closed_form() {
         let mut loader = MemLoader::new();
         loader.insert("n.exr", normal_exr(Vec3::new(th.sin(), 0.0, th.cos())));
         let src = lit_plane(&format!("normal_map bumps  normal_green {green}"));
-        let l = pixels(&build_ok(&src, &loader), 1)[0];
+        let l = pixels(&mut build_ok(&src, &loader), 1)[0];
         let wi = Vec3::new(1.0, 2.0, 0.0).normalize();
         let n = Vec3::new(th.sin(), th.cos(), 0.0);
         let expected = 0.5 / std::f32::consts::PI * 10.0 * n.dot(wi).max(0.0) / 5.0;
@@ -226,7 +231,7 @@ fn a_flat_normal_map_changes_nothing_and_a_tilted_one_shades_in_closed_form() {
     let light_along_v = |green: &str| {
         let src = lit_plane(&format!("normal_map bumps  normal_green {green}"))
             .replace("position (1, 2, 0)", "position (0, 2, -1)");
-        pixels(&build_ok(&src, &loader), 1)[0].x
+        pixels(&mut build_ok(&src, &loader), 1)[0].x
     };
     let (gl, dx) = (light_along_v("opengl"), light_along_v("directx"));
     let wi = Vec3::new(0.0, 2.0, -1.0).normalize();
@@ -255,8 +260,8 @@ object floor { material m }
 light bulb = point { position (0, 0.3, -6)  intensity 30 }
 render { resolution 16 x 8 }
 ";
-    let scene = build_ok(src, &loader);
-    let px = pixels(&scene, 4);
+    let mut scene = build_ok(src, &loader);
+    let px = pixels(&mut scene, 4);
     // The rows below the horizon see the floor; every one of their pixels is lit.
     for (i, p) in px.iter().enumerate().skip(16 * 5) {
         assert!(p.is_finite() && p.max_element() > 0.0, "pixel {i}: {p}");
@@ -266,7 +271,8 @@ render { resolution 16 x 8 }
 fn error_at(src: &str, loader: &MemLoader) -> Vec<(String, &'static str)> {
     let compiled = compile_source("scene.scn", src, loader);
     let desc = compiled.scene.as_ref().expect("compiles");
-    let diags = build(desc, &compiled.sources, loader, &BuildOptions::default())
+    let diags = build(desc, loader, &BuildOptions::default())
+        .into_result()
         .expect_err("the texture is bad");
     diags
         .iter()
@@ -330,11 +336,11 @@ render { resolution 4 x 4 }
 ";
     let (built, front) = try_build(src, &loader);
     assert!(front.contains("scnc::check::srgb_normal_map"), "{front}");
-    let scene = built.expect("warnings only");
-    let codes: Vec<&str> = scene.warnings.iter().map(|d| d.code).collect();
+    let (mut scene, warnings) = built.expect("warnings only");
+    let codes: Vec<&str> = warnings.iter().map(|d| d.code).collect();
     assert_eq!(codes, ["scnc::build::no_uvs"]);
     assert!(scene.tangents.iter().all(Vec::is_empty));
-    assert!(pixels(&scene, 1).iter().all(|p| p.is_finite()));
+    assert!(pixels(&mut scene, 1).iter().all(|p| p.is_finite()));
 }
 
 /// A PNG signature, an IHDR chunk claiming `w × h`, an empty IDAT and IEND.

@@ -38,9 +38,10 @@ fn build(text: &str, loader: &MemLoader, cache: Option<&mut BuildCache>) -> Scen
     let desc = compiled.scene.expect("the test scene compiles");
     let opts = BuildOptions::default();
     match cache {
-        Some(c) => scene::build_cached(&desc, &compiled.sources, loader, &opts, c),
-        None => scene::build(&desc, &compiled.sources, loader, &opts),
+        Some(c) => scene::build_cached(&desc, loader, &opts, c),
+        None => scene::build(&desc, loader, &opts),
     }
+    .value
     .expect("the test scene builds")
 }
 
@@ -112,14 +113,9 @@ fn only_what_changed_is_rebuilt() {
     let fresh = loader(&edited);
     let compiled = compile_source("s.scn", &text(2.0, 1.5), &fresh);
     let desc = compiled.scene.expect("compiles");
-    let s = scene::build_cached(
-        &desc,
-        &compiled.sources,
-        &fresh,
-        &BuildOptions::default(),
-        &mut cache,
-    )
-    .expect("builds");
+    let s = scene::build_cached(&desc, &fresh, &BuildOptions::default(), &mut cache)
+        .value
+        .expect("builds");
     assert_eq!(*cache.report(), report(0, 2, false));
     assert!(scnc::assets::Loader::recorded(&fresh).is_empty());
     cache.recycle(s);
@@ -138,14 +134,8 @@ fn a_failed_build_gives_its_meshes_back() {
     );
     let compiled = compile_source("s.scn", &broken, &l);
     let desc = compiled.scene.expect("the checker does not read files");
-    let r = scene::build_cached(
-        &desc,
-        &compiled.sources,
-        &l,
-        &BuildOptions::default(),
-        &mut cache,
-    );
-    assert!(r.is_err());
+    let r = scene::build_cached(&desc, &l, &BuildOptions::default(), &mut cache);
+    assert!(r.value.is_none());
     assert_eq!(cache.report().meshes_reused, 2);
     let s = build(&text(1.0, 1.0), &l, Some(&mut cache));
     assert_eq!(cache.report().meshes_reused, 2);

@@ -22,6 +22,7 @@ pub struct FsLoader {
 }
 
 impl FsLoader {
+    /// A loader that has recorded nothing yet.
     pub fn new() -> FsLoader {
         FsLoader::default()
     }
@@ -51,6 +52,7 @@ pub struct MemLoader {
 }
 
 impl MemLoader {
+    /// An empty in-memory loader; add files with [`MemLoader::insert`].
     pub fn new() -> MemLoader {
         MemLoader::default()
     }

@@ -15,6 +15,8 @@ pub struct BruteForce {
 }
 
 impl BruteForce {
+    /// Every placed triangle, transformed to world space. An instance naming a missing mesh
+    /// is skipped; an out-of-range vertex index becomes a NaN corner, which no ray hits.
     pub fn build(meshes: &[MeshRef<'_>], instances: &[Instance]) -> BruteForce {
         let mut out = BruteForce::default();
         for (i, inst) in instances.iter().enumerate() {
@@ -38,6 +40,7 @@ impl BruteForce {
         out
     }
 
+    /// The nearest hit with `0 < t < ray.t_max`, testing every triangle.
     pub fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
         let mut ray = *ray;
         let mut best = None;
@@ -57,12 +60,14 @@ impl BruteForce {
         best
     }
 
+    /// Whether any triangle is hit with `0 < t < ray.t_max`.
     pub fn any_hit(&self, ray: &Ray) -> bool {
         self.triangles
             .iter()
             .any(|[p0, p1, p2]| moller_trumbore(ray, *p0, *p1, *p2).is_some())
     }
 
+    /// Counts for `--stats`: no nodes, one entry per placed triangle.
     pub fn stats(&self) -> AccelStats {
         AccelStats {
             nodes: 0,

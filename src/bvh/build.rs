@@ -18,7 +18,9 @@ use crate::geom::Aabb;
 /// Bounds of one primitive (finite; callers drop primitives with non-finite bounds).
 #[derive(Debug, Clone, Copy)]
 pub struct PrimBox {
+    /// Lower corner.
     pub min: Vec3A,
+    /// Upper corner.
     pub max: Vec3A,
 }
 
@@ -38,12 +40,14 @@ impl PrimBox {
 #[repr(C, align(16))]
 pub struct PrimRef {
     min: [f32; 3],
+    /// The caller's index of the primitive (a triangle id, or an instance).
     pub id: u32,
     max: [f32; 3],
     _pad: u32,
 }
 
 impl PrimRef {
+    /// Packs `bounds` and `id` into 32 bytes.
     pub fn new(bounds: PrimBox, id: u32) -> PrimRef {
         PrimRef {
             min: bounds.min.to_array(),
@@ -53,6 +57,7 @@ impl PrimRef {
         }
     }
 
+    /// The bounds, unpacked.
     #[inline]
     pub fn bounds(&self) -> PrimBox {
         PrimBox {
@@ -66,7 +71,9 @@ impl PrimRef {
 /// which holds the caller's primitive indices.
 #[derive(Debug, Default)]
 pub struct Built {
+    /// Depth-first binary nodes, `nodes[0]` the root; empty when there were no primitives.
     pub nodes: Vec<Node>,
+    /// The callers' primitive ids in leaf order.
     pub order: Vec<u32>,
 }
 

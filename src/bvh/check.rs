@@ -140,6 +140,8 @@ pub fn check_mesh(bvh: &MeshBvh, parts: &[MeshRef<'_>], what: &str) -> Result<()
     })
 }
 
+/// Checks every bottom-level BVH against its meshes and the top level against the instances;
+/// the first broken invariant, described, if any.
 pub fn check_two_level(t: &TwoLevel, meshes: &[MeshRef<'_>]) -> Result<(), String> {
     for p in &t.placed {
         let bvh = &t.meshes[p.group as usize];

@@ -14,12 +14,17 @@ use crate::geom::{Aabb, Ray};
 /// The two ray–triangle tests, chosen once per query so each traversal loop is monomorphic
 /// (a private trait for static dispatch; the public choice is the `TriangleTest` enum).
 pub trait TriTest {
+    /// Per-ray constants, computed once per query.
     type Prepared: Copy;
+    /// Computes the per-ray constants of `ray`.
     fn prepare(ray: &Ray) -> Self::Prepared;
+    /// The hit on `tri` with `0 < t < t_max`, if any.
     fn test(pre: &Self::Prepared, t_max: f32, tri: &Tri) -> Option<TriangleHit>;
 }
 
+/// [`TriTest`] running [`moller_trumbore`].
 pub struct MollerTrumbore;
+/// [`TriTest`] running the watertight test ([`watertight_a`]).
 pub struct Watertight;
 
 impl TriTest for MollerTrumbore {
@@ -59,12 +64,17 @@ pub type Tri = [Vec3A; 3];
 /// A closest hit inside one bottom-level BVH: triangle `prim` of its mesh number `part`.
 #[derive(Debug, Clone, Copy)]
 pub struct MeshHit {
+    /// Which of the parts given to [`MeshBvh::build`] the triangle belongs to.
     pub part: u32,
+    /// Index into that part's `triangles`.
     pub prim: u32,
+    /// Barycentric weight of the triangle's second vertex.
     pub u: f32,
+    /// Barycentric weight of the triangle's third vertex.
     pub v: f32,
 }
 
+/// A bottom-level BVH over the triangles of one or more meshes, in their object space.
 #[derive(Debug, Default)]
 pub struct MeshBvh {
     pub(super) tree: Wide,
@@ -85,6 +95,18 @@ pub fn triangle_vertices(mesh: &MeshRef<'_>, t: &[u32; 3]) -> Option<[Vec3; 3]> 
             .filter(|p| p.is_finite())
     };
     Some([v(0)?, v(1)?, v(2)?])
+}
+
+/// The vertices of a triangle the builder ordered: [`MeshBvh::build`] gave the builder only
+/// triangles whose [`triangle_vertices`] is `Some`, and the mesh has not changed since.
+#[allow(
+    clippy::expect_used,
+    reason = "build() hands the builder only triangles whose triangle_vertices is Some, and \
+              the builder's order holds only those ids"
+)]
+fn builder_vertices(mesh: &MeshRef<'_>, t: &[u32; 3]) -> [Vec3; 3] {
+    triangle_vertices(mesh, t)
+        .expect("only triangles with valid vertices were given to the builder")
 }
 
 impl MeshBvh {
@@ -128,9 +150,7 @@ impl MeshBvh {
             .map(|&id| {
                 let (part, prim) = bvh.locate(id);
                 let mesh = &parts[part as usize];
-                triangle_vertices(mesh, &mesh.triangles[prim as usize])
-                    .expect("only triangles with valid vertices were given to the builder")
-                    .map(Vec3A::from)
+                builder_vertices(mesh, &mesh.triangles[prim as usize]).map(Vec3A::from)
             })
             .collect();
         bvh
@@ -145,14 +165,17 @@ impl MeshBvh {
         (part as u32, id - self.part_starts[part])
     }
 
+    /// Whether it holds no triangle (there were none, or none was valid).
     pub fn is_empty(&self) -> bool {
         self.tris.is_empty()
     }
 
+    /// Bounds of its triangles, object space; empty when it holds none.
     pub fn bounds(&self) -> Aabb {
         self.tree.root_bounds.unwrap_or(Aabb::EMPTY)
     }
 
+    /// Memory it holds, in bytes, for `--stats`.
     pub fn bytes(&self) -> usize {
         self.tree.nodes.len() * std::mem::size_of::<WideNode>()
             + self.tris.len() * std::mem::size_of::<Tri>()

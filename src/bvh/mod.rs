@@ -27,19 +27,25 @@ use crate::geom::Ray;
 /// The triangles of one mesh, in its own object space.
 #[derive(Debug, Clone, Copy)]
 pub struct MeshRef<'a> {
+    /// Vertex positions, object space.
     pub positions: &'a [Vec3],
+    /// Triangles as indices into `positions`; one out of range makes its triangle unhittable.
     pub triangles: &'a [[u32; 3]],
 }
 
 /// One placement of a mesh.
 #[derive(Debug, Clone, Copy)]
 pub struct Instance {
+    /// Index into the `meshes` given to [`Accel::build`].
     pub mesh: u32,
+    /// Maps the mesh's object space to world space.
     pub world_from_object: Affine3A,
+    /// The inverse of `world_from_object`, kept to bring world rays into object space.
     pub object_from_world: Affine3A,
 }
 
 impl Instance {
+    /// Places mesh `mesh` by `world_from_object`, inverting the transform once, here.
     pub fn new(mesh: u32, world_from_object: Affine3A) -> Instance {
         Instance {
             mesh,
@@ -53,17 +59,24 @@ impl Instance {
 /// `(u, v)` are the barycentrics of `triangles[prim]` of the instance's mesh.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hit {
+    /// Ray parameter of the hit, in multiples of the world ray's `dir`.
     pub t: f32,
+    /// Barycentric weight of the triangle's second vertex.
     pub u: f32,
+    /// Barycentric weight of the triangle's third vertex.
     pub v: f32,
+    /// Index into the `instances` given to [`Accel::build`].
     pub instance: u32,
+    /// Index into the `triangles` of that instance's mesh.
     pub prim: u32,
 }
 
+/// Which acceleration structure [`Accel::build`] makes (`--accel`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum AccelKind {
     /// No acceleration structure: every ray tests every triangle.
     None,
+    /// The two-level, 4-wide BVH: the fast path.
     Bvh,
 }
 
@@ -82,16 +95,22 @@ pub enum TriangleTest {
 /// everything the structure holds: nodes, leaf-ordered vertices, triangle ids and instances.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct AccelStats {
+    /// 4-wide nodes over both levels; 0 for brute force.
     pub nodes: usize,
+    /// Non-empty leaf children of those nodes; 0 for brute force.
     pub leaves: usize,
+    /// Triangles stored: the BVH counts each mesh once, brute force each placed copy.
     pub triangles: usize,
+    /// Memory the structure holds, in bytes.
     pub bytes: usize,
 }
 
 /// The acceleration structure over a whole scene.
 #[derive(Debug)]
 pub enum Accel {
+    /// Every ray against every world-space triangle (`--accel none`): the test oracle.
     None(BruteForce),
+    /// The two-level BVH.
     Bvh(TwoLevel),
 }
 
@@ -120,6 +139,7 @@ impl Accel {
         }
     }
 
+    /// The nearest hit with `0 < t < ray.t_max` (`ray` in world space), if any.
     pub fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
         match self {
             Accel::None(b) => b.closest_hit(ray),
@@ -135,6 +155,7 @@ impl Accel {
         }
     }
 
+    /// Sizes for `--stats`.
     pub fn stats(&self) -> AccelStats {
         match self {
             Accel::None(b) => b.stats(),

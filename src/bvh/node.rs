@@ -16,13 +16,18 @@ pub const MAX_DEPTH: usize = 96;
 #[derive(Debug, Clone, Copy, PartialEq, bytemuck::Zeroable, bytemuck::Pod)]
 #[repr(C)]
 pub struct Node {
+    /// Lower corner of the node's box.
     pub min: [f32; 3],
+    /// Interior: the second child's node index. Leaf: the first primitive's position in the order.
     pub index: u32,
+    /// Upper corner of the node's box.
     pub max: [f32; 3],
+    /// `count << 2 | split axis`; `count == 0` marks an interior node.
     pub meta: u32,
 }
 
 impl Node {
+    /// A leaf of `count` (1 to [`MAX_LEAF`]) primitives starting at `first`.
     pub fn leaf(b: &Aabb, first: u32, count: u32) -> Node {
         debug_assert!(count > 0 && count <= MAX_LEAF);
         Node {
@@ -33,6 +38,7 @@ impl Node {
         }
     }
 
+    /// An interior node split on `axis` (0, 1, 2), whose second child is node `right`.
     pub fn interior(b: &Aabb, right: u32, axis: usize) -> Node {
         Node {
             min: b.min.to_array(),
@@ -42,16 +48,19 @@ impl Node {
         }
     }
 
+    /// Primitives in a leaf; 0 for an interior node.
     #[inline]
     pub fn count(&self) -> u32 {
         self.meta >> 2
     }
 
+    /// Whether the node is a leaf (it names at least one primitive).
     #[inline]
     pub fn is_leaf(&self) -> bool {
         self.count() > 0
     }
 
+    /// The node's box.
     pub fn bounds(&self) -> Aabb {
         Aabb {
             min: Vec3::from_array(self.min),

@@ -29,6 +29,7 @@ pub(super) struct Placed {
     pub world_bounds: Aabb,
 }
 
+/// The two-level acceleration structure: instances over shared per-mesh BVHs.
 #[derive(Debug)]
 pub struct TwoLevel {
     /// Bottom-level BVHs: one per mesh that some non-merged instance places (empty for the
@@ -49,66 +50,107 @@ fn finite_affine(m: &Affine3A) -> bool {
     m.matrix3.is_finite() && m.translation.is_finite()
 }
 
+/// What the build does with an instance.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Role {
+    /// Its mesh does not exist or its transform is not finite: left out.
+    Invalid,
+    /// An identity placement of a mesh placed once: its triangles join the merged group.
+    Merged,
+    /// Traced through its mesh's own bottom-level BVH.
+    Own,
+}
+
+fn is_identity(inst: &Instance) -> bool {
+    inst.world_from_object == Affine3A::IDENTITY && inst.object_from_world == Affine3A::IDENTITY
+}
+
+/// Each instance's [`Role`].
+fn roles(meshes: &[MeshRef<'_>], instances: &[Instance]) -> Vec<Role> {
+    let valid = |inst: &Instance| {
+        (inst.mesh as usize) < meshes.len()
+            && finite_affine(&inst.world_from_object)
+            && finite_affine(&inst.object_from_world)
+    };
+    let mut placements = vec![0u32; meshes.len()];
+    for inst in instances.iter().filter(|i| valid(i)) {
+        placements[inst.mesh as usize] += 1;
+    }
+    instances
+        .iter()
+        .map(|inst| {
+            if !valid(inst) {
+                Role::Invalid
+            } else if is_identity(inst) && placements[inst.mesh as usize] == 1 {
+                Role::Merged
+            } else {
+                Role::Own
+            }
+        })
+        .collect()
+}
+
+/// One BVH per mesh that some [`Role::Own`] instance places (empty for the others; each built
+/// once however often placed), then the merged group's, built in parallel.
+fn bottom_levels(
+    meshes: &[MeshRef<'_>],
+    instances: &[Instance],
+    roles: &[Role],
+    merged_instances: &[u32],
+) -> Vec<MeshBvh> {
+    let mut own = vec![false; meshes.len()];
+    for (inst, _) in instances
+        .iter()
+        .zip(roles)
+        .filter(|(_, r)| **r == Role::Own)
+    {
+        own[inst.mesh as usize] = true;
+    }
+    let mut jobs: Vec<Vec<MeshRef<'_>>> = meshes
+        .iter()
+        .zip(&own)
+        .map(|(m, &o)| if o { vec![*m] } else { Vec::new() })
+        .collect();
+    jobs.push(
+        merged_instances
+            .iter()
+            .map(|&i| meshes[instances[i as usize].mesh as usize])
+            .collect(),
+    );
+    jobs.par_iter().map(|parts| MeshBvh::build(parts)).collect()
+}
+
+/// Instance `index` through its mesh's own BVH; `None` if that is empty or its world bounds
+/// are not finite.
+fn own_placement(bvh: &MeshBvh, index: usize, inst: &Instance) -> Option<Placed> {
+    let world_bounds = bvh.bounds().transformed(&inst.world_from_object);
+    let ok = !bvh.is_empty() && world_bounds.min.is_finite() && world_bounds.max.is_finite();
+    ok.then(|| Placed {
+        group: inst.mesh,
+        index: index as u32,
+        merged: false,
+        object_from_world: inst.object_from_world,
+        identity: is_identity(inst),
+        world_bounds,
+    })
+}
+
 impl TwoLevel {
     /// Identity instances of meshes placed only once are merged into one bottom-level BVH (no
     /// triangle is stored twice, and a ray then traverses one tree instead of several that
     /// overlap); every other mesh gets its own BVH, shared by all its instances.
     pub fn build(meshes: &[MeshRef<'_>], instances: &[Instance], test: TriangleTest) -> TwoLevel {
-        let valid = |inst: &Instance| {
-            (inst.mesh as usize) < meshes.len()
-                && finite_affine(&inst.world_from_object)
-                && finite_affine(&inst.object_from_world)
-        };
-        let mut placements = vec![0u32; meshes.len()];
-        for inst in instances.iter().filter(|i| valid(i)) {
-            placements[inst.mesh as usize] += 1;
-        }
-        let is_identity = |inst: &Instance| {
-            inst.world_from_object == Affine3A::IDENTITY
-                && inst.object_from_world == Affine3A::IDENTITY
-        };
-        let merge = |inst: &Instance| {
-            valid(inst) && is_identity(inst) && placements[inst.mesh as usize] == 1
-        };
+        let roles = roles(meshes, instances);
         let merged_instances: Vec<u32> = (0..instances.len() as u32)
-            .filter(|&i| merge(&instances[i as usize]))
+            .filter(|&i| roles[i as usize] == Role::Merged)
             .collect();
-        let mut own = vec![false; meshes.len()];
-        for inst in instances.iter().filter(|i| valid(i) && !merge(i)) {
-            own[inst.mesh as usize] = true;
-        }
-        // Only meshes some instance places are built; each once, however often placed.
-        let mut jobs: Vec<Vec<MeshRef<'_>>> = meshes
-            .iter()
-            .zip(&own)
-            .map(|(m, &o)| if o { vec![*m] } else { Vec::new() })
-            .collect();
-        jobs.push(
-            merged_instances
-                .iter()
-                .map(|&i| meshes[instances[i as usize].mesh as usize])
-                .collect(),
-        );
-        let bvhs: Vec<MeshBvh> = jobs.par_iter().map(|parts| MeshBvh::build(parts)).collect();
+        let bvhs = bottom_levels(meshes, instances, &roles, &merged_instances);
         let merged_group = meshes.len() as u32;
         let mut placed: Vec<Placed> = instances
             .iter()
             .enumerate()
-            .filter(|(_, inst)| valid(inst) && !merge(inst))
-            .filter_map(|(i, inst)| {
-                let bvh = &bvhs[inst.mesh as usize];
-                let world_bounds = bvh.bounds().transformed(&inst.world_from_object);
-                let ok =
-                    !bvh.is_empty() && world_bounds.min.is_finite() && world_bounds.max.is_finite();
-                ok.then(|| Placed {
-                    group: inst.mesh,
-                    index: i as u32,
-                    merged: false,
-                    object_from_world: inst.object_from_world,
-                    identity: is_identity(inst),
-                    world_bounds,
-                })
-            })
+            .filter(|(i, _)| roles[*i] == Role::Own)
+            .filter_map(|(i, inst)| own_placement(&bvhs[inst.mesh as usize], i, inst))
             .collect();
         let merged = &bvhs[merged_group as usize];
         if !merged.is_empty() {
@@ -213,6 +255,7 @@ impl TwoLevel {
         })
     }
 
+    /// The nearest hit along `ray` before its `t_max` (none for a non-finite ray).
     pub fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
         if !(ray.origin.is_finite() && ray.dir.is_finite()) || ray.t_max.is_nan() {
             return None;
@@ -223,6 +266,7 @@ impl TwoLevel {
         }
     }
 
+    /// Whether anything blocks `ray` before its `t_max` (shadow rays).
     pub fn any_hit(&self, ray: &Ray) -> bool {
         if !(ray.origin.is_finite() && ray.dir.is_finite()) || ray.t_max.is_nan() {
             return false;
@@ -233,6 +277,7 @@ impl TwoLevel {
         }
     }
 
+    /// Node, leaf and triangle counts and memory, for `--stats`.
     pub fn stats(&self) -> AccelStats {
         let leaves = |w: &Wide| {
             let inner: usize = w

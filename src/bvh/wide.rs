@@ -18,8 +18,11 @@ pub const WIDTH: usize = 4;
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(C, align(64))]
 pub struct WideNode {
+    /// The children's boxes: rows min x, y, z, max x, y, z; one lane per child.
     pub bounds: [[f32; WIDTH]; 6],
+    /// Node index (interior child) or first primitive (leaf child); `u32::MAX` in an unused lane.
     pub child: [u32; WIDTH],
+    /// Primitives of a leaf child; 0 for an interior child or an unused lane.
     pub count: [u32; WIDTH],
 }
 
@@ -42,6 +45,7 @@ impl WideNode {
         self.child[k] != u32::MAX
     }
 
+    /// Lane `k`'s box (empty for an unused lane).
     pub fn child_bounds(&self, k: usize) -> Aabb {
         let b = &self.bounds;
         Aabb {
@@ -54,10 +58,13 @@ impl WideNode {
 /// A wide hierarchy. A tree that is a single leaf has no nodes and `root_count > 0`.
 #[derive(Debug, Default, Clone)]
 pub struct Wide {
+    /// Depth-first nodes, `nodes[0]` the root; empty when the whole tree is one leaf or nothing.
     pub nodes: Vec<WideNode>,
     /// The root as a child reference: node 0 (`root_count == 0`) or a leaf.
     pub root_first: u32,
+    /// Primitives of the root when it is a leaf; 0 when the root is node 0.
     pub root_count: u32,
+    /// Bounds of the whole tree; `None` when it holds nothing.
     pub root_bounds: Option<Aabb>,
     /// Most traversal stack entries any ray can need: the largest sum over a root-to-leaf
     /// path of (children − 1). Picks the smallest fixed stack that fits.
@@ -152,6 +159,7 @@ pub struct WideRay {
 const EXIT_SLACK: f32 = 1.0 + 3.0 * f32::EPSILON / (1.0 - 1.5 * f32::EPSILON);
 
 impl WideRay {
+    /// Prepares `ray` for the slab tests, once per query.
     pub fn new(ray: &Ray) -> WideRay {
         let inv = |d: f32| {
             let i = 1.0 / d;

@@ -28,7 +28,7 @@ pub use eval::FUNCTIONS;
 
 use std::collections::HashMap;
 
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, Staged};
 use crate::ir;
 use crate::source::{SourceMap, Span};
 use crate::syntax::{Decl, DeclKind, Stmt};
@@ -144,7 +144,7 @@ impl<'s> Checker<'s> {
 
 /// Checks parsed statements (every file's, includes expanded in place, in order) and lowers
 /// them into the IR. `sources` gives file paths for resolving relative asset paths.
-pub fn check(statements: &[Stmt], sources: &SourceMap) -> (Option<ir::SceneDesc>, Vec<Diagnostic>) {
+pub fn check(statements: &[Stmt], sources: &SourceMap) -> Staged<ir::SceneDesc> {
     let mut cx = Checker::new(sources);
     let mut decls: [Vec<&Decl>; 4] = Default::default();
     let mut renders = Vec::new();
@@ -215,8 +215,7 @@ pub fn check(statements: &[Stmt], sources: &SourceMap) -> (Option<ir::SceneDesc>
     let settings = cx.render(renders.first().map(|(b, s)| (*b, *s)));
     let scene = cx.finish(settings);
     let failed = cx.diags.iter().any(Diagnostic::is_error);
-    let diags = cx.diags;
-    (scene.filter(|_| !failed), diags)
+    Staged::new(scene.filter(|_| !failed), cx.diags)
 }
 
 impl Checker<'_> {

@@ -9,52 +9,49 @@ use std::process::ExitCode;
 
 use clap::Args;
 
-use super::report::{print_diagnostic_list, DiagArgs, DiagnosticFormat, JsonTo, SceneArg};
+use super::report::{report, strict, DiagArgs, DiagnosticFormat, JsonTo, SceneArg};
 use crate::assets::FsLoader;
 use crate::bvh::AccelKind;
-use crate::compile::compile_file;
-use crate::diag::render_json;
+use crate::compile::compile;
+use crate::diag::{render_json, Staged};
 use crate::scene::{self, BuildOptions};
+use crate::source::SourceMap;
 
+/// `scnc check`'s arguments.
 #[derive(Debug, Clone, Args)]
 pub struct CheckArgs {
+    /// The scene file.
     #[command(flatten)]
     pub scene: SceneArg,
     /// Compile only: skip reading and validating meshes, maps and textures.
     #[arg(long)]
     pub compile_only: bool,
+    /// Diagnostic format and `--strict`.
     #[command(flatten)]
     pub diag: DiagArgs,
 }
 
+/// `scnc check`: compile, build (unless `--compile-only`), report.
 pub fn run(args: &CheckArgs) -> ExitCode {
     let loader = FsLoader::new();
-    let compiled = compile_file(&args.scene.file, &loader);
-    let mut diagnostics = compiled.diagnostics.clone();
-    if let (Some(desc), false) = (&compiled.scene, args.compile_only) {
-        let options = BuildOptions {
-            accel: AccelKind::None,
-            camera: None,
-        };
-        match scene::build(desc, &compiled.sources, &loader, &options) {
-            Ok(scene) => diagnostics.extend(scene.warnings),
-            Err(problems) => diagnostics.extend(problems),
+    let mut sources = SourceMap::new();
+    let options = BuildOptions {
+        accel: AccelKind::None,
+        camera: None,
+    };
+    let checked = compile(&args.scene.file, &loader, &mut sources).and_then(|desc| {
+        if args.compile_only {
+            return Staged::ok(());
         }
-    }
-    if args.diag.strict {
-        super::report::promote_warnings(&mut diagnostics);
-    }
+        scene::build(&desc, &loader, &options).map(|_| ())
+    });
+    let checked = strict(checked, &args.diag);
     match args.diag.diagnostic_format {
         // The JSON document is the command's output: printed even when it lists nothing.
-        DiagnosticFormat::Json => println!("{}", render_json(&diagnostics, &compiled.sources)),
-        DiagnosticFormat::Human => print_diagnostic_list(
-            &diagnostics,
-            &compiled.sources,
-            DiagnosticFormat::Human,
-            JsonTo::Stdout,
-        ),
+        DiagnosticFormat::Json => println!("{}", render_json(&checked.diagnostics, &sources)),
+        DiagnosticFormat::Human => report(&checked, &sources, &args.diag, JsonTo::Stdout),
     }
-    if diagnostics.iter().any(|d| d.is_error()) {
+    if checked.has_errors() {
         ExitCode::FAILURE
     } else {
         ExitCode::SUCCESS

@@ -17,9 +17,10 @@ use crate::assets::obj::phong::{default_phong, phong_of, renders_map, ObjPhong};
 use crate::assets::obj::report::{error_diagnostic, mtl_display_name, warning_diagnostics};
 use crate::assets::obj::{load_obj, LoadedObj};
 use crate::assets::{FsLoader, Loader};
-use crate::diag::{Diagnostic, Severity};
+use crate::diag::{Diagnostic, Staged};
 use crate::source::SourceMap;
 
+/// `scnc inspect`'s arguments.
 #[derive(Debug, Clone, Args)]
 pub struct InspectArgs {
     /// The OBJ file.
@@ -36,52 +37,58 @@ pub struct InspectArgs {
     pub no_mtl: bool,
 }
 
+/// `scnc inspect`: load the OBJ, print its summary, then report its diagnostics once.
 pub fn run(args: &InspectArgs) -> ExitCode {
-    let loader = FsLoader::new();
     let shown = args.file.display().to_string();
-    let sources = SourceMap::new();
-    let format = if args.json {
-        DiagnosticFormat::Json
-    } else {
-        DiagnosticFormat::Human
-    };
-    let bytes = match loader.read(&args.file) {
-        Ok(b) => b,
-        Err(e) => {
-            let d = Diagnostic::error(
-                "scnc::inspect::read_failed",
-                format!("cannot read `{shown}`: {e}"),
-            );
-            print_diagnostic_list(&[d], &sources, DiagnosticFormat::Human, JsonTo::Stderr);
-            return ExitCode::FAILURE;
-        }
-    };
-    let loaded = match load_obj(&args.file, bytes.clone(), !args.no_mtl, &loader) {
-        Ok(l) => l,
-        Err(e) => {
-            let d = error_diagnostic(&e, &shown, &bytes, None);
-            print_diagnostic_list(&[d], &sources, DiagnosticFormat::Human, JsonTo::Stderr);
-            return ExitCode::FAILURE;
-        }
-    };
-    let mut warnings = warning_diagnostics(&loaded, &shown, None);
+    let mut loaded = load(args, &shown);
     if args.strict {
-        super::report::promote_warnings(&mut warnings);
+        super::report::promote_warnings(&mut loaded.diagnostics);
     }
-    let summary = summarise(&loaded, &shown, &warnings);
-    if format == DiagnosticFormat::Json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&summary).unwrap_or_default()
-        );
-    } else {
-        print!("{}", human(&summary));
+    if let Some(obj) = &loaded.value {
+        let summary = summarise(obj, &shown, &loaded.diagnostics);
+        if args.json {
+            println!(
+                "{}",
+                serde_json::to_string_pretty(&summary).unwrap_or_default()
+            );
+        } else {
+            print!("{}", human(&summary));
+        }
     }
-    print_diagnostic_list(&warnings, &sources, DiagnosticFormat::Human, JsonTo::Stderr);
-    if warnings.iter().any(|d| d.severity == Severity::Error) {
+    // The OBJ and MTL lines are labelled inside each diagnostic: no `.scn` sources.
+    let sources = SourceMap::new();
+    print_diagnostic_list(
+        &loaded.diagnostics,
+        &sources,
+        DiagnosticFormat::Human,
+        JsonTo::Stderr,
+    );
+    if loaded.value.is_none() || loaded.has_errors() {
         ExitCode::FAILURE
     } else {
         ExitCode::SUCCESS
+    }
+}
+
+/// Reads and parses the OBJ (and, unless `--no-mtl`, its material libraries): the model with
+/// its warnings, or the one error that stopped it.
+fn load(args: &InspectArgs, shown: &str) -> Staged<LoadedObj> {
+    let loader = FsLoader::new();
+    let bytes = match loader.read(&args.file) {
+        Ok(b) => b,
+        Err(e) => {
+            return Staged::failed(vec![Diagnostic::error(
+                "scnc::inspect::read_failed",
+                format!("cannot read `{shown}`: {e}"),
+            )])
+        }
+    };
+    match load_obj(&args.file, bytes.clone(), !args.no_mtl, &loader) {
+        Ok(loaded) => {
+            let warnings = warning_diagnostics(&loaded, shown, None);
+            Staged::new(Some(loaded), warnings)
+        }
+        Err(e) => Staged::failed(vec![error_diagnostic(&e, shown, &bytes, None)]),
     }
 }
 

@@ -5,19 +5,31 @@ use std::process::ExitCode;
 
 use clap::Args;
 
-use super::report::{compile_and_report, DiagArgs, JsonTo, SceneArg};
+use super::report::{report, strict, DiagArgs, JsonTo, SceneArg};
+use crate::assets::FsLoader;
+use crate::compile::compile;
+use crate::source::SourceMap;
 
+/// `scnc ir`'s arguments.
 #[derive(Debug, Clone, Args)]
 pub struct IrArgs {
+    /// The scene file.
     #[command(flatten)]
     pub scene: SceneArg,
+    /// Diagnostic format and `--strict`.
     #[command(flatten)]
     pub diag: DiagArgs,
 }
 
+/// `scnc ir`: compile, report, print the IR.
 pub fn run(args: &IrArgs) -> ExitCode {
-    let compiled = compile_and_report(&args.scene.file, &args.diag, JsonTo::Stderr);
-    match &compiled.scene {
+    let mut sources = SourceMap::new();
+    let compiled = strict(
+        compile(&args.scene.file, &FsLoader::new(), &mut sources),
+        &args.diag,
+    );
+    report(&compiled, &sources, &args.diag, JsonTo::Stderr);
+    match &compiled.value {
         Some(scene) => match serde_json::to_string_pretty(scene) {
             Ok(json) => {
                 println!("{json}");

@@ -23,19 +23,19 @@ pub use check::CheckArgs;
 pub use inspect::InspectArgs;
 pub use ir::IrArgs;
 pub use render::{AccelArg, RenderArgs};
-pub use report::{
-    compile_and_report, print_diagnostics, DiagArgs, DiagnosticFormat, JsonTo, SceneArg,
-};
+pub use report::{DiagArgs, DiagnosticFormat, JsonTo, SceneArg};
 pub use watch::WatchArgs;
 
 /// scnc: a declarative scene-language compiler and ray tracer.
 #[derive(Debug, Parser)]
 #[command(name = "scnc", version, about)]
 pub struct Cli {
+    /// What to do.
     #[command(subcommand)]
     pub command: Command,
 }
 
+/// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Check a scene: report every error and warning (exit 0 clean, 1 on errors).
@@ -58,6 +58,7 @@ pub fn main() -> ExitCode {
     run(Cli::parse())
 }
 
+/// Runs a parsed command line.
 pub fn run(cli: Cli) -> ExitCode {
     match cli.command {
         Command::Check(args) => check::run(&args),

@@ -8,8 +8,11 @@
 //! from the command line). `--noise` (or the scene's `noise`) samples adaptively; `--spp` on the
 //! command line turns the scene's adaptive sampling off.
 //!
-//! Compiles (printing every diagnostic as `scnc check` does), builds the scene, renders with a
-//! progress bar when stderr is a terminal, and writes each output atomically. Ctrl-C cancels the
+//! The precedence is implemented once, in `ir::RenderSettings::resolve`, before the build.
+//!
+//! Compiles, builds the scene, renders with a progress bar when stderr is a terminal, and
+//! writes each output atomically; then prints every diagnostic of the chain in one list (as
+//! `scnc check` does). Ctrl-C cancels the
 //! render at the next tile and writes nothing, so the previous image survives.
 
 use std::io::IsTerminal;
@@ -21,15 +24,18 @@ use std::time::{Duration, Instant};
 
 use clap::{Args, ValueEnum};
 
-use super::report::{compile_and_report, print_diagnostic_list, DiagArgs, JsonTo, SceneArg};
+use super::report::{exit_code, report, strict, DiagArgs, JsonTo, SceneArg};
 use super::stats::PhaseStats;
 use crate::assets::FsLoader;
 use crate::bvh::AccelKind;
 use crate::cli::targets::{camera_index, output_targets};
+use crate::compile::compile;
+use crate::diag::{Diagnostic, Staged};
 use crate::film::{self, WriteSettings};
-use crate::ir::{self, Quality};
-use crate::render::{self, RenderOptions};
-use crate::scene::{self, BuildOptions};
+use crate::ir::{self, Quality, SettingFlags};
+use crate::render::{self, RenderOptions, RenderStats};
+use crate::scene::{self, BuildOptions, Scene};
+use crate::source::SourceMap;
 
 /// Which acceleration structure traces the rays.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
@@ -41,8 +47,10 @@ pub enum AccelArg {
     None,
 }
 
+/// `scnc render`'s arguments.
 #[derive(Debug, Clone, Args)]
 pub struct RenderArgs {
+    /// The scene file.
     #[command(flatten)]
     pub scene: SceneArg,
     /// Output image; the format follows the extension (.png, .exr, .hdr, .pfm). Default: the
@@ -83,12 +91,17 @@ pub struct RenderArgs {
     /// Print phase times, ray counts, Mrays/s, BVH size and peak memory.
     #[arg(long)]
     pub stats: bool,
+    /// Diagnostic format and `--strict`.
     #[command(flatten)]
     pub diag: DiagArgs,
 }
 
 /// `--quality`: the presets of `render { quality … }`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+#[allow(
+    missing_docs,
+    reason = "clap would print variant docs in --help; the flag's doc describes the presets"
+)]
 pub enum QualityArg {
     Draft,
     Preview,
@@ -96,6 +109,7 @@ pub enum QualityArg {
 }
 
 impl QualityArg {
+    /// The preset it names.
     pub fn preset(self) -> Quality {
         match self {
             QualityArg::Draft => Quality::Draft,
@@ -151,74 +165,87 @@ pub(super) fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
     Ok((side(w)?, side(h)?))
 }
 
+/// `scnc render`: resolve the settings, compile, build, render, write; then report every
+/// diagnostic of the chain once.
 pub fn run(args: &RenderArgs) -> ExitCode {
+    let loader = FsLoader::new();
+    let mut sources = SourceMap::new();
     let mut phases = PhaseStats::default();
     let t = Instant::now();
-    let compiled = compile_and_report(&args.scene.file, &args.diag, JsonTo::Stdout);
+    let compiled = strict(compile(&args.scene.file, &loader, &mut sources), &args.diag);
     phases.compile = t.elapsed();
-    let Some(mut desc) = compiled.scene else {
-        return ExitCode::FAILURE;
-    };
+    let built = compiled
+        .and_then(|desc| resolve(args, desc))
+        .and_then(|(desc, options)| scene::build(&desc, &loader, &options).map(|s| (desc, s)));
+    let finished = strict(built, &args.diag)
+        .and_then(|(desc, scene)| render_and_write(args, &desc, scene, &mut phases));
+    report(&finished, &sources, &args.diag, JsonTo::Stdout);
+    match &finished.value {
+        Some(Finished::Cancelled) => {
+            eprintln!("render cancelled; no image written");
+            ExitCode::from(130)
+        }
+        Some(Finished::Rendered(scene, stats, written)) => {
+            for line in written {
+                eprintln!("{line}");
+            }
+            if stats.noise.target.is_some() {
+                eprintln!("{}", stats.noise.summary());
+            }
+            if args.stats {
+                eprintln!("{}", phases.report(scene, stats));
+            }
+            exit_code(&finished)
+        }
+        None => ExitCode::FAILURE,
+    }
+}
+
+/// How a render that got as far as the renderer ended.
+enum Finished {
+    /// Rendered, with a line per file written (the write's diagnostics say why any other
+    /// was not).
+    Rendered(Box<Scene>, RenderStats, Vec<String>),
+    /// Ctrl-C: nothing written.
+    Cancelled,
+}
+
+/// The command line's settings into the scene, before anything is built: `--camera` (a
+/// diagnostic if the scene has no such camera), `--accel`, and the render settings.
+fn resolve(args: &RenderArgs, mut desc: ir::SceneDesc) -> Staged<(ir::SceneDesc, BuildOptions)> {
     let camera = match args.camera.as_deref().map(|name| camera_index(&desc, name)) {
         None => None,
         Some(Ok(i)) => Some(i),
-        Some(Err(d)) => {
-            print_diagnostic_list(
-                &[*d],
-                &compiled.sources,
-                args.diag.diagnostic_format,
-                JsonTo::Stdout,
-            );
-            return ExitCode::FAILURE;
-        }
+        Some(Err(d)) => return Staged::failed(vec![*d]),
     };
-    if let Some((w, h)) = args.resolution {
-        desc.render.width = w;
-        desc.render.height = h;
-    }
-    apply_sampling_flags(args, &mut desc.render);
+    desc.render.resolve(&setting_flags(args));
     let accel = match args.accel {
         AccelArg::Bvh => AccelKind::Bvh,
         AccelArg::None => AccelKind::None,
     };
-    let loader = FsLoader::new();
-    let built = scene::build(
-        &desc,
-        &compiled.sources,
-        &loader,
-        &BuildOptions { accel, camera },
-    );
-    let scene = match built {
-        Ok(mut scene) if args.diag.strict && !scene.warnings.is_empty() => {
-            super::report::promote_warnings(&mut scene.warnings);
-            print_diagnostic_list(
-                &scene.warnings,
-                &compiled.sources,
-                args.diag.diagnostic_format,
-                JsonTo::Stdout,
-            );
-            return ExitCode::FAILURE;
-        }
-        Ok(scene) => scene,
-        Err(diags) => {
-            print_diagnostic_list(
-                &diags,
-                &compiled.sources,
-                args.diag.diagnostic_format,
-                JsonTo::Stdout,
-            );
-            return ExitCode::FAILURE;
-        }
-    };
-    print_diagnostic_list(
-        &scene.warnings,
-        &compiled.sources,
-        args.diag.diagnostic_format,
-        JsonTo::Stdout,
-    );
+    Staged::ok((desc, BuildOptions { accel, camera }))
+}
+
+/// The render settings the flags give (see `ir::RenderSettings::resolve` for the precedence).
+fn setting_flags(args: &RenderArgs) -> SettingFlags {
+    SettingFlags {
+        resolution: args.resolution,
+        quality: args.quality.map(QualityArg::preset),
+        spp: args.spp,
+        noise: args.noise,
+        max_samples: args.max_samples,
+    }
+}
+
+/// Renders (Ctrl-C cancels at the next tile) and writes every output and the variance image.
+fn render_and_write(
+    args: &RenderArgs,
+    desc: &ir::SceneDesc,
+    scene: Scene,
+    phases: &mut PhaseStats,
+) -> Staged<Finished> {
     phases.asset_load = scene.timings.asset_load;
     phases.accel_build = scene.timings.accel_build;
-
     let cancel = Arc::new(AtomicBool::new(false));
     {
         let cancel = cancel.clone();
@@ -227,7 +254,6 @@ pub fn run(args: &RenderArgs) -> ExitCode {
         let _ = ctrlc::set_handler(move || cancel.store(true, Ordering::Relaxed));
     }
     let options = RenderOptions {
-        spp: args.spp,
         threads: args.threads,
     };
     let bar = progress_bar();
@@ -240,81 +266,49 @@ pub fn run(args: &RenderArgs) -> ExitCode {
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
-    let render::Rendered {
-        film,
-        std_error,
-        stats: render_stats,
-    } = match rendered {
-        Ok(r) => r,
-        Err(render::Cancelled) => {
-            eprintln!("render cancelled; no image written");
-            return ExitCode::from(130);
-        }
+    let Ok(rendered) = rendered else {
+        return Staged::ok(Finished::Cancelled);
     };
-    phases.render = render_stats.wall;
-
+    phases.render = rendered.stats.wall;
     let t = Instant::now();
+    let (written, diagnostics) = write_outputs(args, desc, &scene, &rendered);
+    phases.write = t.elapsed();
+    Staged::new(
+        Some(Finished::Rendered(Box::new(scene), rendered.stats, written)),
+        diagnostics,
+    )
+}
+
+/// Writes the image to every output target and the standard error to `--variance-out`;
+/// returns a line per file written and the diagnostics of the writes that failed (the others
+/// still happen).
+fn write_outputs(
+    args: &RenderArgs,
+    desc: &ir::SceneDesc,
+    scene: &Scene,
+    rendered: &render::Rendered,
+) -> (Vec<String>, Vec<Diagnostic>) {
     let settings = WriteSettings::from_render(&scene.settings);
-    let mut failed = false;
-    for (path, span) in output_targets(args.output.as_deref(), &args.scene.file, &desc) {
-        match film::write(&film, &path, &settings) {
-            Ok(()) => eprintln!("wrote {}", path.display()),
-            Err(e) => {
-                failed = true;
-                let d = e.to_diagnostic(span);
-                print_diagnostic_list(
-                    &[d],
-                    &compiled.sources,
-                    args.diag.diagnostic_format,
-                    JsonTo::Stdout,
-                );
-            }
+    let (mut lines, mut diagnostics) = (Vec::new(), Vec::new());
+    for (path, span) in output_targets(args.output.as_deref(), &args.scene.file, desc) {
+        let written = film::write(&rendered.film, &path, &settings, span);
+        if written.value.is_some() {
+            lines.push(format!("wrote {}", path.display()));
         }
+        diagnostics.extend(written.diagnostics);
     }
     if let Some(path) = &args.variance_out {
         // Float formats store the values as they are: the settings only matter for PNG.
-        match film::write(&std_error, path, &WriteSettings::default()) {
-            Ok(()) => eprintln!("wrote {} (standard error of each pixel)", path.display()),
-            Err(e) => {
-                failed = true;
-                print_diagnostic_list(
-                    &[e.to_diagnostic(None)],
-                    &compiled.sources,
-                    args.diag.diagnostic_format,
-                    JsonTo::Stdout,
-                );
-            }
+        let written = film::write(&rendered.std_error, path, &WriteSettings::default(), None);
+        if written.value.is_some() {
+            lines.push(format!(
+                "wrote {} (standard error of each pixel)",
+                path.display()
+            ));
         }
+        diagnostics.extend(written.diagnostics);
     }
-    phases.write = t.elapsed();
-    if render_stats.noise.target.is_some() {
-        eprintln!("{}", render_stats.noise.summary());
-    }
-    if args.stats {
-        eprintln!("{}", phases.report(&scene, &render_stats));
-    }
-    if failed {
-        ExitCode::FAILURE
-    } else {
-        ExitCode::SUCCESS
-    }
-}
-
-/// `--quality`, `--noise`, `--max-samples` into the scene's settings (`--spp` stays a render
-/// option: `scnc watch` overrides the count per pass the same way).
-fn apply_sampling_flags(args: &RenderArgs, settings: &mut ir::RenderSettings) {
-    if let Some(q) = args.quality {
-        settings.apply_quality(q.preset());
-    }
-    if args.spp.is_some() {
-        settings.noise = None;
-    }
-    if let Some(e) = args.noise {
-        settings.noise = Some(e);
-    }
-    if let Some(n) = args.max_samples {
-        settings.max_samples = Some(n);
-    }
+    (lines, diagnostics)
 }
 
 fn progress_bar() -> Option<indicatif::ProgressBar> {

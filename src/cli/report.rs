@@ -1,18 +1,19 @@
-//! Shared by every subcommand: compile a file and print its diagnostics in the chosen format.
+//! Shared by every subcommand: the diagnostic options, `--strict`, and reporting what a chain
+//! of stages (each returning [`Staged`]) accumulated, once, in the chosen format.
 //!
 //! Human format: miette's fancy rendering when stderr is a terminal, the plain renderer
 //! otherwise (no escape codes in logs). JSON: one document on stdout.
 
 use std::io::IsTerminal;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
+use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
 
-use crate::assets::FsLoader;
-use crate::compile::{compile_file, Compiled};
-use crate::diag::{render_fancy, render_json, render_plain, summary, Diagnostic};
+use crate::diag::{render_fancy, render_json, render_plain, summary, Diagnostic, Staged};
 use crate::source::SourceMap;
 
+/// `--diagnostic-format`: how errors and warnings are printed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum, Default)]
 pub enum DiagnosticFormat {
     /// Readable text (colours on a terminal).
@@ -56,28 +57,43 @@ pub struct SceneArg {
 /// stderr for commands whose stdout is something else (`ir`, `render`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum JsonTo {
+    /// Standard output.
     Stdout,
+    /// Standard error.
     Stderr,
 }
 
-/// Compiles `path` from disk and prints its diagnostics (human format: to stderr).
-pub fn compile_and_report(path: &Path, diag: &DiagArgs, json_to: JsonTo) -> Compiled {
-    let loader = FsLoader::new();
-    let mut compiled = compile_file(path, &loader);
+/// `--strict` at a stage boundary: every warning so far becomes an error, and a stage result
+/// with an error has no value (so the chain stops there, as it does on any error).
+pub fn strict<T>(mut staged: Staged<T>, diag: &DiagArgs) -> Staged<T> {
     if diag.strict {
-        promote_warnings(&mut compiled.diagnostics);
-        if compiled.has_errors() {
-            compiled.scene = None;
+        promote_warnings(&mut staged.diagnostics);
+        if staged.has_errors() {
+            staged.value = None;
         }
     }
-    print_diagnostics(&compiled, diag.diagnostic_format, json_to);
-    compiled
+    staged
 }
 
-/// Prints a compile's diagnostics: human to stderr (fancy on a terminal), JSON as `json_to`
-/// says.
-pub fn print_diagnostics(compiled: &Compiled, format: DiagnosticFormat, json_to: JsonTo) {
-    print_diagnostic_list(&compiled.diagnostics, &compiled.sources, format, json_to);
+/// Reports what a chain of stages accumulated, once, in the format `diag` asks for (human: to
+/// stderr; JSON: as `json_to` says). Prints nothing when there is nothing to say.
+pub fn report<T>(staged: &Staged<T>, sources: &SourceMap, diag: &DiagArgs, json_to: JsonTo) {
+    print_diagnostic_list(
+        &staged.diagnostics,
+        sources,
+        diag.diagnostic_format,
+        json_to,
+    );
+}
+
+/// The exit code of a chain that ended in `staged`: failure when a stage failed or reported an
+/// error.
+pub fn exit_code<T>(staged: &Staged<T>) -> ExitCode {
+    if staged.value.is_none() || staged.has_errors() {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
+    }
 }
 
 /// Prints diagnostics of any stage whose spans point into `sources` (build and write errors

@@ -9,9 +9,11 @@ mod diagnostic;
 mod fancy;
 mod json;
 mod plain;
+mod staged;
 pub mod suggest;
 
 pub use diagnostic::{Diagnostic, ExternalLabel, Label, Severity};
 pub use fancy::render_fancy;
 pub use json::render_json;
 pub use plain::{render_plain, render_plain_all, summary};
+pub use staged::Staged;

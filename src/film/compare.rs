@@ -11,7 +11,9 @@ pub const REL_EPSILON: f64 = 1e-4;
 /// Error of one film against the reference.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FilmError {
+    /// Root mean square error over pixels and channels.
     pub rmse: f64,
+    /// Mean of (error² / (reference² + ε)): relative MSE, robust to black pixels.
     pub rel_mse: f64,
 }
 

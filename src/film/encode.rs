@@ -8,6 +8,7 @@ use super::tonemap::to_srgb8;
 use super::write::WriteSettings;
 use super::Film;
 
+/// 8-bit sRGB PNG bytes after exposure and tone mapping.
 pub fn png(film: &Film, settings: &WriteSettings) -> Result<Vec<u8>, String> {
     let bytes: Vec<u8> = film
         .pixels()
@@ -33,6 +34,7 @@ fn finite(film: &Film) -> impl Iterator<Item = [f32; 3]> + '_ {
     })
 }
 
+/// Linear float OpenEXR bytes.
 pub fn exr(film: &Film) -> Result<Vec<u8>, String> {
     let floats: Vec<f32> = finite(film).flatten().collect();
     let bytes: Vec<u8> = floats.iter().flat_map(|f| f.to_ne_bytes()).collect();
@@ -48,6 +50,7 @@ pub fn exr(film: &Film) -> Result<Vec<u8>, String> {
     Ok(out.into_inner())
 }
 
+/// Radiance RGBE (.hdr) bytes.
 pub fn hdr(film: &Film) -> Result<Vec<u8>, String> {
     let pixels: Vec<Rgb<f32>> = finite(film).map(Rgb).collect();
     let mut out = Vec::new();

@@ -1,6 +1,6 @@
 //! Stage 5, film: the rendered image as linear RGB radiance, and its output files.
 //!
-//! Syntax: `render { output "cornell.png"  exposure 0  tonemap filmic }`. [`write`] picks the
+//! Syntax: `render { output "cornell.png"  exposure 0  tonemap filmic }`. [`write()`] picks the
 //! format from the extension: `.png` (8-bit sRGB after exposure and tone mapping), `.exr`
 //! (linear float OpenEXR), `.hdr` (Radiance RGBE), `.pfm` (portable float map). Writes are
 //! atomic: a temporary file in the target's directory, fsync, rename over the target.
@@ -14,7 +14,9 @@ use glam::Vec3;
 
 /// PNG bytes in memory (the preview server serves them).
 pub use encode::png as encode_png;
-pub use write::{format_for_path, write, write_atomic_with, WriteError, WriteSettings};
+pub use write::{
+    format_for_path, write, write_atomic_with, write_image, WriteError, WriteSettings,
+};
 
 /// Linear RGB radiance per pixel, row-major, row 0 at the top.
 #[derive(Debug, Clone, PartialEq)]
@@ -25,6 +27,7 @@ pub struct Film {
 }
 
 impl Film {
+    /// A black film.
     pub fn new(width: u32, height: u32) -> Film {
         Film {
             width,
@@ -33,14 +36,17 @@ impl Film {
         }
     }
 
+    /// Width in pixels.
     pub fn width(&self) -> u32 {
         self.width
     }
 
+    /// Height in pixels.
     pub fn height(&self) -> u32 {
         self.height
     }
 
+    /// Every pixel, row-major from the top.
     pub fn pixels(&self) -> &[Vec3] {
         &self.pixels
     }
@@ -54,6 +60,7 @@ impl Film {
         }
     }
 
+    /// Sets the pixel at column `x`, row `y` (ignored outside the image).
     pub fn set(&mut self, x: u32, y: u32, value: Vec3) {
         if x < self.width && y < self.height {
             self.pixels[y as usize * self.width as usize + x as usize] = value;

@@ -14,10 +14,12 @@ use glam::Vec3;
 
 use crate::ir::ToneMap;
 
+/// Clamps to [0, 1].
 pub fn clamp(x: f32) -> f32 {
     x.clamp(0.0, 1.0)
 }
 
+/// Reinhard: x / (1 + x) (1 at infinity).
 pub fn reinhard(x: f32) -> f32 {
     let x = x.max(0.0);
     if x.is_infinite() {
@@ -37,6 +39,7 @@ pub fn filmic(x: f32) -> f32 {
     ((x * (a * x + b)) / (x * (c * x + d) + e)).clamp(0.0, 1.0)
 }
 
+/// `curve` at `x` (0 for NaN).
 pub fn apply(curve: ToneMap, x: f32) -> f32 {
     if x.is_nan() {
         return 0.0;

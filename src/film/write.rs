@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use super::{encode, Film};
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, Staged};
 use crate::ir::{OutputFormat, RenderSettings, ToneMap};
 use crate::source::Span;
 
@@ -21,10 +21,12 @@ use crate::source::Span;
 pub struct WriteSettings {
     /// Stops: radiance is multiplied by 2^exposure.
     pub exposure: f32,
+    /// The curve from scaled radiance to [0, 1].
     pub tonemap: ToneMap,
 }
 
 impl WriteSettings {
+    /// The scene's `exposure` and `tonemap`.
     pub fn from_render(settings: &RenderSettings) -> WriteSettings {
         WriteSettings {
             exposure: settings.exposure,
@@ -42,24 +44,39 @@ impl Default for WriteSettings {
     }
 }
 
+/// Why an image could not be written.
 #[derive(Debug, thiserror::Error, miette::Diagnostic)]
 pub enum WriteError {
+    /// The extension names no format scnc writes.
     #[error("cannot tell the image format of `{}` (use .png, .exr, .hdr or .pfm)", path.display())]
     #[diagnostic(code(scnc::write::unknown_format))]
-    UnknownFormat { path: PathBuf },
+    UnknownFormat {
+        /// The output path.
+        path: PathBuf,
+    },
+    /// The encoder refused the image.
     #[error("cannot encode `{}`: {message}", path.display())]
     #[diagnostic(code(scnc::write::encode))]
-    Encode { path: PathBuf, message: String },
+    Encode {
+        /// The output path.
+        path: PathBuf,
+        /// The encoder's message.
+        message: String,
+    },
+    /// The file system refused the write (or the rename over the target).
     #[error("cannot write `{}`: {source}", path.display())]
     #[diagnostic(code(scnc::write::io))]
     Io {
+        /// The output path.
         path: PathBuf,
+        /// The underlying error.
         #[source]
         source: io::Error,
     },
 }
 
 impl WriteError {
+    /// The diagnostic code of this error.
     pub fn code(&self) -> &'static str {
         match self {
             WriteError::UnknownFormat { .. } => "scnc::write::unknown_format",
@@ -93,8 +110,14 @@ pub fn format_for_path(path: &Path) -> Option<OutputFormat> {
     }
 }
 
+/// Stage entry: [`write_image`] as a pipeline stage, its error a diagnostic labelled at
+/// `span` (the scene's `output "…"` literal, when the path came from there).
+pub fn write(film: &Film, path: &Path, settings: &WriteSettings, span: Option<Span>) -> Staged<()> {
+    Staged::from_result(write_image(film, path, settings).map_err(|e| e.to_diagnostic(span)))
+}
+
 /// Encodes `film` in the format `path`'s extension names and writes it atomically.
-pub fn write(film: &Film, path: &Path, settings: &WriteSettings) -> Result<(), WriteError> {
+pub fn write_image(film: &Film, path: &Path, settings: &WriteSettings) -> Result<(), WriteError> {
     let format = format_for_path(path).ok_or_else(|| WriteError::UnknownFormat {
         path: path.to_path_buf(),
     })?;

@@ -1,4 +1,5 @@
-//! Axis-aligned bounding boxes.
+//! Axis-aligned bounding boxes: the bounds the BVH is built from and checked against. Pure
+//! geometry, no scene or file knowledge.
 
 use glam::Vec3;
 
@@ -6,7 +7,9 @@ use glam::Vec3;
 /// gives that point.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Aabb {
+    /// Lower corner (componentwise minimum); `+∞` on every axis when empty.
     pub min: Vec3,
+    /// Upper corner (componentwise maximum); `-∞` on every axis when empty.
     pub max: Vec3,
 }
 
@@ -17,15 +20,18 @@ impl Default for Aabb {
 }
 
 impl Aabb {
+    /// The box that contains nothing: growing it by a point gives that point.
     pub const EMPTY: Aabb = Aabb {
         min: Vec3::splat(f32::INFINITY),
         max: Vec3::splat(f32::NEG_INFINITY),
     };
 
+    /// The smallest box containing every point; [`Aabb::EMPTY`] for none.
     pub fn from_points(points: &[Vec3]) -> Aabb {
         points.iter().fold(Aabb::EMPTY, |b, &p| b.grow(p))
     }
 
+    /// This box enlarged just enough to contain `p`.
     pub fn grow(self, p: Vec3) -> Aabb {
         Aabb {
             min: self.min.min(p),
@@ -33,6 +39,7 @@ impl Aabb {
         }
     }
 
+    /// The smallest box containing both (an empty box adds nothing).
     pub fn union(self, o: Aabb) -> Aabb {
         Aabb {
             min: self.min.min(o.min),
@@ -40,10 +47,12 @@ impl Aabb {
         }
     }
 
+    /// Whether the box holds no point (`min > max` on some axis); a single point is not empty.
     pub fn is_empty(&self) -> bool {
         self.min.x > self.max.x || self.min.y > self.max.y || self.min.z > self.max.z
     }
 
+    /// The size along each axis: `max − min`, or zero for an empty box (never negative).
     pub fn extent(&self) -> Vec3 {
         if self.is_empty() {
             Vec3::ZERO
@@ -52,15 +61,18 @@ impl Aabb {
         }
     }
 
+    /// The midpoint of `min` and `max`; NaN for an empty box, so callers test emptiness first.
     pub fn center(&self) -> Vec3 {
         0.5 * (self.min + self.max)
     }
 
+    /// Total area of the six faces (the SAH cost weight); zero for an empty box.
     pub fn surface_area(&self) -> f32 {
         let e = self.extent();
         2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
     }
 
+    /// Whether `o` lies inside this box, boundary included; every box contains an empty one.
     pub fn contains(&self, o: &Aabb) -> bool {
         o.is_empty() || (self.min.cmple(o.min).all() && self.max.cmpge(o.max).all())
     }

@@ -14,8 +14,11 @@ use super::Ray;
 /// Where a ray meets a triangle: `p = (1 − u − v)·p0 + u·p1 + v·p2` at parameter `t`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TriangleHit {
+    /// Ray parameter of the hit, in multiples of the ray's `dir`; `0 < t < t_max`.
     pub t: f32,
+    /// Barycentric weight of `p1`.
     pub u: f32,
+    /// Barycentric weight of `p2`.
     pub v: f32,
 }
 
@@ -57,9 +60,9 @@ pub fn moller_trumbore(ray: &Ray, p0: Vec3, p1: Vec3, p2: Vec3) -> Option<Triang
 /// object-space ray) and reused for every triangle.
 #[derive(Debug, Clone, Copy)]
 pub struct WatertightRay {
-    /// The ray's origin.
+    /// The ray's origin, unsheared: vertices are made relative to it before the shear.
     pub origin: Vec3A,
-    /// Hits at or beyond this `t` are ignored.
+    /// The ray's `t_max`, in multiples of its `dir`.
     pub t_max: f32,
     shear: Mat3A,
     /// `|dir|`, exactly 1 for (nearly) unit directions: turns the sheared `z` (in units of
@@ -68,6 +71,7 @@ pub struct WatertightRay {
 }
 
 impl WatertightRay {
+    /// Precomputes the axis permutation and shear for `ray`.
     #[inline]
     pub fn new(ray: &Ray) -> WatertightRay {
         const AXES: [Vec3A; 3] = [Vec3A::X, Vec3A::Y, Vec3A::Z];

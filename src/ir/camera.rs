@@ -13,9 +13,10 @@ use crate::source::Span;
 /// (the checker guarantees it: `up` is re-orthogonalised against `forward`).
 #[derive(Debug, Clone, Serialize)]
 pub struct Camera {
+    /// The name after `camera`, which `--camera` selects by.
     pub name: String,
-    /// World position, in f64: the build places the scene relative to an origin near it, so
-    /// a scene far from (0, 0, 0) keeps its precision.
+    /// Position of the pin-hole, world space, in f64: the build places the scene relative to
+    /// an origin near it, so a scene far from (0, 0, 0) keeps its precision.
     pub eye: DVec3,
     /// Unit view direction.
     pub forward: Vec3,
@@ -25,5 +26,6 @@ pub struct Camera {
     pub right: Vec3,
     /// Vertical field of view in radians, in (0, π).
     pub fov_y_rad: f32,
+    /// The `camera` declaration, for diagnostics raised while building.
     pub span: Span,
 }

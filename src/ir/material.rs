@@ -16,14 +16,18 @@ use crate::source::Span;
 /// A colour-valued material input: linear RGB, or a texture looked up at the hit's UV.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub enum ColorInput {
+    /// A linear RGB colour.
     Constant(Vec3),
+    /// The texture `id`, looked up at the hit's UV.
     Texture(TextureId),
 }
 
 /// A scalar-valued material input: a constant, or a texture whose first (red) channel is used.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub enum ScalarInput {
+    /// A constant value.
     Constant(f32),
+    /// The texture `id`, whose red channel is read at the hit's UV.
     Texture(TextureId),
 }
 
@@ -36,12 +40,14 @@ pub enum GreenConvention {
     DirectX,
 }
 
+/// A tangent-space normal map, bending the shading normal (`normal_map NAME`).
 #[derive(Debug, Clone, Serialize)]
 pub struct NormalMap {
     /// A data (linear) texture with tangent-space normals encoded as `n * 0.5 + 0.5`.
     pub texture: TextureId,
     /// 0 leaves the geometric/shading normal, 1 applies the map as authored.
     pub strength: f32,
+    /// Which way the map's green channel points.
     pub green: GreenConvention,
 }
 
@@ -49,6 +55,7 @@ pub struct NormalMap {
 /// `ambient` radiance added at every hit whatever the lights.
 #[derive(Debug, Clone, Serialize)]
 pub struct Material {
+    /// The name after `material`.
     pub name: String,
     /// Diffuse albedo, each channel in [0, 1].
     pub diffuse: ColorInput,
@@ -58,6 +65,8 @@ pub struct Material {
     pub shininess: ScalarInput,
     /// Radiance added unconditionally (default 0).
     pub ambient: Vec3,
+    /// The normal map; `None` when the material names none.
     pub normal_map: Option<NormalMap>,
+    /// The `material` declaration, for diagnostics raised while building.
     pub span: Span,
 }

@@ -24,7 +24,8 @@ pub use mesh::{
     AssetPath, BuiltinShape, InlineMesh, Mesh, MeshSource, ObjMaterialOverride, ObjOptions,
 };
 pub use render_settings::{
-    Output, OutputFormat, Quality, RenderSettings, SamplePattern, ToneMap, DEFAULT_MAX_SAMPLES,
+    Output, OutputFormat, Quality, RenderSettings, SamplePattern, SettingFlags, ToneMap,
+    DEFAULT_MAX_SAMPLES,
 };
 pub use texture::{Filter, Texture, TextureEncoding, TextureSource, WrapMode};
 
@@ -47,19 +48,27 @@ pub struct SceneDesc {
     pub cameras: Vec<Camera>,
     /// The camera `render { camera NAME }` chose, or the first one.
     pub active_camera: usize,
+    /// The meshes objects and area lights use, indexed by [`MeshId`].
     pub meshes: Vec<Mesh>,
+    /// The textures materials (and checker textures) use, indexed by [`TextureId`].
     pub textures: Vec<Texture>,
+    /// The materials objects use, indexed by [`MaterialId`].
     pub materials: Vec<Material>,
     /// Placed instances: groups are flattened, transforms composed to world space.
     pub objects: Vec<Object>,
+    /// Every light, in declaration order.
     pub lights: Vec<Light>,
+    /// Image size, sampling, outputs and the rest of `render { … }`, defaults applied.
     pub render: RenderSettings,
 }
 
 /// One placement of a mesh in the world. Many objects may share one mesh without copying it.
 #[derive(Debug, Clone, Serialize)]
 pub struct Object {
+    /// The mesh placed.
     pub mesh: MeshId,
+    /// The `object`'s material: its whole surface, or an OBJ's faces that neither an MTL
+    /// material nor a `material` override covers.
     pub material: MaterialId,
     /// Maps the mesh's own coordinates to world coordinates (all group transforms applied).
     /// In f64 (as the checker composed it): the build rounds it to f32 relative to an origin
@@ -70,10 +79,12 @@ pub struct Object {
 }
 
 impl SceneDesc {
+    /// The active camera; `None` only when the scene declares no camera.
     pub fn camera(&self) -> Option<&Camera> {
         self.cameras.get(self.active_camera)
     }
 
+    /// The index in `cameras` of the camera called `name` (for `--camera NAME`).
     pub fn camera_by_name(&self, name: &str) -> Option<usize> {
         self.cameras.iter().position(|c| c.name == name)
     }

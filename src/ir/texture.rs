@@ -13,16 +13,23 @@ use serde::Serialize;
 use super::{AssetPath, ColorInput};
 use crate::source::Span;
 
+/// How an image texture is addressed outside `[0, 1]` UV (`wrap`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub enum WrapMode {
+    /// Tiles: u and u + 1 read the same texel.
     Repeat,
+    /// The edge texels extend outwards.
     Clamp,
+    /// Tiles, flipping every other copy so that copies meet without a seam.
     Mirror,
 }
 
+/// How an image texture interpolates its texels (`filter`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub enum Filter {
+    /// The one texel the UV falls in, full resolution.
     Nearest,
+    /// The four nearest texels of the full-resolution image, weighted by distance.
     Bilinear,
     /// Bilinear within two mip levels chosen from the pixel footprint; only this mode builds a
     /// mip pyramid.
@@ -38,26 +45,40 @@ pub enum TextureEncoding {
     Linear,
 }
 
+/// What a texture's values come from.
 #[derive(Debug, Clone, Serialize)]
 pub enum TextureSource {
+    /// `image("file") { … }`: an image file.
     Image {
+        /// The image file, with the span of its path literal.
         file: AssetPath,
+        /// How stored values become linear ones.
         encoding: TextureEncoding,
+        /// Addressing outside `[0, 1]` UV.
         wrap: WrapMode,
+        /// Interpolation, and whether mipmaps are built.
         filter: Filter,
     },
     /// Alternating squares in UV space: `scale` squares per unit of u and of v.
     Checker {
+        /// Colour (or texture) of squares where `floor(u·scale) + floor(v·scale)` is even.
         even: ColorInput,
+        /// Colour (or texture) of squares where `floor(u·scale) + floor(v·scale)` is odd.
         odd: ColorInput,
+        /// Squares per unit of u and of v.
         scale: f32,
     },
+    /// `constant { color … }`: one linear RGB colour everywhere.
     Constant(Vec3),
 }
 
+/// A `texture` declaration.
 #[derive(Debug, Clone, Serialize)]
 pub struct Texture {
+    /// The name after `texture`.
     pub name: String,
+    /// What its values come from.
     pub source: TextureSource,
+    /// The `texture` declaration, for diagnostics raised while building.
     pub span: Span,
 }

@@ -10,6 +10,7 @@ use glam::{Vec2, Vec3};
 use crate::geom::Ray;
 use crate::ir;
 
+/// A pinhole camera ready to make rays for one image size.
 #[derive(Debug, Clone, Copy)]
 pub struct PinholeCamera {
     eye: Vec3,
@@ -22,6 +23,7 @@ pub struct PinholeCamera {
 }
 
 impl PinholeCamera {
+    /// The scene's camera for a `width` × `height` image.
     pub fn new(camera: &ir::Camera, width: u32, height: u32) -> PinholeCamera {
         let size_px = Vec2::new(width.max(1) as f32, height.max(1) as f32);
         let tan_half = (camera.fov_y_rad / 2.0).tan();

@@ -19,6 +19,7 @@ use glam::{DVec3, Vec3};
 
 /// Samples per adaptive batch: a 4×4 pattern.
 pub const BATCH_SIDE: u32 = 4;
+/// Samples per adaptive batch.
 pub const BATCH: u32 = BATCH_SIDE * BATCH_SIDE;
 /// Batches before the first stopping decision (32 samples: a sample variance from fewer is too
 /// often luckily small).
@@ -41,6 +42,7 @@ pub struct Accumulator {
 }
 
 impl Accumulator {
+    /// Adds one sample's radiance.
     pub fn add(&mut self, l: Vec3) {
         self.sum += l;
         let d = l.as_dvec3();
@@ -106,6 +108,7 @@ pub struct PixelEstimate {
     pub std_error: Vec3,
     /// Relative standard error of the mean luminance.
     pub relative_error: f32,
+    /// Samples taken.
     pub samples: u32,
     /// Adaptive sampling stopped at `max_samples` above the target.
     pub hit_max: bool,
@@ -116,16 +119,22 @@ pub struct PixelEstimate {
 pub struct NoiseStats {
     /// The adaptive target, if the render was adaptive.
     pub target: Option<f32>,
+    /// The most samples a pixel could take.
     pub max_samples: u32,
-    /// Mean and maximum over pixels of the relative standard error of the mean.
+    /// Mean over pixels of the relative standard error of the mean.
     pub mean_relative_error: f64,
+    /// Maximum over pixels of the relative standard error of the mean.
     pub max_relative_error: f64,
+    /// Pixels counted.
     pub pixels: u64,
+    /// Pixels whose adaptive sampling stopped at `max_samples`.
     pub pixels_at_max: u64,
+    /// Samples over all pixels.
     pub samples: u64,
 }
 
 impl NoiseStats {
+    /// Counts one pixel.
     pub fn add(&mut self, p: &PixelEstimate) {
         self.pixels += 1;
         self.samples += p.samples as u64;
@@ -141,6 +150,7 @@ impl NoiseStats {
         }
     }
 
+    /// Mean samples per pixel.
     pub fn mean_samples(&self) -> f64 {
         self.samples as f64 / self.pixels.max(1) as f64
     }

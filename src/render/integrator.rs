@@ -2,17 +2,19 @@
 //!
 //! At a hit: the material's `ambient` is always added; then `light_samples` lights (the
 //! environment among them) are picked by power. A point light gives one shadow ray; an area
-//! light `samples` shadow rays: a triangle is picked by area, then a point on it either by
-//! solid angle (`pdf = pmf / Ω`, see `spherical`) or by area (`pdf = r² / (cos θ_l · A)`); the
-//! environment one direction from its importance table (`scene::environment`). Then, for area
-//! lights and the environment, `light_samples` BRDF-sampled rays (`sampling`) are traced, and
+//! light `samples` shadow rays (`shade::light::area`: a triangle by area, then a direction by
+//! solid angle or a point by area); the environment one direction from its importance table
+//! (`shade::light::environment`). Each light type's `sample` is called here; none is derived
+//! here. Then, for area lights and the environment, `light_samples` BRDF-sampled rays
+//! (`shade::brdf`) are traced, and
 //! an emitter or the sky they reach adds its radiance. The two strategies are combined by
 //! multiple importance sampling with the power heuristic (see `mis`); point lights (a delta
 //! distribution no BRDF ray can hit) keep pure light sampling. [`DirectStrategy`] switches to
 //! one strategy alone for tests and measurements.
 //!
-//! Textured materials look their inputs up with the pixel's ray-cone footprint (`footprint`,
-//! which picks the mip level); a normal map replaces the shading normal (`normal_map`, bent by
+//! Textured materials look their inputs up with the pixel's ray-cone footprint
+//! (`shade::texture::footprint`, which picks the mip level); a normal map replaces the shading
+//! normal (`shade::normal_map`, bent by
 //! the Iray reflection fix where it faces away from the viewer). Untextured materials skip both
 //! behind one branch.
 //!
@@ -24,28 +26,29 @@
 //! shading normal says); the BRDF uses the shading normal flipped to the viewer's side of the
 //! geometric one.
 //!
-//! Shadow rays start at the offset origin (see `surface`) and stop short of the light: towards a
+//! Shadow rays start at the offset origin (see `shade::surface`) and stop short of the light: towards a
 //! point light at `(1 − 1e-4)` of the distance, towards an area light at a point itself offset
 //! off the emitter's surface towards the shading point, so the sampled emitter never occludes
 //! itself while any other geometry in between still does.
 
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
-use super::brdf::Phong;
-use super::footprint;
-use super::normal_map;
 use super::rng::Sampler;
-use super::spherical;
-use super::surface::{offset_origin, surface_hit, SurfaceHit};
-use crate::geom::triangle::moller_trumbore;
 use crate::geom::Ray;
-use crate::scene::{AreaLight, DirectStrategy, Light, LightSampling, Picked, Scene, Surface};
+use crate::scene::{DirectStrategy, Scene, Surface};
+use crate::shade::brdf::Phong;
+use crate::shade::normal_map;
+use crate::shade::surface::{offset_origin, surface_hit, SurfaceHit};
+use crate::shade::texture::footprint;
+use crate::shade::{AreaLight, Light, Picked};
 
 /// Rays traced, by kind, and how often the per-sample loop took the paths of optional features
 /// (so a test can prove a scene without them never pays for them).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct RayCounts {
+    /// Camera rays (one per pixel sample).
     pub camera: u64,
+    /// Shadow rays (any-hit) towards light samples.
     pub shadow: u64,
     /// BRDF-sampled rays looking for emitters and the sky (closest-hit).
     pub brdf: u64,
@@ -61,6 +64,7 @@ pub struct RayCounts {
 }
 
 impl RayCounts {
+    /// Adds another tile's counts.
     pub fn add(&mut self, o: &RayCounts) {
         self.camera += o.camera;
         self.shadow += o.shadow;
@@ -80,16 +84,6 @@ const STREAM_PICK: u64 = 0;
 pub(super) const STREAM_ENVIRONMENT: u64 = 1;
 pub(super) const STREAM_BRDF: u64 = 2;
 const STREAM_LIGHTS: u64 = 3;
-
-/// A sampled point on an emitter, seen from a shading point.
-struct LightSample {
-    /// Unit direction from the shading point.
-    wi: Vec3,
-    position: Vec3,
-    error: Vec3,
-    /// `1 / pdf_solid_angle` of the light's own sampling (triangle pick included).
-    weight: f32,
-}
 
 /// Radiance arriving at the camera along `ray` (a unit-direction camera ray).
 pub fn radiance(scene: &Scene, ray: &Ray, sampler: &mut Sampler, counts: &mut RayCounts) -> Vec3 {
@@ -111,7 +105,7 @@ pub fn radiance(scene: &Scene, ray: &Ray, sampler: &mut Sampler, counts: &mut Ra
     let wo = -ray.dir.normalize();
     match hit.surface {
         Surface::Emitter(i) => match scene.lights.lights.get(i as usize) {
-            Some(Light::Area(a)) if a.two_sided || hit.ng.dot(wo) > 0.0 => a.radiance,
+            Some(Light::Area(a)) => a.radiance_towards(hit.ng, wo),
             _ => Vec3::ZERO,
         },
         Surface::Material(m) => shade(scene, &hit, m, -wo, sampler, counts),
@@ -205,13 +199,10 @@ impl Shading<'_> {
             };
             let contribution = match picked {
                 Picked::Light(_, Light::Point(p)) => {
-                    let to_light = p.position - self.hit.p;
-                    let dist2 = to_light.length_squared();
-                    let wi = to_light / dist2.sqrt();
-                    let target = p.position;
-                    self.unoccluded(wi, target, SHADOW_EPSILON, counts)
+                    let s = p.sample(self.hit.p);
+                    self.unoccluded(s.wi, s.position, SHADOW_EPSILON, counts)
                         .map_or(Vec3::ZERO, |cos| {
-                            self.phong.eval(self.ns, wi, self.wo) * p.intensity * cos / dist2
+                            self.phong.eval(self.ns, s.wi, self.wo) * s.intensity * cos / s.dist2
                         })
                 }
                 Picked::Light(_, Light::Area(_)) | Picked::Environment(_) if brdf_only => {
@@ -248,82 +239,20 @@ impl Shading<'_> {
         for i in 0..n {
             let stream = STREAM_LIGHTS + index as u64;
             let u = sampler.stratified_2d(stream, pick * n + i, picks * n);
-            let (t, pmf_triangle, u0) = light.pick(u.x);
-            let u = Vec2::new(u0, u.y);
-            let tri = &light.triangles[t];
-            let normal = light.normals[t];
-            // The back of a one-sided emitter sends nothing: no ray needed.
-            if !light.two_sided && normal.dot(self.hit.p - tri[0]) <= 0.0 {
-                continue;
-            }
-            let Some(s) = self.sample_triangle(light, t, pmf_triangle, u) else {
+            let Some(s) = light.sample(self.hit.p, u, self.scene.light_sampling) else {
                 continue;
             };
             // Stop the shadow ray just off the emitter, on the shading point's side.
-            let target = offset_origin(s.position, s.error, normal, -s.wi);
+            let target = offset_origin(s.point.position, s.point.error, s.point.normal, -s.wi);
             if let Some(cos) = self.unoccluded(s.wi, target, 0.0, counts) {
                 let f = self.phong.eval(self.ns, s.wi, self.wo);
                 // Effective densities: `samples` light samples per pick of probability `pmf`
                 // against one BRDF sample per pick.
-                let mis = self.light_weight(n as f32 * pmf / s.weight, s.wi);
-                sum += light.radiance * f * (cos * s.weight * mis);
+                let mis = self.light_weight(n as f32 * pmf / s.inv_pdf_solid_angle, s.wi);
+                sum += s.radiance * f * (cos * s.inv_pdf_solid_angle * mis);
             }
         }
         sum / n as f32
-    }
-
-    /// A point on triangle `t` of `light` (picked with probability `pmf`) and the factor that
-    /// turns `L_e · f · cos θ` into an unbiased estimate: `Ω / pmf` when sampled by solid angle,
-    /// `cos θ_l · area / (r² · pmf)` when sampled by area.
-    fn sample_triangle(
-        &self,
-        light: &AreaLight,
-        t: usize,
-        pmf: f32,
-        u: Vec2,
-    ) -> Option<LightSample> {
-        let p = self.hit.p;
-        let tri = &light.triangles[t];
-        if self.scene.light_sampling == LightSampling::SolidAngle {
-            let omega = spherical::solid_angle(p, tri);
-            if (spherical::MIN_SOLID_ANGLE..=spherical::MAX_SOLID_ANGLE).contains(&omega) {
-                let (wi, omega) = spherical::sample(p, tri, u)?;
-                // The point where the direction meets the triangle, rebuilt from barycentrics
-                // so its error bound is the same as for area samples. A direction that rounds
-                // to just outside an edge is dropped (a bias of the order of f32 rounding).
-                let b = moller_trumbore(&Ray::new(p, wi), tri[0], tri[1], tri[2])?;
-                let lp = light.at_barycentrics(t, b.u, b.v);
-                return Some(LightSample {
-                    wi,
-                    position: lp.position,
-                    error: lp.error,
-                    weight: omega / pmf,
-                });
-            }
-        }
-        let lp = light.point_on(t, u);
-        let to_light = lp.position - p;
-        let dist2 = to_light.length_squared();
-        if dist2 == 0.0 || !dist2.is_finite() {
-            return None;
-        }
-        let wi = to_light / dist2.sqrt();
-        let cos_light = -lp.normal.dot(wi);
-        let cos_light = if light.two_sided {
-            cos_light.abs()
-        } else {
-            cos_light
-        };
-        if cos_light <= 0.0 {
-            return None;
-        }
-        let area = pmf * light.total_area;
-        Some(LightSample {
-            wi,
-            position: lp.position,
-            error: lp.error,
-            weight: cos_light * area / (dist2 * pmf),
-        })
     }
 
     /// Traces the shadow ray towards `target` (direction `wi`, unit). Returns the shading
@@ -347,5 +276,3 @@ impl Shading<'_> {
         (!blocked).then_some(cos)
     }
 }
-
-pub use super::sampling::cosine_hemisphere;

@@ -3,15 +3,16 @@
 //!
 //! Two strategies estimate the same direct lighting: light sampling (`integrator`: a light
 //! picked by power, then a point or direction on it) and BRDF sampling (here: a direction from
-//! the Phong mixture of `sampling`, traced to the first surface; if that is an emitter, or
+//! the Phong mixture of `shade::brdf`, traced to the first surface; if that is an emitter, or
 //! nothing and the sky is there, its radiance counts). Each sample is weighted by Veach's power
 //! heuristic on effective densities, so the weights of the two strategies sum to one for every
 //! direction and the sum stays unbiased:
 //!
 //! - light side: `samples · pmf_pick · pdf_light` (an area light takes `samples` points per
 //!   pick; the environment one direction), where `pdf_light` is the solid-angle density of the
-//!   light's own sampling at that direction (spherical triangle `pmf_triangle / Ω`, area
-//!   `r² / (cos θ_l · A_total)`, environment table);
+//!   light's own sampling at that direction, given by the light beside its sampler
+//!   ([`AreaLight::pdf`](crate::shade::AreaLight::pdf),
+//!   [`Environment::pdf`](crate::shade::Environment::pdf)), never re-derived here;
 //! - BRDF side: `pdf_brdf` (one BRDF ray per pick).
 //!
 //! Both strategies take `light_samples` samples per shading point, so that count cancels. With
@@ -23,10 +24,10 @@ use glam::Vec3;
 
 use super::integrator::{RayCounts, Shading, STREAM_BRDF, STREAM_ENVIRONMENT};
 use super::rng::Sampler;
-use super::sampling::power_heuristic;
-use super::spherical;
 use crate::geom::Ray;
-use crate::scene::{AreaLight, DirectStrategy, Environment, Light, LightSampling, Surface};
+use crate::scene::{DirectStrategy, Surface};
+use crate::shade::sampling::power_heuristic;
+use crate::shade::{Environment, Light};
 
 impl Shading<'_> {
     /// The MIS weight of a light sample in direction `wi` whose effective density is
@@ -129,7 +130,9 @@ impl Shading<'_> {
                         continue;
                     };
                     let p_light = ray.at(h.t);
-                    let Some(pdf_light) = self.area_pdf(light, h.prim as usize, p_light, wi) else {
+                    let mode = self.scene.light_sampling;
+                    let Some(pdf_light) = light.pdf(self.hit.p, wi, h.prim as usize, p_light, mode)
+                    else {
                         continue;
                     };
                     let pmf = lights.pmf_light(i as usize);
@@ -144,32 +147,5 @@ impl Shading<'_> {
             sum += radiance * f * (cos * w / pdf);
         }
         sum / picks as f32
-    }
-
-    /// The solid-angle density with which `integrator::sample_triangle` would produce the
-    /// point `p_light` of triangle `t` of `light` (direction `wi` from the shading point), or
-    /// `None` if that side of the triangle emits nothing.
-    fn area_pdf(&self, light: &AreaLight, t: usize, p_light: Vec3, wi: Vec3) -> Option<f32> {
-        let tri = light.triangles.get(t)?;
-        let normal = light.normals[t];
-        let cos_light = -normal.dot(wi);
-        let cos_light = if light.two_sided {
-            cos_light.abs()
-        } else {
-            cos_light
-        };
-        if cos_light <= 0.0 {
-            return None;
-        }
-        let pmf_triangle = light.triangle_pmf(t);
-        let p = self.hit.p;
-        if self.scene.light_sampling == LightSampling::SolidAngle {
-            let omega = spherical::solid_angle(p, tri);
-            if (spherical::MIN_SOLID_ANGLE..=spherical::MAX_SOLID_ANGLE).contains(&omega) {
-                return Some(pmf_triangle / omega);
-            }
-        }
-        let dist2 = (p_light - p).length_squared();
-        Some(dist2 / (cos_light * light.total_area))
     }
 }

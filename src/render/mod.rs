@@ -10,18 +10,12 @@
 //! the relative standard error of its mean is below the target (see [`estimate`]); every render
 //! also estimates each pixel's standard error ([`render_with_error`]) for `--variance-out`.
 
-pub mod brdf;
 pub mod camera;
 pub mod estimate;
-pub mod footprint;
 pub mod integrator;
 mod mis;
-pub mod normal_map;
 pub mod pattern;
 pub mod rng;
-pub mod sampling;
-pub mod spherical;
-pub mod surface;
 
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
@@ -36,14 +30,13 @@ use self::rng::Sampler;
 use crate::film::Film;
 use crate::scene::Scene;
 
+/// Side of the square tiles the image is cut into (one unit of parallel work).
 pub const TILE_SIZE: u32 = 16;
 
-/// Command-line overrides of the scene's `render { }` block.
+/// How to run a render that is not a scene setting (those are in `Scene::settings`, resolved
+/// before the render starts: see `ir::RenderSettings::resolve`).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct RenderOptions {
-    /// `--spp N`: samples per pixel; rounded up to the next perfect square N² (the patterns
-    /// are N×N). `None` keeps the scene's.
-    pub spp: Option<u32>,
     /// `--threads N`; `None` or `Some(0)` uses every core.
     pub threads: Option<usize>,
 }
@@ -56,12 +49,17 @@ pub struct Cancelled;
 /// Figures for `--stats`.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct RenderStats {
+    /// Primary rays, one per sample.
     pub camera_rays: u64,
+    /// Rays towards sampled lights.
     pub shadow_rays: u64,
     /// BRDF-sampled rays (multiple importance sampling of area lights and the environment).
     pub brdf_rays: u64,
+    /// Wall time of the render.
     pub wall: Duration,
+    /// Worker threads used.
     pub threads: usize,
+    /// Samples per pixel: the fixed count, or the mean of an adaptive render.
     pub samples_per_pixel: u32,
     /// Rays by kind, optional feature paths taken, and samples dropped as NaN or infinite.
     pub counts: RayCounts,
@@ -76,10 +74,12 @@ pub struct Rendered {
     pub film: Film,
     /// Standard error of each pixel's mean, per channel (linear RGB).
     pub std_error: Film,
+    /// What the render did, for `--stats`.
     pub stats: RenderStats,
 }
 
 impl RenderStats {
+    /// Every ray traced.
     pub fn rays(&self) -> u64 {
         self.camera_rays + self.shadow_rays + self.brdf_rays
     }
@@ -115,7 +115,7 @@ pub fn render(
 }
 
 /// [`render`], also returning each pixel's standard error. Adaptive when the scene's
-/// `noise` is set and `options.spp` is not (an explicit count is a fixed count).
+/// `noise` is set (else a fixed count of `samples_per_pixel`, rounded up to a square).
 pub fn render_with_error(
     scene: &Scene,
     options: &RenderOptions,
@@ -123,97 +123,38 @@ pub fn render_with_error(
     cancel: &AtomicBool,
 ) -> Result<Rendered, Cancelled> {
     let start = Instant::now();
-    let (width, height) = (scene.settings.width, scene.settings.height);
-    let side = pattern::side_for(options.spp.unwrap_or(scene.settings.samples_per_pixel));
-    let offsets = pattern::offsets(side, scene.settings.pattern);
-    let batch_offsets = pattern::offsets(estimate::BATCH_SIDE, scene.settings.pattern);
-    let max_samples = scene
-        .settings
+    let settings = &scene.settings;
+    let side = pattern::side_for(settings.samples_per_pixel);
+    let offsets = pattern::offsets(side, settings.pattern);
+    let batch_offsets = pattern::offsets(estimate::BATCH_SIDE, settings.pattern);
+    let max_samples = settings
         .max_samples
         .unwrap_or(crate::ir::DEFAULT_MAX_SAMPLES);
-    let adaptive = match (scene.settings.noise, options.spp) {
-        (Some(target), None) => Some(Adaptive {
-            target: target as f64,
-            batches: estimate::batches_for(max_samples),
-            offsets: &batch_offsets,
-        }),
-        _ => None,
-    };
-    let camera = PinholeCamera::new(&scene.camera, width, height);
-    let tiles = tiles(width, height);
-    let done = AtomicUsize::new(0);
+    let adaptive = settings.noise.map(|target| Adaptive {
+        target: target as f64,
+        batches: estimate::batches_for(max_samples),
+        offsets: &batch_offsets,
+    });
     let job = Job {
         scene,
-        camera,
+        camera: PinholeCamera::new(&scene.camera, settings.width, settings.height),
         offsets: &offsets,
         adaptive,
     };
-    let run_tile = |tile: &Tile| {
-        if cancel.load(Ordering::Relaxed) {
-            return None;
-        }
-        let out = job.tile(*tile);
-        let n = done.fetch_add(1, Ordering::Relaxed) + 1;
-        progress(n as f32 / tiles.len().max(1) as f32);
-        Some(out)
-    };
+    let tiles = tiles(settings.width, settings.height);
     let threads = options.threads.unwrap_or(0);
-    let results: Vec<Option<(Vec<PixelEstimate>, RayCounts)>> =
-        match rayon::ThreadPoolBuilder::new().num_threads(threads).build() {
-            Ok(pool) => pool.install(|| tiles.par_iter().map(run_tile).collect()),
-            // No threads to be had: render on this one (same image, by construction).
-            Err(_) => tiles.iter().map(run_tile).collect(),
-        };
-    let used_threads = match threads {
-        0 => rayon::current_num_threads(),
-        n => n,
-    };
+    let (results, used_threads) = job.run(&tiles, threads, progress, cancel);
     if cancel.load(Ordering::Relaxed) {
         return Err(Cancelled);
     }
-    let mut film = Film::new(width, height);
-    let mut std_error = Film::new(width, height);
-    let mut counts = RayCounts::default();
-    let mut noise = NoiseStats {
-        target: job.adaptive.as_ref().map(|a| a.target as f32),
-        max_samples: job
-            .adaptive
-            .as_ref()
-            .map_or(side * side, |a| a.batches * estimate::BATCH),
-        ..NoiseStats::default()
-    };
-    for (tile, result) in tiles.iter().zip(results) {
-        let (pixels, c) = result.ok_or(Cancelled)?;
-        counts.add(&c);
-        let tw = (tile.x1 - tile.x0) as usize;
-        for (k, p) in pixels.iter().enumerate() {
-            let (x, y) = (tile.x0 + (k % tw) as u32, tile.y0 + (k / tw) as u32);
-            film.set(x, y, p.mean);
-            std_error.set(x, y, p.std_error);
-            noise.add(p);
-        }
-    }
-    noise.finish();
-    let samples_per_pixel = match job.adaptive {
-        Some(_) => noise.mean_samples().round() as u32,
-        None => side * side,
-    };
-    let stats = RenderStats {
-        camera_rays: counts.camera,
-        shadow_rays: counts.shadow,
-        brdf_rays: counts.brdf,
-        wall: start.elapsed(),
-        threads: used_threads,
-        samples_per_pixel,
-        counts,
-        noise,
-    };
-    Ok(Rendered {
-        film,
-        std_error,
-        stats,
-    })
+    let mut rendered = job.assemble(&tiles, results, side)?;
+    rendered.stats.wall = start.elapsed();
+    rendered.stats.threads = used_threads;
+    Ok(rendered)
 }
+
+/// One tile's pixels and ray counts; `None` when the render was cancelled before it.
+type TileResult = Option<(Vec<PixelEstimate>, RayCounts)>;
 
 fn tiles(width: u32, height: u32) -> Vec<Tile> {
     let mut out = Vec::new();
@@ -246,6 +187,90 @@ struct Job<'a> {
 }
 
 impl Job<'_> {
+    /// Renders every tile on a pool of `threads` (0: every core), checking `cancel` before
+    /// each; also returns the number of threads used.
+    fn run(
+        &self,
+        tiles: &[Tile],
+        threads: usize,
+        progress: &(dyn Fn(f32) + Sync),
+        cancel: &AtomicBool,
+    ) -> (Vec<TileResult>, usize) {
+        let done = AtomicUsize::new(0);
+        let run_tile = |tile: &Tile| {
+            if cancel.load(Ordering::Relaxed) {
+                return None;
+            }
+            let out = self.tile(*tile);
+            let n = done.fetch_add(1, Ordering::Relaxed) + 1;
+            progress(n as f32 / tiles.len().max(1) as f32);
+            Some(out)
+        };
+        let results = match rayon::ThreadPoolBuilder::new().num_threads(threads).build() {
+            Ok(pool) => pool.install(|| tiles.par_iter().map(run_tile).collect()),
+            // No threads to be had: render on this one (same image, by construction).
+            Err(_) => tiles.iter().map(run_tile).collect(),
+        };
+        let used_threads = match threads {
+            0 => rayon::current_num_threads(),
+            n => n,
+        };
+        (results, used_threads)
+    }
+
+    /// The tiles' pixels into the film, the error film and the statistics (all but the wall
+    /// time and thread count); `Cancelled` if a tile is missing.
+    fn assemble(
+        &self,
+        tiles: &[Tile],
+        results: Vec<TileResult>,
+        side: u32,
+    ) -> Result<Rendered, Cancelled> {
+        let (width, height) = (self.scene.settings.width, self.scene.settings.height);
+        let mut film = Film::new(width, height);
+        let mut std_error = Film::new(width, height);
+        let mut counts = RayCounts::default();
+        let mut noise = NoiseStats {
+            target: self.adaptive.as_ref().map(|a| a.target as f32),
+            max_samples: self
+                .adaptive
+                .as_ref()
+                .map_or(side * side, |a| a.batches * estimate::BATCH),
+            ..NoiseStats::default()
+        };
+        for (tile, result) in tiles.iter().zip(results) {
+            let (pixels, c) = result.ok_or(Cancelled)?;
+            counts.add(&c);
+            let tw = (tile.x1 - tile.x0) as usize;
+            for (k, p) in pixels.iter().enumerate() {
+                let (x, y) = (tile.x0 + (k % tw) as u32, tile.y0 + (k / tw) as u32);
+                film.set(x, y, p.mean);
+                std_error.set(x, y, p.std_error);
+                noise.add(p);
+            }
+        }
+        noise.finish();
+        let samples_per_pixel = match self.adaptive {
+            Some(_) => noise.mean_samples().round() as u32,
+            None => side * side,
+        };
+        let stats = RenderStats {
+            camera_rays: counts.camera,
+            shadow_rays: counts.shadow,
+            brdf_rays: counts.brdf,
+            wall: Duration::ZERO,
+            threads: 0,
+            samples_per_pixel,
+            counts,
+            noise,
+        };
+        Ok(Rendered {
+            film,
+            std_error,
+            stats,
+        })
+    }
+
     fn tile(&self, t: Tile) -> (Vec<PixelEstimate>, RayCounts) {
         let mut counts = RayCounts::default();
         let mut pixels = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);

@@ -5,7 +5,9 @@
 //! so every row and every column of that sub-grid holds exactly one sample (N-rooks) while the
 //! samples still form a regular, sheared lattice. N = 2 gives exactly (1/8, 3/8), (3/8, 7/8),
 //! (5/8, 1/8), (7/8, 5/8). The grid pattern puts N×N samples at cell centres. Positions are
-//! fixed: no randomness, so they are the same for every pixel and every run.
+//! fixed: no randomness, so they are the same for every pixel and every run. Like `rng`, this is
+//! the render loop's sample sequence, so it stays in `render/` (the shading layer never sees
+//! pixels).
 
 use glam::Vec2;
 

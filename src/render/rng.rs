@@ -1,6 +1,10 @@
 //! Stage 4: deterministic random numbers. Each value is a pure hash of (seed, pixel, sample
 //! index, dimension): never of the thread, the tile order or the time, so renders are
 //! bit-identical whatever the thread count (`render { seed 0 }` changes every value).
+//!
+//! This lives in `render/`, not in `shade::sampling`: it is the render loop's sample sequence
+//! (which pixel, which sample, which stratum of the pixel's set), while the shading layer only
+//! maps the numbers it is handed (`u ∈ [0, 1)²`) to directions and points, whatever produced them.
 
 use glam::Vec2;
 
@@ -73,6 +77,7 @@ impl Sampler {
         to_unit(h)
     }
 
+    /// The next two dimensions.
     pub fn next_2d(&mut self) -> Vec2 {
         Vec2::new(self.next_1d(), self.next_1d())
     }

@@ -8,6 +8,7 @@
 //! to light (see `environment`), and no acceleration structure at all when there are no
 //! triangles.
 
+mod assemble;
 mod materials;
 mod origin;
 mod placement;
@@ -18,9 +19,7 @@ use glam::{Affine3A, DVec3, Mat3, Vec3, Vec4};
 
 use super::cache::BuildCache;
 use super::env_load::load_env_map;
-use super::environment::Environment;
 use super::facing::{faces_away, world_boxes};
-use super::lights::{AreaLight, Light, Lights, PointLight};
 use super::load::load_mesh;
 use super::mesh::TriMesh;
 use super::obj_parts::PartTables;
@@ -28,20 +27,14 @@ use super::tangents::vertex_tangents;
 use super::{BuildError, BuildOptions, BuildTimings, Scene, SceneInstance, Surface};
 
 use crate::assets::Loader;
-use crate::bvh::{Accel, Instance, MeshRef};
-use crate::diag::{Diagnostic, Severity};
+use crate::diag::{Diagnostic, Severity, Staged};
 use crate::ir::{self, EnvSource};
-use crate::source::{SourceMap, Span};
+use crate::shade::{AreaLight, Environment, Light, Lights, PointLight};
+use crate::source::Span;
 
-/// Builds the scene. `_sources` holds the `.scn` files every span points into (diagnostics are
-/// labelled there; nothing is read from them here). On failure, returns every error found
-/// together with the warnings; on success, warnings are in [`Scene::warnings`].
-pub fn build(
-    desc: &ir::SceneDesc,
-    _sources: &SourceMap,
-    loader: &dyn Loader,
-    options: &BuildOptions,
-) -> Result<Scene, Vec<Diagnostic>> {
+/// Stage entry: builds the scene. On failure, the value is `None` and the diagnostics hold
+/// every error found (errors first) together with the warnings; on success, the warnings.
+pub fn build(desc: &ir::SceneDesc, loader: &dyn Loader, options: &BuildOptions) -> Staged<Scene> {
     build_with(desc, loader, options, None)
 }
 
@@ -50,11 +43,10 @@ pub fn build(
 /// back with [`BuildCache::recycle`] when done; [`BuildCache::report`] says what was rebuilt.
 pub fn build_cached(
     desc: &ir::SceneDesc,
-    _sources: &SourceMap,
     loader: &dyn Loader,
     options: &BuildOptions,
     cache: &mut BuildCache,
-) -> Result<Scene, Vec<Diagnostic>> {
+) -> Staged<Scene> {
     cache.begin();
     build_with(desc, loader, options, Some(cache))
 }
@@ -64,7 +56,7 @@ fn build_with(
     loader: &dyn Loader,
     options: &BuildOptions,
     cache: Option<&mut BuildCache>,
-) -> Result<Scene, Vec<Diagnostic>> {
+) -> Staged<Scene> {
     let start = Instant::now();
     let mut b = Builder {
         desc,
@@ -75,101 +67,42 @@ fn build_with(
         mesh_slots: vec![None; desc.meshes.len()],
         origin: DVec3::ZERO,
     };
-    let camera_index = options.camera.unwrap_or(desc.active_camera);
-    let mut camera = desc.cameras.get(camera_index).cloned();
-    if camera.is_none() {
-        b.problems.push(BuildError::NoCamera {
-            which: match options.camera {
-                Some(i) => format!("number {i}"),
-                None => "to render from".into(),
-            },
-        });
-    }
-
-    let (mut materials, mut textures) = b.materials();
-    let mut parts = PartTables::default();
-    let environment = b.environment();
-
     let assets_start = Instant::now();
-    b.origin = b.world_origin();
-    if let Some(c) = camera.as_mut() {
-        c.eye -= b.origin;
-    }
-    let mut instances = Vec::new();
-    for object in &desc.objects {
-        let Some(mesh) = b.mesh(object.mesh) else {
-            continue;
-        };
-        if let Some((world_from_object, normal_from_object)) =
-            b.transform(object.world_from_object, object.span)
-        {
-            let part_base = parts.place(
-                &b.meshes[mesh as usize],
-                &desc.meshes[object.mesh as usize].obj,
-                object.material,
-                world_from_object,
-                &mut materials,
-                &mut textures,
-            );
-            instances.push(SceneInstance {
-                mesh,
-                surface: Surface::Material(object.material),
-                world_from_object,
-                normal_from_object,
-                part_base,
-            });
-            b.check_resolution(object.mesh, object.world_from_object, object.span, mesh);
-        }
-    }
-    let lights = b.lights(&mut instances, environment, &mut parts);
-    b.problems.append(&mut parts.unknown);
-    let tangents = b.uvs_and_tangents();
+    let assembled = b.assemble(options);
     let asset_load = assets_start.elapsed();
 
     let mut diags: Vec<Diagnostic> = b.problems.iter().map(BuildError::to_diagnostic).collect();
-    let (Some(camera), false) = (camera, diags.iter().any(|d| d.severity == Severity::Error))
-    else {
+    let (Some(a), false) = (
+        assembled,
+        diags.iter().any(|d| d.severity == Severity::Error),
+    ) else {
         diags.sort_by_key(|d| std::cmp::Reverse(d.severity));
         if let Some(cache) = b.cache {
             cache.give_back(b.meshes, None);
         }
-        return Err(diags);
+        return Staged::failed(diags);
     };
 
     let accel_start = Instant::now();
-    let triangles: usize = instances
-        .iter()
-        .map(|i| b.meshes[i.mesh as usize].triangles.len())
-        .sum();
-    let accel = (triangles > 0).then(|| {
-        if let Some(cache) = b.cache.as_deref_mut() {
-            return cache.accel(&b.meshes, &instances, options.accel);
-        }
-        let refs: Vec<MeshRef<'_>> = b.meshes.iter().map(TriMesh::as_mesh_ref).collect();
-        let accel_instances: Vec<Instance> = instances
-            .iter()
-            .map(|i| Instance::new(i.mesh, i.world_from_object))
-            .collect();
-        Accel::build(&refs, &accel_instances, options.accel)
-    });
+    let accel = b.accel(&a.instances, options);
     let accel_build = if accel.is_some() {
         accel_start.elapsed()
     } else {
         Default::default()
     };
 
-    Ok(Scene {
+    let scene = Scene {
         world_origin: b.origin,
-        camera,
+        camera: a.camera,
         settings: desc.render.clone(),
         meshes: b.meshes,
-        instances,
+        instances: a.instances,
         accel,
-        materials,
-        part_surfaces: parts.surfaces,
-        textures,
-        tangents,
-        lights,
+        materials: a.materials,
+        part_surfaces: a.parts.surfaces,
+        textures: a.textures,
+        tangents: a.tangents,
+        lights: a.lights,
         light_sampling: Default::default(),
         strategy: Default::default(),
         timings: BuildTimings {
@@ -177,8 +110,8 @@ fn build_with(
             accel_build,
             total: start.elapsed(),
         },
-        warnings: diags,
-    })
+    };
+    Staged::new(Some(scene), diags)
 }
 
 struct Builder<'a> {

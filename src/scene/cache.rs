@@ -29,8 +29,6 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
 use super::env_load::load_env_map;
-use super::environment::EnvMap;
-use super::image_texture::ImageData;
 use super::load::load_mesh;
 use super::mesh::TriMesh;
 use super::texture_load::load_image_texture;
@@ -38,6 +36,8 @@ use super::{BuildError, Scene, SceneInstance};
 use crate::assets::Loader;
 use crate::bvh::{Accel, AccelKind, Instance, MeshRef};
 use crate::ir::{self, AssetPath, MeshSource, TextureEncoding};
+use crate::shade::texture::image::ImageData;
+use crate::shade::EnvMap;
 
 /// A hash of file contents (64-bit SipHash with fixed keys: stable within and across runs of
 /// one build of scnc, which is all a cache needs).
@@ -58,6 +58,7 @@ pub enum MeshKey {
 }
 
 impl MeshKey {
+    /// The key of a mesh declaration's source and OBJ options.
     pub fn of(source: &MeshSource, obj: &crate::ir::ObjOptions) -> MeshKey {
         let json = match source {
             MeshSource::Obj(path) => return MeshKey::Obj(path.path.clone(), obj.ignore_mtl),
@@ -154,6 +155,7 @@ pub struct BuildCache {
 }
 
 impl BuildCache {
+    /// An empty cache.
     pub fn new() -> BuildCache {
         BuildCache::default()
     }

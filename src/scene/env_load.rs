@@ -9,11 +9,11 @@
 
 use glam::Vec3;
 
-use super::environment::EnvMap;
 use super::BuildError;
-use crate::assets::hdr_image::{decode_float_image, ImageError, MAX_HEIGHT, MAX_WIDTH};
+use crate::assets::hdr_image::{decode_float_image, FloatImage, ImageError, MAX_HEIGHT, MAX_WIDTH};
 use crate::assets::Loader;
 use crate::ir::AssetPath;
+use crate::shade::EnvMap;
 
 /// The map scaled by `intensity` (`None` if it failed or is black), and the problems found.
 pub fn load_env_map(
@@ -22,59 +22,90 @@ pub fn load_env_map(
     rotation_y_rad: f32,
     loader: &dyn Loader,
 ) -> (Option<EnvMap>, Vec<BuildError>) {
-    let (written, span) = (file.written.clone(), file.span);
-    let bytes = match loader.read(&file.path) {
-        Ok(b) => b,
-        Err(source) if source.kind() == std::io::ErrorKind::NotFound => {
-            let e = BuildError::Missing {
-                written,
-                span,
-                source,
-            };
-            return (None, vec![e]);
-        }
-        Err(source) => {
-            let e = BuildError::Read {
-                written,
-                span,
-                source,
-            };
-            return (None, vec![e]);
-        }
-    };
-    let image = match decode_float_image(&bytes) {
+    let image = match read_image(file, loader) {
         Ok(image) => image,
-        Err(ImageError::Corrupt(reason)) => {
-            let e = BuildError::CorruptImage {
-                written,
-                span,
-                reason,
-            };
-            return (None, vec![e]);
-        }
-        Err(ImageError::TooLarge { width, height }) => {
-            let e = BuildError::ImageTooLarge {
-                written,
-                span,
-                width,
-                height,
-                max_width: MAX_WIDTH,
-                max_height: MAX_HEIGHT,
-            };
-            return (None, vec![e]);
-        }
+        Err(e) => return (None, vec![e]),
     };
+    let (written, span) = (file.written.clone(), file.span);
     let scale = if intensity.is_finite() && intensity > 0.0 {
         intensity
     } else {
         0.0
     };
+    let (width, height, total) = (image.width, image.height, image.pixels.len());
+    let texels = clean_texels(image.pixels, scale);
     let mut problems = Vec::new();
+    if texels.invalid > 0 {
+        problems.push(BuildError::InvalidPixels {
+            written: written.clone(),
+            span,
+            count: texels.invalid,
+            total,
+        });
+    }
+    if !texels.any_light {
+        problems.push(BuildError::BlackEnvironment { written, span });
+        return (None, problems);
+    }
+    let map = EnvMap::new(
+        width as usize,
+        height as usize,
+        texels.texels,
+        rotation_y_rad,
+    );
+    (map, problems)
+}
+
+/// Reads and decodes the file; an error labelled at the path literal if it cannot.
+fn read_image(file: &AssetPath, loader: &dyn Loader) -> Result<FloatImage, BuildError> {
+    let (written, span) = (file.written.clone(), file.span);
+    let bytes = match loader.read(&file.path) {
+        Ok(b) => b,
+        Err(source) if source.kind() == std::io::ErrorKind::NotFound => {
+            return Err(BuildError::Missing {
+                written,
+                span,
+                source,
+            })
+        }
+        Err(source) => {
+            return Err(BuildError::Read {
+                written,
+                span,
+                source,
+            })
+        }
+    };
+    decode_float_image(&bytes).map_err(|e| match e {
+        ImageError::Corrupt(reason) => BuildError::CorruptImage {
+            written,
+            span,
+            reason,
+        },
+        ImageError::TooLarge { width, height } => BuildError::ImageTooLarge {
+            written,
+            span,
+            width,
+            height,
+            max_width: MAX_WIDTH,
+            max_height: MAX_HEIGHT,
+        },
+    })
+}
+
+/// Scaled texels with every invalid channel set to 0, and what was found.
+struct Cleaned {
+    texels: Vec<Vec3>,
+    /// Pixels with a negative, NaN or infinite channel.
+    invalid: usize,
+    /// Whether any texel is above 0.
+    any_light: bool,
+}
+
+fn clean_texels(pixels: Vec<Vec3>, scale: f32) -> Cleaned {
     let mut invalid = 0usize;
     let mut any_light = false;
-    let total = image.pixels.len();
-    let texels: Vec<Vec3> = image
-        .pixels
+    let texels = pixels
         .into_iter()
         .map(|p| {
             let clean = |c: f32| if c.is_finite() && c > 0.0 { c } else { 0.0 };
@@ -87,23 +118,9 @@ pub fn load_env_map(
             t
         })
         .collect();
-    if invalid > 0 {
-        problems.push(BuildError::InvalidPixels {
-            written: written.clone(),
-            span,
-            count: invalid,
-            total,
-        });
-    }
-    if !any_light {
-        problems.push(BuildError::BlackEnvironment { written, span });
-        return (None, problems);
-    }
-    let map = EnvMap::new(
-        image.width as usize,
-        image.height as usize,
+    Cleaned {
         texels,
-        rotation_y_rad,
-    );
-    (map, problems)
+        invalid,
+        any_light,
+    }
 }

@@ -17,100 +17,171 @@ use crate::source::Span;
 /// agree (a unit test checks every variant).
 #[derive(Debug, Error, miette::Diagnostic)]
 pub enum BuildError {
+    /// The file does not exist.
     #[error("cannot find `{written}`: {source}")]
     #[diagnostic(code(scnc::build::missing_file))]
     Missing {
+        /// The path as written in the scene.
         written: String,
+        /// Where the scene says it.
         span: Span,
+        /// The underlying error.
         #[source]
         source: io::Error,
     },
+    /// The file exists but cannot be read.
     #[error("cannot read `{written}`: {source}")]
     #[diagnostic(code(scnc::build::read_failed))]
     Read {
+        /// The path as written in the scene.
         written: String,
+        /// Where the scene says it.
         span: Span,
+        /// The underlying error.
         #[source]
         source: io::Error,
     },
+    /// The OBJ file cannot be parsed.
     #[error("`{written}` is not a valid OBJ file: {reason}")]
     #[diagnostic(code(scnc::build::corrupt_obj))]
     CorruptObj {
+        /// The path as written in the scene.
         written: String,
+        /// Where the scene says it.
         span: Span,
+        /// What is wrong.
         reason: String,
     },
+    /// A face names a vertex that does not exist.
     #[error("`{written}`: a face refers to a vertex, normal or UV that does not exist ({reason})")]
     #[diagnostic(code(scnc::build::index_out_of_range))]
     IndexOutOfRange {
+        /// The path as written in the scene.
         written: String,
+        /// Where the scene says it.
         span: Span,
+        /// What is wrong.
         reason: String,
     },
+    /// Every triangle of the mesh is degenerate: nothing to render.
     #[error("every triangle of mesh `{mesh}` is degenerate ({count} triangles of zero area or with a NaN or infinite corner)")]
     #[diagnostic(code(scnc::build::degenerate_mesh))]
     AllDegenerate {
+        /// The mesh's name.
         mesh: String,
+        /// How many.
         count: usize,
+        /// Where the scene says it.
         span: Span,
     },
+    /// Some triangles were degenerate and were dropped.
     #[error("{count} of {total} triangles of mesh `{mesh}` are degenerate (zero area, repeated vertices, or a NaN or infinite corner) and were dropped")]
     #[diagnostic(code(scnc::build::degenerate_triangles), severity(Warning))]
     SomeDegenerate {
+        /// The mesh's name.
         mesh: String,
+        /// How many.
         count: usize,
+        /// Out of how many.
         total: usize,
+        /// Where the scene says it.
         span: Span,
     },
+    /// The mesh has no triangles at all.
     #[error("mesh `{mesh}` has no triangles")]
     #[diagnostic(code(scnc::build::empty_mesh), severity(Warning))]
-    EmptyMesh { mesh: String, span: Span },
+    EmptyMesh {
+        /// The mesh's name.
+        mesh: String,
+        /// Where the scene says it.
+        span: Span,
+    },
+    /// A transform that flattens the object or is not finite.
     #[error("this transform is singular or not finite, so the object has no area")]
     #[diagnostic(code(scnc::build::singular_transform))]
-    SingularTransform { span: Span },
+    SingularTransform {
+        /// Where the scene says it.
+        span: Span,
+    },
+    /// Something the renderer does not do yet.
     #[error("{what} is not supported yet")]
     #[diagnostic(code(scnc::build::unsupported))]
     Unsupported {
+        /// What the scene asked for.
         what: String,
+        /// Where the scene says it.
         span: Span,
+        /// How to do without it.
         help: String,
     },
+    /// An image that cannot be decoded.
     #[error("`{written}` is not a valid image: {reason}")]
     #[diagnostic(code(scnc::build::corrupt_image))]
     CorruptImage {
+        /// The path as written in the scene.
         written: String,
+        /// Where the scene says it.
         span: Span,
+        /// What is wrong.
         reason: String,
     },
+    /// An image beyond the size cap (checked before any pixel is allocated).
     #[error("`{written}` is {width} × {height}, larger than the {max_width} × {max_height} limit")]
     #[diagnostic(code(scnc::build::image_too_large))]
     ImageTooLarge {
+        /// The path as written in the scene.
         written: String,
+        /// Where the scene says it.
         span: Span,
+        /// The image's width.
         width: u32,
+        /// The image's height.
         height: u32,
+        /// The widest image accepted.
         max_width: u32,
+        /// The tallest image accepted.
         max_height: u32,
     },
+    /// Environment map pixels that were negative, NaN or infinite (set to black).
     #[error("{count} of {total} pixels of `{written}` are negative, NaN or infinite; they were set to black")]
     #[diagnostic(code(scnc::build::invalid_environment_pixels), severity(Warning))]
     InvalidPixels {
+        /// The path as written in the scene.
         written: String,
+        /// Where the scene says it.
         span: Span,
+        /// How many.
         count: usize,
+        /// Out of how many.
         total: usize,
     },
+    /// An environment map that is black everywhere.
     #[error("the environment map `{written}` is black everywhere; it lights nothing")]
     #[diagnostic(code(scnc::build::black_environment), severity(Warning))]
-    BlackEnvironment { written: String, span: Span },
+    BlackEnvironment {
+        /// The path as written in the scene.
+        written: String,
+        /// Where the scene says it.
+        span: Span,
+    },
+    /// A one-sided area light whose front sees no geometry.
     #[error("area light `{light}` faces away from everything: all the scene's geometry is behind its one-sided front")]
     #[diagnostic(code(scnc::build::light_faces_away), severity(Warning))]
-    LightFacesAway { light: String, span: Span },
+    LightFacesAway {
+        /// The light's name.
+        light: String,
+        /// Where the scene says it.
+        span: Span,
+    },
+    /// A textured material on a mesh without UVs.
     #[error("mesh `{mesh}` has no UV coordinates, but its material `{material}` is textured")]
     #[diagnostic(code(scnc::build::no_uvs), severity(Warning))]
     NoUvs {
+        /// The mesh's name.
         mesh: String,
+        /// The textured material's name.
         material: String,
+        /// Where the scene says it.
         span: Span,
     },
     #[error("the placement of mesh `{mesh}` is resolved only to {step:.1e} in f32, {:.2}% of its size {size:.1e}", 100.0 * step / size)]
@@ -130,9 +201,13 @@ pub enum BuildError {
     #[error("{}", .0.message)]
     #[diagnostic(code(scnc::obj))]
     Obj(Box<Diagnostic>),
+    /// The camera to render from does not exist.
     #[error("the scene has no camera {which}")]
     #[diagnostic(code(scnc::build::no_camera))]
-    NoCamera { which: String },
+    NoCamera {
+        /// Which camera: `number N` or `to render from`.
+        which: String,
+    },
 }
 
 impl BuildError {
@@ -252,6 +327,7 @@ impl BuildError {
         }
     }
 
+    /// As a diagnostic, labelled at its span, with help when the fix is known.
     pub fn to_diagnostic(&self) -> Diagnostic {
         if let BuildError::Obj(d) = self {
             return (**d).clone();

@@ -14,9 +14,13 @@ use crate::bvh::MeshRef;
 /// Triangles sharing a vertex array. `normals` and `uvs` are empty or one per position.
 #[derive(Debug, Clone, Default)]
 pub struct TriMesh {
+    /// Vertex positions, object space.
     pub positions: Vec<Vec3>,
+    /// Per-vertex shading normals (empty: the geometric normal is used).
     pub normals: Vec<Vec3>,
+    /// Per-vertex texture coordinates (empty: none).
     pub uvs: Vec<Vec2>,
+    /// Vertex indices, counter-clockwise seen from the front.
     pub triangles: Vec<[u32; 3]>,
     /// Material parts of an OBJ mesh (its `usemtl` names): empty for every other mesh.
     pub parts: Vec<MeshPart>,
@@ -28,7 +32,9 @@ pub struct TriMesh {
 /// placing `object`'s material (faces before any `usemtl`, or a name no library defines).
 #[derive(Debug, Clone, PartialEq)]
 pub struct MeshPart {
+    /// The `usemtl` name (`None`: faces before any `usemtl`).
     pub name: Option<String>,
+    /// Its MTL material as Phong, when a library defines it.
     pub phong: Option<crate::assets::obj::phong::ObjPhong>,
     /// The MTL texture maps that render (decoded once, when the OBJ is loaded).
     pub maps: PartMaps,
@@ -39,9 +45,12 @@ pub struct MeshPart {
 /// filtered trilinearly with repeat wrapping, as MTL's default `-clamp off` says.
 #[derive(Debug, Clone, Default)]
 pub struct PartMaps {
-    pub diffuse: Option<std::sync::Arc<super::image_texture::ImageData>>,
-    pub specular: Option<std::sync::Arc<super::image_texture::ImageData>>,
-    pub normal: Option<(std::sync::Arc<super::image_texture::ImageData>, f32)>,
+    /// `map_Kd`.
+    pub diffuse: Option<std::sync::Arc<crate::shade::texture::image::ImageData>>,
+    /// `map_Ks`.
+    pub specular: Option<std::sync::Arc<crate::shade::texture::image::ImageData>>,
+    /// `norm` and its strength.
+    pub normal: Option<(std::sync::Arc<crate::shade::texture::image::ImageData>, f32)>,
 }
 
 impl PartialEq for PartMaps {
@@ -67,7 +76,7 @@ impl PartMaps {
     pub fn set(
         &mut self,
         key: &str,
-        data: std::sync::Arc<super::image_texture::ImageData>,
+        data: std::sync::Arc<crate::shade::texture::image::ImageData>,
         bump_multiplier: f32,
     ) {
         match key {
@@ -77,6 +86,7 @@ impl PartMaps {
         }
     }
 
+    /// Whether no map renders.
     pub fn is_empty(&self) -> bool {
         self.diffuse.is_none() && self.specular.is_none() && self.normal.is_none()
     }
@@ -86,19 +96,33 @@ impl PartMaps {
 /// mesh's name and span).
 #[derive(Debug, Clone, PartialEq)]
 pub enum MeshProblem {
-    IndexOutOfRange { triangle: usize, index: u32 },
-    AllDegenerate { count: usize },
+    /// A triangle names a vertex that does not exist.
+    IndexOutOfRange {
+        /// Which triangle.
+        triangle: usize,
+        /// The index it uses.
+        index: u32,
+    },
+    /// No triangle has an area.
+    AllDegenerate {
+        /// How many triangles there were.
+        count: usize,
+    },
 }
 
 /// A validated mesh and how many triangles were dropped as degenerate.
 #[derive(Debug)]
 pub struct Validated {
+    /// The mesh without its degenerate triangles.
     pub mesh: TriMesh,
+    /// Triangles dropped.
     pub dropped: usize,
+    /// Triangles before dropping.
     pub total: usize,
 }
 
 impl TriMesh {
+    /// The geometry the BVH builds over.
     pub fn as_mesh_ref(&self) -> MeshRef<'_> {
         MeshRef {
             positions: &self.positions,

@@ -4,26 +4,21 @@
 //!
 //! Input syntax this stage gives meaning to: `mesh … = obj(…) | inline {…} | quad | box |
 //! sphere`, `object … { mesh m  material p  transform {…} }`, `light … = point | area |
-//! environment`, `texture … = image | checker | constant`, `normal_map`. Errors are [`BuildError`]s converted to
-//! diagnostics labelled at the path literal or declaration in the `.scn`.
+//! environment`, `texture … = image | checker | constant`, `normal_map`. Errors and warnings are [`BuildError`]s
+//! converted to diagnostics labelled at the path literal or declaration in the `.scn`, returned
+//! beside the scene in the [`Staged`](crate::diag::Staged) shape of every stage.
 
 mod build;
 pub mod cache;
-pub mod distribution;
-pub mod distribution2d;
 mod env_load;
-pub mod environment;
 mod error;
 mod facing;
-pub mod image_texture;
 mod inventory;
-pub mod lights;
 mod load;
 pub mod mesh;
 mod obj_parts;
 pub mod shapes;
 pub mod tangents;
-pub mod texture;
 mod texture_load;
 
 use std::time::Duration;
@@ -32,16 +27,13 @@ use glam::{Affine3A, Mat3, Vec3, Vec4};
 
 pub use build::{build, build_cached};
 pub use cache::{BuildCache, CacheReport};
-pub use environment::{EnvMap, EnvSample, Environment};
 pub use error::BuildError;
 pub use inventory::{Built, Features};
-pub use lights::{AreaLight, Light, Lights, Picked, PointLight};
 pub use mesh::{MeshPart, TriMesh};
-pub use texture::{Texture, Textures};
 
 use crate::bvh::{Accel, AccelKind, AccelStats};
-use crate::diag::Diagnostic;
 use crate::ir;
+use crate::shade::{Lights, Textures};
 
 /// Choices the command line makes about the build.
 #[derive(Debug, Clone, Copy)]
@@ -69,6 +61,7 @@ pub struct BuildTimings {
     pub asset_load: Duration,
     /// Building the acceleration structure (zero when the scene has no triangles).
     pub accel_build: Duration,
+    /// The whole build.
     pub total: Duration,
 }
 
@@ -84,8 +77,11 @@ pub enum Surface {
 /// One placement of a mesh. `Scene::instances[i]` is the accel's instance `i`.
 #[derive(Debug, Clone, Copy)]
 pub struct SceneInstance {
+    /// Index into `Scene::meshes`.
     pub mesh: u32,
+    /// What a hit on it means (unless its OBJ parts say otherwise).
     pub surface: Surface,
+    /// Where it is placed.
     pub world_from_object: Affine3A,
     /// The inverse transpose of the linear part: maps object normals to world normals.
     pub normal_from_object: Mat3,
@@ -97,9 +93,13 @@ pub struct SceneInstance {
 /// The material model the renderer evaluates (`ir::Material` without what is not supported).
 #[derive(Debug, Clone)]
 pub struct SurfaceMaterial {
+    /// Diffuse albedo.
     pub diffuse: ir::ColorInput,
+    /// Specular albedo of the Phong lobe.
     pub specular: ir::ColorInput,
+    /// Phong exponent.
     pub shininess: ir::ScalarInput,
+    /// Radiance added at every hit, whatever the light.
     pub ambient: Vec3,
     /// A tangent-space normal map (applied where the mesh has UVs, hence tangents).
     pub normal_map: Option<ir::NormalMap>,
@@ -147,29 +147,37 @@ pub struct Scene {
     /// Where the scene's (0, 0, 0) is in the world the `.scn` describes: every position here
     /// (instances, lights, the camera's eye) is relative to it (`build/origin.rs`).
     pub world_origin: glam::DVec3,
+    /// The camera to render from (its eye relative to `world_origin`).
     pub camera: ir::Camera,
+    /// The render settings, resolved (command-line choices included) before the build.
     pub settings: ir::RenderSettings,
+    /// Every mesh used, once however many instances place it.
     pub meshes: Vec<TriMesh>,
+    /// Every placement of a mesh: objects, then area lights.
     pub instances: Vec<SceneInstance>,
     /// `None` when the scene has no triangles: every ray misses without any work.
     pub accel: Option<Accel>,
+    /// Materials by `Surface::Material` index.
     pub materials: Vec<SurfaceMaterial>,
     /// Surfaces of OBJ material parts, per placement (see `SceneInstance::part_base`).
     pub part_surfaces: Vec<Surface>,
+    /// Textures by index.
     pub textures: Textures,
     /// Per mesh: per-vertex tangents (xyz, and the bitangent's sign in w), derived from UVs
     /// only for meshes that normal-mapped objects use; empty otherwise.
     pub tangents: Vec<Vec<Vec4>>,
+    /// The lights and their sampling tables.
     pub lights: Lights,
+    /// How area lights are sampled (tests switch it).
     pub light_sampling: LightSampling,
     /// How direct light from area lights and the environment is sampled (tests switch it).
     pub strategy: DirectStrategy,
+    /// How long the build took.
     pub timings: BuildTimings,
-    /// Warnings found while building (degenerate triangles dropped, empty meshes).
-    pub warnings: Vec<Diagnostic>,
 }
 
 impl Scene {
+    /// The acceleration structure's figures (zero without one).
     pub fn accel_stats(&self) -> AccelStats {
         self.accel.as_ref().map(Accel::stats).unwrap_or_default()
     }

@@ -15,7 +15,8 @@ use crate::ir::BuiltinShape;
 
 pub mod icosphere;
 
-/// The triangles of a built-in shape, in its own space (centred at the origin).
+/// The triangles of a built-in shape (`quad`, `box`, `sphere`, `icosphere`), in its own space
+/// (centred at the origin).
 pub fn tessellate(shape: &BuiltinShape) -> TriMesh {
     match *shape {
         BuiltinShape::Quad { size } => {

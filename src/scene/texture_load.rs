@@ -8,11 +8,11 @@
 
 use std::sync::Arc;
 
-use super::image_texture::ImageData;
 use super::BuildError;
 use crate::assets::texture_image::{decode_texture, ImageError, MAX_TEXTURE_SIDE};
 use crate::assets::Loader;
 use crate::ir::{AssetPath, TextureEncoding};
+use crate::shade::texture::image::ImageData;
 
 /// Reads and decodes `file`; builds its pyramid if `mipmaps`.
 pub fn load_image_texture(

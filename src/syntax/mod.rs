@@ -17,15 +17,21 @@ pub use convert::MAX_EXPR_NODES;
 
 use pest::Parser;
 
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, Staged};
 use crate::source::{FileId, Span};
 
 #[derive(pest_derive::Parser)]
 #[grammar = "../grammar/scene.pest"]
 pub(crate) struct SceneParser;
 
-/// Parses one file. Returns every statement that parsed and a diagnostic per syntax error.
-pub fn parse(file: FileId, text: &str) -> (SceneFile, Vec<Diagnostic>) {
+/// Parses one file: every statement that parsed (always a value: the parser recovers at the next
+/// statement) and a diagnostic per syntax error.
+pub fn parse(file: FileId, text: &str) -> Staged<SceneFile> {
+    let (parsed, diagnostics) = parse_recovering(file, text);
+    Staged::new(Some(parsed), diagnostics)
+}
+
+fn parse_recovering(file: FileId, text: &str) -> (SceneFile, Vec<Diagnostic>) {
     let scanned = scan::scan(text);
     if scanned.too_deep_at.is_none() {
         if let Some(ok) = parse_batched(file, text, &scanned) {
@@ -130,9 +136,9 @@ mod tests {
     use super::*;
 
     fn parse_ok(src: &str) -> SceneFile {
-        let (f, d) = parse(FileId(0), src);
+        let (f, d) = parse(FileId(0), src).into_parts();
         assert!(d.is_empty(), "{d:#?}");
-        f
+        f.unwrap_or_default()
     }
 
     #[test]
@@ -174,9 +180,9 @@ mod tests {
     fn recovers_at_next_statement() {
         let src =
             "scnc 1\ncamera c { eye (1,2 }\nmaterial m = phong { }\nmesh = quad\nrender { }\n";
-        let (f, d) = parse(FileId(0), src);
+        let (f, d) = parse(FileId(0), src).into_parts();
         assert_eq!(d.len(), 2, "{d:#?}");
-        assert_eq!(f.statements.len(), 3);
+        assert_eq!(f.map(|f| f.statements.len()), Some(3));
     }
 
     #[test]
@@ -186,14 +192,14 @@ mod tests {
             "(".repeat(5000),
             ")".repeat(5000)
         );
-        let (_, d) = parse(FileId(0), &src);
+        let (_, d) = parse(FileId(0), &src).into_parts();
         assert_eq!(d[0].code, "scnc::syntax::too_deep");
     }
 
     #[test]
     fn long_expressions_are_capped() {
         let src = format!("scnc 1\nlet a = 1{}\n", " + 1".repeat(300));
-        let (_, d) = parse(FileId(0), &src);
+        let (_, d) = parse(FileId(0), &src).into_parts();
         assert_eq!(d[0].code, "scnc::syntax::expression_too_large");
     }
 }

@@ -11,7 +11,7 @@ use scnc::film::Film;
 use scnc::ir::{self, *};
 use scnc::render::{self, RenderOptions, RenderStats};
 use scnc::scene::{self, BuildOptions, Scene};
-use scnc::source::{FileId, SourceMap, Span};
+use scnc::source::{FileId, Span};
 
 pub fn span() -> Span {
     Span::new(FileId(0), 0, 0)
@@ -130,16 +130,23 @@ pub fn empty_desc(camera: Camera, settings: RenderSettings) -> SceneDesc {
 }
 
 pub fn build(desc: &ir::SceneDesc, accel: AccelKind) -> Scene {
-    let sources = SourceMap::new();
+    build_warned(desc, accel).0
+}
+
+/// [`build`], also returning the build's warnings.
+pub fn build_warned(
+    desc: &ir::SceneDesc,
+    accel: AccelKind,
+) -> (Scene, Vec<scnc::diag::Diagnostic>) {
     scene::build(
         desc,
-        &sources,
         &MemLoader::new(),
         &BuildOptions {
             accel,
             camera: None,
         },
     )
+    .into_result()
     .unwrap_or_else(|d| panic!("scene should build: {d:#?}"))
 }
 
@@ -147,7 +154,6 @@ pub fn render_with(scene: &Scene, threads: usize) -> (Film, RenderStats) {
     render::render(
         scene,
         &RenderOptions {
-            spp: None,
             threads: Some(threads),
         },
         &|_| {},
@@ -255,11 +261,10 @@ pub fn pfm_bytes(width: usize, height: usize, top_first: &[Vec3]) -> Vec<u8> {
     bytes
 }
 
-/// Builds with files served by `loader` (spans point into `sources`).
-pub fn build_with(
-    desc: &ir::SceneDesc,
-    sources: &SourceMap,
-    loader: &dyn scnc::assets::Loader,
-) -> Result<Scene, Vec<scnc::diag::Diagnostic>> {
-    scene::build(desc, sources, loader, &BuildOptions::default())
+/// A build's scene and warnings, or every diagnostic.
+pub type Built = Result<(Scene, Vec<scnc::diag::Diagnostic>), Vec<scnc::diag::Diagnostic>>;
+
+/// Builds with files served by `loader`.
+pub fn build_with(desc: &ir::SceneDesc, loader: &dyn scnc::assets::Loader) -> Built {
+    scene::build(desc, loader, &BuildOptions::default()).into_result()
 }

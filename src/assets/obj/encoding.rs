@@ -14,13 +14,17 @@ use std::borrow::Cow;
 /// The encoding a file was found to be in, for the warning that names it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Encoding {
+    /// UTF-8 or ASCII, with or without a BOM (names that are not UTF-8 are read as Latin-1).
     #[default]
     Utf8,
+    /// UTF-16 with the BOM `FF FE`, transcoded to UTF-8 before parsing.
     Utf16Le,
+    /// UTF-16 with the BOM `FE FF`, transcoded to UTF-8 before parsing.
     Utf16Be,
 }
 
 impl Encoding {
+    /// The encoding's name as warnings print it.
     pub fn name(self) -> &'static str {
         match self {
             Encoding::Utf8 => "UTF-8",

@@ -11,8 +11,11 @@
 /// One logical line: its 1-based number (of its first physical line), byte offset, content.
 #[derive(Debug, Clone, Copy)]
 pub struct Line<'a> {
+    /// 1-based line number.
     pub number: u32,
+    /// Byte offset of the line's first byte in the text.
     pub offset: usize,
+    /// The line's bytes, without its terminator.
     pub text: &'a [u8],
 }
 
@@ -25,6 +28,7 @@ pub struct Lines<'a> {
 }
 
 impl<'a> Lines<'a> {
+    /// Lines of `bytes`, the whole (UTF-8-compatible) text, numbered from 1.
     pub fn new(bytes: &'a [u8]) -> Lines<'a> {
         Lines {
             bytes,
@@ -57,6 +61,7 @@ impl<'a> Iterator for Lines<'a> {
     }
 }
 
+/// Whether `c` is OBJ whitespace: space, tab, vertical tab or form feed.
 pub fn is_space(c: u8) -> bool {
     matches!(c, b' ' | b'\t' | 0x0B | 0x0C)
 }
@@ -75,6 +80,7 @@ pub fn strip_comment(text: &[u8]) -> &[u8] {
     trim(&text[..end])
 }
 
+/// `t` without leading and trailing whitespace.
 pub fn trim(mut t: &[u8]) -> &[u8] {
     while let [c, rest @ ..] = t {
         if !is_space(*c) {

@@ -18,6 +18,7 @@ use crate::assets::Loader;
 /// Which file a note is about.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FileRef {
+    /// The OBJ file itself.
     Obj,
     /// `LoadedObj::mtls[i]`.
     Mtl(usize),
@@ -26,19 +27,24 @@ pub enum FileRef {
 /// A material library that was read.
 #[derive(Debug, Clone)]
 pub struct MtlSource {
+    /// Where it was read from: the OBJ's directory joined with the written name.
     pub path: PathBuf,
     /// The name as the OBJ wrote it.
     pub written: String,
+    /// The library's text (UTF-8; transcoded if it was UTF-16): its notes' places refer to it.
     pub text: Arc<[u8]>,
+    /// The materials it defines.
     pub library: MtlLibrary,
 }
 
 /// Everything read for one OBJ mesh.
 #[derive(Debug, Clone)]
 pub struct LoadedObj {
+    /// The triangles, normals, UVs and material runs.
     pub model: ObjModel,
     /// The OBJ's text (UTF-8; transcoded if the file was UTF-16): places refer to it.
     pub text: Arc<[u8]>,
+    /// The libraries read, in `mtllib` order, each once; [`FileRef::Mtl`] indexes them.
     pub mtls: Vec<MtlSource>,
     /// Every warning, from the OBJ and its libraries, in file order.
     pub warnings: Vec<(FileRef, Note)>,

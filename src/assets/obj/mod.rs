@@ -11,6 +11,8 @@
 //! - [`polygon`]: triangulation (shorter-diagonal quads, ear clipping, degenerates dropped);
 //! - [`polygon_check`]: faces that repeat their corners, triangles that miss the Newell area;
 //! - [`model`]: OBJ statements, single indexing of `v/vt/vn` corners;
+//! - `model_notes`: the once-per-file warnings a parse leaves for the end;
+//! - `normals`: normals for the vertices a file with `vn`s left without one;
 //! - [`mtl`]: MTL statements;
 //! - [`load`]: the OBJ and its `mtllib`s through the `Loader`, with every warning placed.
 //!
@@ -21,7 +23,9 @@ pub mod encoding;
 pub mod lexer;
 pub mod load;
 pub mod model;
+mod model_notes;
 pub mod mtl;
+mod normals;
 pub mod number;
 pub mod phong;
 pub mod polygon;
@@ -35,8 +39,11 @@ pub use mtl::{parse_mtl, BumpKind, MtlLibrary, MtlMaterial, TexRef};
 /// A line of an OBJ or MTL file: its 1-based number and the byte range of its statement.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Place {
+    /// 1-based line number (of the first physical line, for a `\`-continued statement).
     pub line: u32,
+    /// Byte offset of the statement's start in the file's UTF-8 text.
     pub start: usize,
+    /// Byte offset one past the statement's end.
     pub end: usize,
 }
 
@@ -58,12 +65,16 @@ impl Place {
 pub struct Note {
     /// Stable code, e.g. `scnc::obj::lines_skipped`.
     pub code: &'static str,
+    /// What is wrong, as one sentence.
     pub message: String,
+    /// The line (and byte range) it is about.
     pub at: Place,
+    /// How to fix or silence it, when known.
     pub help: Option<String>,
 }
 
 impl Note {
+    /// A warning with no help yet.
     pub fn warning(code: &'static str, message: impl Into<String>, at: Place) -> Note {
         Note {
             code,
@@ -73,6 +84,7 @@ impl Note {
         }
     }
 
+    /// Adds how to fix it.
     pub fn help(mut self, help: impl Into<String>) -> Note {
         self.help = Some(help.into());
         self
@@ -82,13 +94,18 @@ impl Note {
 /// Why a file cannot be loaded, at the line where that became clear.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ObjError {
+    /// Stable code, e.g. `scnc::obj::missing_number`.
     pub code: &'static str,
+    /// What is wrong, as one sentence.
     pub message: String,
+    /// The line (and byte range) where loading stopped.
     pub at: Place,
+    /// How to fix it, when known.
     pub help: Option<String>,
 }
 
 impl ObjError {
+    /// An error with no help yet.
     pub fn new(code: &'static str, message: impl Into<String>, at: Place) -> ObjError {
         ObjError {
             code,
@@ -98,6 +115,7 @@ impl ObjError {
         }
     }
 
+    /// Adds how to fix it.
     pub fn help(mut self, help: impl Into<String>) -> ObjError {
         self.help = Some(help.into());
         self

@@ -19,7 +19,8 @@ use glam::{Vec2, Vec3};
 
 use super::encoding::{decode_name, to_utf8_bytes, Encoding};
 use super::lexer::{continues, keyword, strip_comment, tokens, Line, Lines};
-use super::mtl::latin1_note;
+use super::model_notes::Seen;
+use super::normals::fill_missing_normals;
 use super::number::{parse_f32, parse_index};
 use super::polygon::{triangulate, Scratch};
 use super::polygon_check::PolygonWarnings;
@@ -28,7 +29,9 @@ use super::{Note, ObjError, Place};
 /// Triangles `start..` (up to the next run) use material `name` (`None`: before any `usemtl`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct MaterialRun {
+    /// Index of the run's first triangle in [`ObjModel::triangles`].
     pub start: usize,
+    /// The `usemtl` name; `None` before any `usemtl`.
     pub name: Option<String>,
     /// The `usemtl` line.
     pub at: Option<Place>,
@@ -37,12 +40,19 @@ pub struct MaterialRun {
 /// Counts for `scnc inspect`.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct ObjStats {
+    /// `v` statements read.
     pub positions: usize,
+    /// `vn` statements read.
     pub normals: usize,
+    /// `vt` statements read.
     pub uvs: usize,
+    /// `f` statements read (polygons, before triangulation).
     pub faces: usize,
+    /// `l` and `p` statements, skipped.
     pub lines_and_points: usize,
+    /// Triangles dropped for zero area or a non-finite corner.
     pub degenerate_dropped: usize,
+    /// `o` and `g` statements (accepted; they do not split the mesh).
     pub groups: usize,
 }
 
@@ -50,15 +60,24 @@ pub struct ObjStats {
 /// or empty, material runs in triangle order.
 #[derive(Debug, Clone, Default)]
 pub struct ObjModel {
+    /// Vertex positions, object space: the file's `v`s, then a copy of each one a face used with a
+    /// second `(vt, vn)` pair.
     pub positions: Vec<Vec3>,
+    /// One normal per vertex, or empty when the file has no `vn` (gaps filled from face normals).
     pub normals: Vec<Vec3>,
+    /// One UV per vertex, or empty when the file has no `vt`.
     pub uvs: Vec<Vec2>,
+    /// Indices into `positions` (and `normals`, `uvs`), with the file's winding.
     pub triangles: Vec<[u32; 3]>,
+    /// Which material each range of triangles uses, in order; never empty, the first starts at 0.
     pub runs: Vec<MaterialRun>,
     /// `mtllib` arguments as written, with their lines.
     pub mtllibs: Vec<(String, Place)>,
+    /// Counts of what the file held, for `scnc inspect`.
     pub stats: ObjStats,
+    /// The encoding the file was found in.
     pub encoding: Encoding,
+    /// Notes about the OBJ itself ([`LoadedObj`](super::LoadedObj) adds its libraries').
     pub warnings: Vec<Note>,
 }
 
@@ -121,11 +140,8 @@ struct Parser {
     pts: Vec<Vec3>,
     local: Vec<[u32; 3]>,
     scratch: Scratch,
-    first_skipped: Option<Place>,
-    latin1: Option<Place>,
-    fanned: Option<Place>,
+    seen: Seen,
     polygons: PolygonWarnings,
-    unsupported: Vec<(String, usize, Place)>,
 }
 
 impl Parser {
@@ -155,7 +171,7 @@ impl Parser {
             b"f" | b"fo" => self.face(rest, at)?,
             b"l" | b"p" => {
                 self.model.stats.lines_and_points += 1;
-                self.first_skipped.get_or_insert(at);
+                self.seen.first_skipped.get_or_insert(at);
             }
             b"usemtl" => {
                 let name = self.name(rest, at);
@@ -182,12 +198,7 @@ impl Parser {
             b"s" => {}
             _ => {
                 let (word, _) = decode_name(kw);
-                let full = self.unsupported.len() >= 32;
-                match self.unsupported.iter_mut().find(|(w, _, _)| *w == word) {
-                    Some((_, n, _)) => *n += 1,
-                    None if !full => self.unsupported.push((word, 1, at)),
-                    None => {}
-                }
+                self.seen.unsupported_statement(word, at);
             }
         }
         Ok(())
@@ -196,7 +207,7 @@ impl Parser {
     fn name(&mut self, rest: &[u8], at: Place) -> String {
         let (name, latin1) = decode_name(rest);
         if latin1 {
-            self.latin1.get_or_insert(at);
+            self.seen.latin1.get_or_insert(at);
         }
         name
     }
@@ -274,7 +285,7 @@ impl Parser {
         let o = triangulate(&self.pts, &mut self.local, &mut self.scratch);
         self.model.stats.degenerate_dropped += o.dropped;
         if o.fanned {
-            self.fanned.get_or_insert(at);
+            self.seen.fanned.get_or_insert(at);
         }
         let corners = self.corners.len();
         self.polygons
@@ -355,70 +366,9 @@ impl Parser {
         }
         m.runs
             .retain(|r| r.start < m.triangles.len() || r.start == 0);
-        self.warnings(&mut m);
-        m
-    }
-
-    fn warnings(&mut self, m: &mut ObjModel) {
-        if m.encoding != Encoding::Utf8 {
-            m.warnings.push(
-                Note::warning(
-                    "scnc::obj::utf16",
-                    format!("this file is {}; it was transcoded", m.encoding.name()),
-                    Place {
-                        line: 1,
-                        start: 0,
-                        end: 0,
-                    },
-                )
-                .help("OBJ files are normally ASCII or UTF-8"),
-            );
-        }
-        if let Some(at) = self.latin1 {
-            m.warnings.push(latin1_note(at));
-        }
-        if let Some(at) = self.first_skipped {
-            m.warnings.push(
-                Note::warning(
-                    "scnc::obj::lines_skipped",
-                    format!(
-                        "{} line (`l`) and point (`p`) elements skipped: only faces become surfaces",
-                        m.stats.lines_and_points
-                    ),
-                    at,
-                )
-                .help("convert polylines to faces (or tubes) in the modelling tool to render them"),
-            );
-        }
-        if let Some(at) = self.fanned {
-            m.warnings.push(Note::warning(
-                "scnc::obj::polygon_fanned",
-                format!(
-                    "a face with more than {} corners was triangulated as a fan (correct only if it is convex)",
-                    super::polygon::EAR_CLIP_MAX
-                ),
-                at,
-            ));
-        }
+        self.seen.notes(&mut m);
         m.warnings.extend(self.polygons.notes());
-        if let Some((_, _, first)) = self.unsupported.first() {
-            let list: Vec<String> = self
-                .unsupported
-                .iter()
-                .map(|(w, n, at)| match n {
-                    1 => format!("`{w}` (line {})", at.line),
-                    _ => format!("`{w}` ({n}×, first on line {})", at.line),
-                })
-                .collect();
-            m.warnings.push(
-                Note::warning(
-                    "scnc::obj::unsupported_statement",
-                    format!("OBJ statements scnc does not read were ignored: {}", list.join(", ")),
-                    *first,
-                )
-                .help("scnc reads polygonal faces (v, vt, vn, f) with their materials; curves and surfaces are not tessellated"),
-            );
-        }
+        m
     }
 }
 
@@ -444,35 +394,4 @@ fn resolve(tok: &[u8], len: usize, at: Place, what: &str) -> Result<u32, ObjErro
         .help("indices count from 1; negative ones count back from the last one read"));
     }
     Ok(resolved as u32)
-}
-
-/// Vertices with no (or a zero or non-finite) normal get the area-weighted normal of the faces
-/// around them, so that one corner without `vn` does not cost the whole mesh its normals.
-fn fill_missing_normals(positions: &[Vec3], tris: &[[u32; 3]], normals: &mut [Vec3]) {
-    let bad = |n: Vec3| !n.is_finite() || n.length_squared() == 0.0;
-    if !normals.iter().any(|&n| bad(n)) {
-        return;
-    }
-    let missing: Vec<bool> = normals.iter().map(|&n| bad(n)).collect();
-    for n in normals.iter_mut().filter(|n| bad(**n)) {
-        *n = Vec3::ZERO;
-    }
-    for t in tris {
-        let [a, b, c] = t.map(|i| positions[i as usize]);
-        let face = (b - a).cross(c - a);
-        if !face.is_finite() {
-            continue;
-        }
-        for &i in t {
-            if missing[i as usize] {
-                normals[i as usize] += face;
-            }
-        }
-    }
-    for (n, _) in normals.iter_mut().zip(&missing).filter(|(_, &m)| m) {
-        if n.length_squared() == 0.0 || !n.is_finite() {
-            // A vertex no face uses: any unit vector will do.
-            *n = Vec3::Z;
-        }
-    }
 }

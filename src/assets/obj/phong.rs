@@ -18,8 +18,11 @@ use super::mtl::{BumpKind, MtlMaterial, TexRef};
 /// The Phong parameters of one MTL material.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ObjPhong {
+    /// Diffuse albedo (`Kd`), each channel in [0, 1].
     pub diffuse: Vec3,
+    /// Specular albedo (`Ks`), each channel in [0, 1]; `diffuse + specular ≤ 1` per channel.
     pub specular: Vec3,
+    /// Phong exponent (`Ns`), in [0, 10000].
     pub shininess: f32,
     /// Radiance emitted (zero: not a light).
     pub emission: Vec3,
@@ -30,6 +33,7 @@ pub struct ObjPhong {
 }
 
 impl ObjPhong {
+    /// Whether it emits (some channel of `Ke` > 0): its faces become an area light.
     pub fn is_emitter(&self) -> bool {
         self.emission.max_element() > 0.0
     }
@@ -47,6 +51,8 @@ pub fn default_phong() -> ObjPhong {
     }
 }
 
+/// The Phong parameters of `m`: MTL defaults for missing values, zero for non-finite ones,
+/// `Kd`/`Ks` made energy-conserving as the module doc describes.
 pub fn phong_of(m: &MtlMaterial) -> ObjPhong {
     let finite = |v: Vec3| if v.is_finite() { v } else { Vec3::ZERO };
     let kd = finite(m.kd.unwrap_or(Vec3::splat(0.8)));

@@ -20,21 +20,26 @@ use std::sync::atomic::AtomicBool;
 use clap::{Args, Subcommand};
 
 use super::render::parse_resolution;
-use super::report::{compile_and_report, print_diagnostic_list, DiagArgs, JsonTo, SceneArg};
+use super::report::{report, strict, DiagArgs, JsonTo, SceneArg};
 use crate::assets::FsLoader;
 use crate::bvh::AccelKind;
+use crate::compile::compile;
 use crate::film::compare::{compare, FilmError};
 use crate::film::{self, Film, WriteSettings};
-use crate::ir::Quality;
+use crate::ir::{Quality, SceneDesc, SettingFlags};
 use crate::render::{self, RenderOptions};
 use crate::scene::{self, BuildOptions, Scene};
+use crate::source::SourceMap;
 
+/// `scnc bench`'s arguments.
 #[derive(Debug, Clone, Args)]
 pub struct BenchArgs {
+    /// Which benchmark.
     #[command(subcommand)]
     pub what: BenchWhat,
 }
 
+/// The benchmarks.
 #[derive(Debug, Clone, Subcommand)]
 pub enum BenchWhat {
     /// Error against a high-sample reference, and time, for each preset, a sweep of sample
@@ -42,8 +47,10 @@ pub enum BenchWhat {
     Quality(QualityArgs),
 }
 
+/// `scnc bench quality`'s arguments.
 #[derive(Debug, Clone, Args)]
 pub struct QualityArgs {
+    /// The scene file.
     #[command(flatten)]
     pub scene: SceneArg,
     /// Directory for the CSV, the plot and the cached reference.
@@ -63,6 +70,7 @@ pub struct QualityArgs {
     /// Worker threads (default: every core).
     #[arg(long, value_name = "N")]
     pub threads: Option<usize>,
+    /// Diagnostic format and `--strict`.
     #[command(flatten)]
     pub diag: DiagArgs,
 }
@@ -72,16 +80,25 @@ pub struct QualityArgs {
 pub struct Row {
     /// `preset`, `fixed` or `adaptive`.
     pub kind: &'static str,
+    /// What was rendered, for people (`preview`, `16 spp`, `noise 1%`).
     pub label: String,
+    /// Samples per pixel (the mean, for adaptive renders).
     pub spp: u32,
+    /// The scene's `light_samples` of the render.
     pub light_samples: u32,
+    /// The noise target of an adaptive render.
     pub noise: Option<f32>,
+    /// Wall time of the render.
     pub seconds: f64,
+    /// Error against the reference.
     pub error: FilmError,
+    /// Mean samples per pixel, unrounded.
     pub mean_spp: f64,
+    /// Pixels of an adaptive render that stopped at `max_samples`.
     pub pixels_at_max: u64,
 }
 
+/// Runs the chosen benchmark.
 pub fn run(args: &BenchArgs) -> ExitCode {
     match &args.what {
         BenchWhat::Quality(q) => match quality(q) {
@@ -95,30 +112,7 @@ pub fn run(args: &BenchArgs) -> ExitCode {
 }
 
 fn quality(args: &QualityArgs) -> Result<(), String> {
-    let compiled = compile_and_report(&args.scene.file, &args.diag, JsonTo::Stderr);
-    let Some(mut desc) = compiled.scene else {
-        return Err("the scene does not compile".into());
-    };
-    if let Some((w, h)) = args.resolution {
-        desc.render.width = w;
-        desc.render.height = h;
-    }
-    let options = BuildOptions {
-        accel: AccelKind::Bvh,
-        camera: None,
-    };
-    let mut scene = match scene::build(&desc, &compiled.sources, &FsLoader::new(), &options) {
-        Ok(s) => s,
-        Err(diags) => {
-            print_diagnostic_list(
-                &diags,
-                &compiled.sources,
-                args.diag.diagnostic_format,
-                JsonTo::Stderr,
-            );
-            return Err("the scene does not build".into());
-        }
-    };
+    let (sources, desc, mut scene) = compile_and_build(args)?;
     std::fs::create_dir_all(&args.out)
         .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
     let name = args
@@ -126,9 +120,8 @@ fn quality(args: &QualityArgs) -> Result<(), String> {
         .file
         .file_stem()
         .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
-    let base = scene.settings.clone();
     let mut key = Fnv::default();
-    for (_, file) in compiled.sources.files() {
+    for (_, file) in sources.files() {
         key.write(file.text.as_bytes());
     }
     key.write(serde_json::to_string(&desc).unwrap_or_default().as_bytes());
@@ -137,37 +130,7 @@ fn quality(args: &QualityArgs) -> Result<(), String> {
         .out
         .join(format!(".reference-{name}-{:016x}.exr", key.0));
     let reference = reference(&mut scene, &ref_path, args)?;
-
-    let mut rows = Vec::new();
-    for q in Quality::ALL {
-        scene.settings = base.clone();
-        scene.settings.apply_quality(q);
-        scene.settings.noise = None;
-        rows.push(measure(&scene, &reference, "preset", q.name(), args)?);
-    }
-    let mut side = 1u32;
-    while side * side <= args.max_spp {
-        scene.settings = base.clone();
-        scene.settings.samples_per_pixel = side * side;
-        scene.settings.light_samples = 1;
-        scene.settings.noise = None;
-        rows.push(measure(
-            &scene,
-            &reference,
-            "fixed",
-            &format!("{} spp", side * side),
-            args,
-        )?);
-        side *= 2;
-    }
-    for target in [0.1f32, 0.05, 0.02, 0.01] {
-        scene.settings = base.clone();
-        scene.settings.light_samples = 1;
-        scene.settings.noise = Some(target);
-        scene.settings.max_samples = Some(args.reference_spp);
-        let label = format!("noise {}%", target * 100.0);
-        rows.push(measure(&scene, &reference, "adaptive", &label, args)?);
-    }
+    let rows = sweep(&mut scene, &reference, args)?;
     let csv_path = args.out.join(format!("{name}.csv"));
     write_file(&csv_path, csv(&name, &rows).as_bytes())?;
     let svg_path = args.out.join(format!("{name}.svg"));
@@ -181,6 +144,67 @@ fn quality(args: &QualityArgs) -> Result<(), String> {
     );
     eprintln!("wrote {} and {}", csv_path.display(), svg_path.display());
     Ok(())
+}
+
+/// Compiles and builds the scene through one loader (`--resolution` resolved into its
+/// settings first), reporting the diagnostics of both stages once.
+fn compile_and_build(args: &QualityArgs) -> Result<(SourceMap, SceneDesc, Scene), String> {
+    let loader = FsLoader::new();
+    let mut sources = SourceMap::new();
+    let options = BuildOptions {
+        accel: AccelKind::Bvh,
+        camera: None,
+    };
+    let flags = SettingFlags {
+        resolution: args.resolution,
+        ..SettingFlags::default()
+    };
+    let compiled = strict(compile(&args.scene.file, &loader, &mut sources), &args.diag);
+    let compiled_ok = compiled.value.is_some();
+    let built = compiled
+        .map(|mut desc| {
+            desc.render.resolve(&flags);
+            desc
+        })
+        .and_then(|desc| scene::build(&desc, &loader, &options).map(|s| (desc, s)));
+    report(&built, &sources, &args.diag, JsonTo::Stderr);
+    match built.value {
+        Some((desc, scene)) => Ok((sources, desc, scene)),
+        None if compiled_ok => Err("the scene does not build".into()),
+        None => Err("the scene does not compile".into()),
+    }
+}
+
+/// Renders every point of the curve: each preset, fixed counts 1, 4, 16, … up to
+/// `--max-spp`, and adaptive sampling at four noise targets.
+fn sweep(scene: &mut Scene, reference: &Film, args: &QualityArgs) -> Result<Vec<Row>, String> {
+    let base = scene.settings.clone();
+    let mut rows = Vec::new();
+    for q in Quality::ALL {
+        scene.settings = base.clone();
+        scene.settings.apply_quality(q);
+        scene.settings.noise = None;
+        rows.push(measure(scene, reference, "preset", q.name(), args)?);
+    }
+    let mut side = 1u32;
+    while side * side <= args.max_spp {
+        scene.settings = base.clone();
+        scene.settings.fix_samples(side * side);
+        scene.settings.light_samples = 1;
+        let label = format!("{} spp", side * side);
+        rows.push(measure(scene, reference, "fixed", &label, args)?);
+        side *= 2;
+    }
+    for target in [0.1f32, 0.05, 0.02, 0.01] {
+        scene.settings = base.clone();
+        scene.settings.light_samples = 1;
+        scene.settings.noise = Some(target);
+        scene.settings.max_samples = Some(args.reference_spp);
+        let label = format!("noise {}%", target * 100.0);
+        rows.push(measure(scene, reference, "adaptive", &label, args)?);
+    }
+    scene.settings = base;
+    Ok(rows)
 }
 
 /// The cached reference, or a new one (written atomically before it is used).
@@ -198,7 +222,6 @@ fn reference(scene: &mut Scene, path: &Path, args: &QualityArgs) -> Result<Film,
     // Independent of every measured render's samples.
     scene.settings.seed = base.seed ^ 0x005e_ed0f_4efe_4ece;
     let options = RenderOptions {
-        spp: None,
         threads: args.threads,
     };
     let rendered = render::render(scene, &options, &|_| {}, &AtomicBool::new(false));
@@ -210,7 +233,7 @@ fn reference(scene: &mut Scene, path: &Path, args: &QualityArgs) -> Result<Film,
         stats.wall.as_secs_f64(),
         path.display()
     );
-    film::write(&film, path, &WriteSettings::default()).map_err(|e| e.to_string())?;
+    film::write_image(&film, path, &WriteSettings::default()).map_err(|e| e.to_string())?;
     Ok(film)
 }
 
@@ -231,7 +254,6 @@ fn measure(
     args: &QualityArgs,
 ) -> Result<Row, String> {
     let options = RenderOptions {
-        spp: None,
         threads: args.threads,
     };
     let r = render::render_with_error(scene, &options, &|_| {}, &AtomicBool::new(false))

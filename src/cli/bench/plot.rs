@@ -7,6 +7,7 @@ use plotters::prelude::*;
 
 use super::Row;
 
+/// The plot of `rows` as an SVG document.
 pub fn svg(name: &str, rows: &[Row]) -> Result<String, String> {
     let pts = |kind: &str| -> Vec<(f64, f64)> {
         rows.iter()

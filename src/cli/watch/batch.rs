@@ -29,6 +29,7 @@ pub enum Msg {
 /// One batch of changed paths (not yet confirmed by content).
 #[derive(Debug, Default, PartialEq, Eq)]
 pub struct Batch {
+    /// The paths events named.
     pub paths: BTreeSet<PathBuf>,
     /// Ctrl-C arrived (or the watcher went away) while gathering.
     pub quit: bool,

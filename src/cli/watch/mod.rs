@@ -36,8 +36,10 @@ use crate::scene::BuildCache;
 /// How often files that do not exist yet are looked for.
 const POLL: Duration = Duration::from_millis(250);
 
+/// `scnc watch`'s arguments.
 #[derive(Debug, Clone, Args)]
 pub struct WatchArgs {
+    /// The scene file.
     #[command(flatten)]
     pub scene: SceneArg,
     /// Output image (written after every pass); default: the scene's outputs, or the scene
@@ -64,6 +66,7 @@ pub struct WatchArgs {
     pub events: EventsFormat,
 }
 
+/// `scnc watch`: compile, build and render in a loop, on every change of what was read.
 pub fn run(args: &WatchArgs) -> ExitCode {
     let (tx, rx) = channel();
     {
@@ -111,9 +114,10 @@ pub fn run(args: &WatchArgs) -> ExitCode {
         status.begin(&changed);
         let outcome = session.compile();
         watcher.set(outcome.files);
-        match outcome.result {
-            Ok(ready) => {
-                status.compiled(&outcome.figures, &outcome.warnings, &outcome.sources);
+        let diagnostics = outcome.built.diagnostics;
+        match outcome.built.value {
+            Some(ready) => {
+                status.compiled(&outcome.figures, &diagnostics, &outcome.sources);
                 job = Some(RenderJob::start(
                     ready,
                     Arc::new(outcome.sources),
@@ -122,7 +126,7 @@ pub fn run(args: &WatchArgs) -> ExitCode {
                     preview.clone(),
                 ));
             }
-            Err(diags) => status.error(&diags, &outcome.sources),
+            None => status.error(&diagnostics, &outcome.sources),
         }
         status.watching(watcher.len());
         match wait_for_change(&rx, &mut watcher) {

@@ -36,6 +36,7 @@ pub struct RenderJob {
 }
 
 impl RenderJob {
+    /// Starts rendering the passes of `ready` on a thread of its own.
     pub fn start(
         ready: Ready,
         sources: Arc<SourceMap>,
@@ -46,8 +47,9 @@ impl RenderJob {
         let cancel = Arc::new(AtomicBool::new(false));
         let flag = cancel.clone();
         let handle = std::thread::spawn(move || {
+            let mut ready = ready;
             run(
-                &ready,
+                &mut ready,
                 &sources,
                 threads,
                 &status,
@@ -67,27 +69,33 @@ impl RenderJob {
     }
 }
 
+/// Renders each pass of the plan with its own sample count (set in the scene's settings, then
+/// put back so the cache gets the scene as built), writing and previewing each.
 fn run(
-    ready: &Ready,
+    ready: &mut Ready,
     sources: &SourceMap,
     threads: Option<usize>,
     status: &Status,
     preview: Option<&Preview>,
     cancel: &AtomicBool,
 ) {
-    let scene = &ready.scene;
-    let passes = plan(
-        scene.settings.samples_per_pixel,
-        scene.settings.noise.is_some(),
-    );
+    let built = ready.scene.settings.clone();
+    let passes = plan(built.samples_per_pixel, built.noise.is_some());
+    let options = RenderOptions { threads };
     for (i, &spp) in passes.iter().enumerate() {
-        let options = RenderOptions { spp, threads };
-        let Ok((film, stats)) = render::render(scene, &options, &|_| {}, cancel) else {
+        ready.scene.settings = built.clone();
+        if let Some(spp) = spp {
+            ready.scene.settings.fix_samples(spp);
+        }
+        let rendered = render::render(&ready.scene, &options, &|_| {}, cancel);
+        ready.scene.settings = built.clone();
+        let Ok((film, stats)) = rendered else {
             return;
         };
         for (path, span) in &ready.outputs {
-            if let Err(e) = film::write(&film, path, &ready.write) {
-                status.write_failed(&e.to_diagnostic(*span), sources);
+            let written = film::write(&film, path, &ready.write, *span);
+            for d in &written.diagnostics {
+                status.write_failed(d, sources);
             }
         }
         if let Some(p) = preview {

@@ -49,10 +49,12 @@ impl Preview {
         }
     }
 
+    /// How many images were set so far (the page asks for a new one when it changes).
     pub fn image_version(&self) -> u64 {
         self.state.lock().map_or(0, |s| s.image_version)
     }
 
+    /// Passes a status event to the connected pages.
     pub fn event(&self, event: &Value) {
         let Ok(mut s) = self.state.lock() else {
             return;

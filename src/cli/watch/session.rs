@@ -13,8 +13,8 @@ use super::watcher::{absolute, FileSet};
 use crate::assets::Loader;
 use crate::bvh::AccelKind;
 use crate::cli::targets::{camera_index, output_targets};
-use crate::compile::compile_file;
-use crate::diag::Diagnostic;
+use crate::compile::compile;
+use crate::diag::Staged;
 use crate::film::WriteSettings;
 use crate::ir::SceneDesc;
 use crate::scene::cache::content_hash;
@@ -52,53 +52,73 @@ impl Loader for RecordingLoader {
 
 /// A scene ready to render, and where its passes go.
 pub struct Ready {
+    /// The built scene.
     pub scene: Scene,
+    /// Every output file, with the span of its `output "…"` literal when the scene named it.
     pub outputs: Vec<(PathBuf, Option<Span>)>,
+    /// Exposure and tone mapping of the PNG outputs.
     pub write: WriteSettings,
 }
 
 /// The result of one compile.
 pub struct Outcome {
+    /// The scene file and its includes, as read by this compile.
     pub sources: SourceMap,
-    /// `Err`: every error and warning found (nothing to render).
-    pub result: Result<Ready, Vec<Diagnostic>>,
+    /// The scene ready to render, with every error and warning of compile and build (no
+    /// value: nothing to render).
+    pub built: Staged<Ready>,
+    /// Times and cache figures for the status line.
     pub figures: CompileFigures,
-    pub warnings: Vec<Diagnostic>,
     /// What this compile read: the next watch set (output files removed).
     pub files: FileSet,
 }
 
+/// The watch loop's state between compiles: what to compile and the build cache.
 pub struct Session {
+    /// The scene file.
     pub file: PathBuf,
+    /// `-o FILE`.
     pub output: Option<PathBuf>,
+    /// `--camera NAME`.
     pub camera: Option<String>,
+    /// What earlier builds made, for reuse.
     pub cache: BuildCache,
 }
 
 impl Session {
+    /// Compiles and builds the scene through one recording loader.
     pub fn compile(&mut self) -> Outcome {
         let loader = RecordingLoader::default();
+        let mut sources = SourceMap::new();
         let t = Instant::now();
-        let compiled = compile_file(&self.file, &loader);
+        let compiled = compile(&self.file, &loader, &mut sources);
         let mut figures = CompileFigures {
             compile_ms: t.elapsed().as_secs_f64() * 1e3,
             ..CompileFigures::default()
         };
-        let mut warnings: Vec<Diagnostic> = compiled.diagnostics.clone();
-        let result = match compiled.scene {
-            None => Err(compiled.diagnostics),
-            Some(desc) => {
-                let t = Instant::now();
-                let r = self.build(&desc, &compiled.sources, &loader, &mut warnings);
-                figures.build_ms = t.elapsed().as_secs_f64() * 1e3;
-                let report = self.cache.report();
-                figures.rebuilt = report.rebuilt();
-                figures.meshes_loaded = report.meshes_loaded;
-                figures.meshes_reused = report.meshes_reused;
-                r
-            }
-        };
-        figures.warnings = warnings.len();
+        let built = compiled.and_then(|desc| {
+            let t = Instant::now();
+            let built = self.build(&desc, &loader);
+            figures.build_ms = t.elapsed().as_secs_f64() * 1e3;
+            let report = self.cache.report();
+            figures.rebuilt = report.rebuilt();
+            figures.meshes_loaded = report.meshes_loaded;
+            figures.meshes_reused = report.meshes_reused;
+            built
+        });
+        figures.warnings = built.diagnostics.len();
+        let files = self.watch_set(loader, built.value.as_ref());
+        Outcome {
+            sources,
+            built,
+            figures,
+            files,
+        }
+    }
+
+    /// Every file the compile and build read (and the cached files still in use), without
+    /// scnc's own outputs.
+    fn watch_set(&self, loader: RecordingLoader, ready: Option<&Ready>) -> FileSet {
         let mut files: FileSet = loader
             .read
             .into_inner()
@@ -110,38 +130,27 @@ impl Session {
             files.entry(absolute(&p)).or_insert(Some(h));
         }
         // scnc's own output files are never inputs.
-        if let Ok(ready) = &result {
+        if let Some(ready) = ready {
             for (out, _) in &ready.outputs {
                 files.remove(&absolute(out));
             }
         }
-        Outcome {
-            sources: compiled.sources,
-            result,
-            figures,
-            warnings,
-            files,
-        }
+        files
     }
 
-    fn build(
-        &mut self,
-        desc: &SceneDesc,
-        sources: &SourceMap,
-        loader: &RecordingLoader,
-        warnings: &mut Vec<Diagnostic>,
-    ) -> Result<Ready, Vec<Diagnostic>> {
+    fn build(&mut self, desc: &SceneDesc, loader: &RecordingLoader) -> Staged<Ready> {
         let camera = match self.camera.as_deref() {
             None => None,
-            Some(name) => Some(camera_index(desc, name).map_err(|d| vec![*d])?),
+            Some(name) => match camera_index(desc, name) {
+                Ok(i) => Some(i),
+                Err(d) => return Staged::failed(vec![*d]),
+            },
         };
         let options = BuildOptions {
             accel: AccelKind::Bvh,
             camera,
         };
-        let mut scene = build_cached(desc, sources, loader, &options, &mut self.cache)?;
-        warnings.append(&mut scene.warnings);
-        Ok(Ready {
+        build_cached(desc, loader, &options, &mut self.cache).map(|scene| Ready {
             outputs: output_targets(self.output.as_deref(), &self.file, desc),
             write: WriteSettings::from_render(&scene.settings),
             scene,

@@ -29,14 +29,22 @@ pub enum EventsFormat {
 /// Compile-and-build figures for the `compiled` event.
 #[derive(Debug, Clone, Default)]
 pub struct CompileFigures {
+    /// Wall time of the compile.
     pub compile_ms: f64,
+    /// Wall time of the build.
     pub build_ms: f64,
+    /// What the build cache had to rebuild.
     pub rebuilt: Vec<&'static str>,
+    /// Meshes read from their files.
     pub meshes_loaded: usize,
+    /// Meshes the cache kept.
     pub meshes_reused: usize,
+    /// Diagnostics reported.
     pub warnings: usize,
 }
 
+/// Reports the loop's events: a human status on stderr, or JSON lines on stdout (and to the
+/// preview page).
 pub struct Status {
     format: EventsFormat,
     clear: bool,
@@ -50,6 +58,7 @@ fn ms(v: f64) -> f64 {
 }
 
 impl Status {
+    /// A reporter in `format`; clears the terminal before each compile unless `no_clear`.
     pub fn new(format: EventsFormat, no_clear: bool, preview: Option<Arc<Preview>>) -> Status {
         Status {
             format,
@@ -87,6 +96,7 @@ impl Status {
         }
     }
 
+    /// A compile and build succeeded, with these warnings.
     pub fn compiled(&self, f: &CompileFigures, warnings: &[Diagnostic], sources: &SourceMap) {
         let event = json!({
             "event": "compiled",
@@ -113,6 +123,7 @@ impl Status {
         });
     }
 
+    /// A compile or build failed: the last good image stays.
     pub fn error(&self, diags: &[Diagnostic], sources: &SourceMap) {
         let doc: Value = serde_json::from_str(&render_json(diags, sources)).unwrap_or(Value::Null);
         let event = json!({
@@ -126,6 +137,7 @@ impl Status {
         });
     }
 
+    /// A render pass finished and was written.
     pub fn pass(&self, index: usize, spp: u32, wall_ms: f64, size: (u32, u32), last: bool) {
         let image = self.preview.as_ref().map_or(0, |p| p.image_version());
         let event = json!({
@@ -142,22 +154,26 @@ impl Status {
         });
     }
 
+    /// An output could not be written.
     pub fn write_failed(&self, d: &Diagnostic, sources: &SourceMap) {
         self.error(std::slice::from_ref(d), sources);
     }
 
+    /// Waiting for a change of any of `files`.
     pub fn watching(&self, files: usize) {
         self.emit(json!({"event": "watching", "files": files}), || {
             eprintln!("watching {files} files (Ctrl-C to stop)");
         });
     }
 
+    /// The preview server listens at `url`.
     pub fn serving(&self, url: &str) {
         self.emit(json!({"event": "serving", "url": url}), || {
             eprintln!("preview at {url}");
         });
     }
 
+    /// The loop ended.
     pub fn stopped(&self) {
         self.emit(json!({"event": "stopped"}), || eprintln!("stopped"));
     }

@@ -17,6 +17,8 @@ use crate::scene::cache::content_hash;
 /// The watched set: absolute path → content hash of what was read (`None`: did not exist).
 pub type FileSet = HashMap<PathBuf, Option<u64>>;
 
+/// The notify watcher and the set of files it watches (through their directories, so files
+/// that editors replace by rename, or that do not exist yet, are seen).
 pub struct FileWatcher {
     notify: RecommendedWatcher,
     files: FileSet,
@@ -60,6 +62,7 @@ impl FileWatcher {
         }
     }
 
+    /// Whether `path` (absolute) is in the watched set.
     pub fn is_watched(&self, path: &Path) -> bool {
         self.files.contains_key(path)
     }
@@ -69,6 +72,7 @@ impl FileWatcher {
         self.files.get(&absolute(path)).copied().flatten()
     }
 
+    /// How many files are watched.
     pub fn len(&self) -> usize {
         self.files.len()
     }

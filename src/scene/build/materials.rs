@@ -13,10 +13,10 @@ use std::sync::Arc;
 
 use super::Builder;
 use crate::ir::{self, ColorInput, Filter, ScalarInput, TextureEncoding, TextureSource};
-use crate::scene::image_texture::ImageData;
-use crate::scene::texture::{Texture, Textures};
 use crate::scene::texture_load::load_image_texture;
 use crate::scene::SurfaceMaterial;
+use crate::shade::texture::image::ImageData;
+use crate::shade::{Texture, Textures};
 
 /// The textures a material looks up directly (its inputs and normal map).
 pub(super) fn texture_roots(m: &ir::Material) -> Vec<ir::TextureId> {

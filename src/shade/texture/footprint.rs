@@ -1,4 +1,4 @@
-//! Stage 4: the pixel's footprint on a surface, for choosing mip levels (`filter trilinear`).
+//! Shading layer: the pixel's footprint on a surface, for choosing mip levels (`filter trilinear`).
 //!
 //! Ray cones, GPU-style (Akenine-Möller et al., "Texture Level of Detail Strategies for
 //! Real-Time Ray Tracing", Ray Tracing Gems, 2019): a camera ray is a cone whose spread angle is
@@ -20,8 +20,8 @@
 
 use glam::Vec3;
 
-use super::surface::SurfaceHit;
 use crate::scene::Scene;
+use crate::shade::surface::SurfaceHit;
 
 /// The spread angle of one pixel of a camera with vertical field of view `fov_y_rad` rendering
 /// `height_px` rows.

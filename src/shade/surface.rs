@@ -1,4 +1,4 @@
-//! Stage 4: what a hit is (position, normals, UV) and how rays leave it without hitting the same
+//! Shading layer: what a hit is (position, normals, UV) and how rays leave it without hitting the same
 //! surface again.
 //!
 //! The hit point is rebuilt from the world-space triangle and the barycentrics the accel found,
@@ -23,6 +23,7 @@ pub fn gamma(n: u32) -> f32 {
 /// A hit on a scene surface, in world space.
 #[derive(Debug, Clone, Copy)]
 pub struct SurfaceHit {
+    /// The hit point, rebuilt from the world-space triangle and the barycentrics.
     pub p: Vec3,
     /// Per-axis bound on the error of `p`.
     pub p_error: Vec3,
@@ -32,6 +33,7 @@ pub struct SurfaceHit {
     pub ns: Vec3,
     /// Texture coordinates: interpolated, or the barycentrics (u, v) when the mesh has none.
     pub uv: Vec2,
+    /// What the hit triangle is: a material to shade or an emitter.
     pub surface: Surface,
     /// The accel's record (distance, barycentrics, instance, triangle), for the texture
     /// footprint and normal mapping.

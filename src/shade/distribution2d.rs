@@ -1,4 +1,4 @@
-//! Stage 3 helper: a piecewise-constant 2-D distribution over a `width × height` grid of
+//! Shading layer: a piecewise-constant 2-D distribution over a `width × height` grid of
 //! non-negative weights (a marginal over rows, a conditional per row), sampled by inverting the
 //! two CDFs. Used to importance-sample environment maps (`light sky = environment {
 //! image("sky.hdr") }`), where the weights are luminance × sin θ.
@@ -21,6 +21,8 @@ use super::distribution::Distribution1D;
 /// Guide entries per row.
 pub const GUIDES: usize = 128;
 
+/// Picks a cell of a `width × height` grid with probability proportional to its weight, and a
+/// point uniform inside it.
 #[derive(Debug, Clone)]
 pub struct Distribution2D {
     width: usize,
@@ -37,7 +39,9 @@ pub struct Distribution2D {
 pub struct Sample2D {
     /// The point in `[0, 1)²`.
     pub uv: Vec2,
+    /// The cell's column (along u).
     pub col: usize,
+    /// The cell's row (along v).
     pub row: usize,
     /// Density with respect to area on the unit square.
     pub pdf_uv: f32,
@@ -100,10 +104,12 @@ impl Distribution2D {
             + self.marginal.bytes()
     }
 
+    /// Cells per row.
     pub fn width(&self) -> usize {
         self.width
     }
 
+    /// Rows.
     pub fn height(&self) -> usize {
         self.height
     }

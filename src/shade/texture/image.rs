@@ -1,6 +1,6 @@
-//! Stage 3/4: image texture storage and lookup — texels, wrap modes, filters and the mip
+//! Shading layer: image texture storage and lookup — texels, wrap modes, filters and the mip
 //! pyramid behind `texture wood = image("wood.png") { wrap repeat|clamp|mirror  filter
-//! nearest|bilinear|trilinear }`.
+//! nearest|bilinear|trilinear }` (decoding the file is the build's, `scene::texture_load`).
 //!
 //! Conventions (those of OpenGL and OBJ files): u runs left to right, v bottom to top, and image
 //! row 0 is the top of the image, so UV (0, 0) is the bottom-left corner of the picture. Texel
@@ -24,8 +24,11 @@ use crate::ir::{Filter, WrapMode};
 /// One level of the pyramid.
 #[derive(Debug, Clone)]
 pub struct MipLevel {
+    /// Texels per row.
     pub width: u32,
+    /// Rows.
     pub height: u32,
+    /// Linear RGBA, row 0 at the top of the image.
     pub texels: Vec<Vec4>,
 }
 
@@ -56,10 +59,12 @@ impl ImageData {
         ImageData { levels }
     }
 
+    /// Width of the full-resolution image.
     pub fn width(&self) -> u32 {
         self.levels[0].width
     }
 
+    /// Height of the full-resolution image.
     pub fn height(&self) -> u32 {
         self.levels[0].height
     }
@@ -112,11 +117,13 @@ impl MipLevel {
         Vec2::new(uv.x * self.width as f32, (1.0 - uv.y) * self.height as f32)
     }
 
+    /// The texel containing `uv`.
     pub fn nearest(&self, uv: Vec2, wrap: WrapMode) -> Vec4 {
         let c = self.coords(uv);
         self.texel(floor_index(c.x), floor_index(c.y), wrap)
     }
 
+    /// The four texels around `uv`, blended by distance to their centres.
     pub fn bilinear(&self, uv: Vec2, wrap: WrapMode) -> Vec4 {
         let c = self.coords(uv) - Vec2::splat(0.5);
         let (x0, y0) = (floor_index(c.x), floor_index(c.y));

@@ -1,4 +1,4 @@
-//! Stage 4: tangent-space normal mapping, `material m = phong { normal_map bumps
+//! Shading layer: tangent-space normal mapping, `material m = phong { normal_map bumps
 //! normal_strength 0.8  normal_green opengl|directx }`.
 //!
 //! The map stores `n·½ + ½` in a data texture. Its (x, y, z) is expressed in the frame

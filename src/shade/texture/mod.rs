@@ -1,36 +1,46 @@
-//! Stage 3/4: material inputs evaluated at a hit's UV.
+//! Shading layer: material inputs evaluated at a hit's UV.
 //!
 //! Syntax: `texture board = checker { even #ffffff  odd #202020  scale 8 }`, constants,
-//! `texture wood = image("wood.png") { wrap repeat  filter trilinear }` (see `image_texture`),
+//! `texture wood = image("wood.png") { wrap repeat  filter trilinear }` (see `image`),
 //! and `phong { diffuse board  specular 0.4  shininess 64 }`.
 //!
 //! A lookup takes the hit's UV and its footprint: the width of the pixel's ray cone on the
-//! surface, measured in UV units (see `render::footprint`). A trilinear image texture turns it
+//! surface, measured in UV units (see `footprint`). A trilinear image texture turns it
 //! into a mip level `log2(footprint · √(w·h))`; other textures ignore it.
 
 use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 
-use super::image_texture::ImageData;
+pub mod footprint;
+pub mod image;
+
+use self::image::ImageData;
 use crate::ir::{ColorInput, Filter, ScalarInput, WrapMode};
 
 /// A texture the renderer can evaluate.
 #[derive(Debug, Clone)]
 pub enum Texture {
+    /// The same colour everywhere.
     Constant(Vec3),
     /// `scale` squares per unit of u and of v; the square containing (0, 0)..(1/scale, 1/scale)
     /// is `even`.
     Checker {
+        /// The colour of the square at the origin and of every other one.
         even: ColorInput,
+        /// The colour of the other squares.
         odd: ColorInput,
+        /// Squares per unit of u and of v.
         scale: f32,
     },
     /// An image file's texels, shared (one decode per file and encoding) by every texture
     /// that names it.
     Image {
+        /// The decoded texels (and their mip pyramid for trilinear filtering).
         data: Arc<ImageData>,
+        /// What UVs outside [0, 1) read.
         wrap: WrapMode,
+        /// How texels are blended.
         filter: Filter,
     },
 }
@@ -38,6 +48,7 @@ pub enum Texture {
 /// Textures indexed by `ir::TextureId`; `None` for the ones the scene does not use.
 #[derive(Debug, Clone, Default)]
 pub struct Textures {
+    /// `slots[id]` is texture `id`.
     pub slots: Vec<Option<Texture>>,
 }
 

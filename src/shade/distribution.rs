@@ -1,4 +1,4 @@
-//! Stage 3 helper: a discrete distribution sampled by inverting its CDF. Used to pick a light
+//! Shading layer: a discrete distribution sampled by inverting its CDF. Used to pick a light
 //! by power and a triangle of an area light by area, in O(log n) whatever the count.
 
 /// Picks index `i` with probability `weights[i] / Σ weights`.
@@ -42,14 +42,17 @@ impl Distribution1D {
         (self.cdf.len() + self.pmf.len()) * std::mem::size_of::<f32>()
     }
 
+    /// How many indices it picks from (zero-weight ones included).
     pub fn len(&self) -> usize {
         self.pmf.len()
     }
 
+    /// Whether it has no index (never, for a table [`Distribution1D::new`] returned).
     pub fn is_empty(&self) -> bool {
         self.pmf.is_empty()
     }
 
+    /// The probability of picking `i` (0 outside the table).
     pub fn pmf(&self, i: usize) -> f32 {
         self.pmf.get(i).copied().unwrap_or(0.0)
     }

@@ -1,11 +1,11 @@
-//! Stage 4: sampling a triangle light by solid angle (Arvo 1995, "Stratified Sampling of
+//! Shading layer: sampling a triangle light by solid angle (Arvo 1995, "Stratified Sampling of
 //! Spherical Triangles"; the formulation of pbrt-v4).
 //!
 //! Area sampling picks points uniformly on the triangle, so its estimator carries the factor
 //! `cos θ_l / r²`, which varies wildly over a light that is large or close compared with its
 //! distance. Sampling the spherical triangle the light subtends uniformly removes that factor
 //! (the estimate becomes `L_e · f · cos θ · Ω`), leaving only the BRDF and cosine to vary.
-//! The integrator uses it when the subtended solid angle is in
+//! `area` uses it when the subtended solid angle is in
 //! [`MIN_SOLID_ANGLE`, `MAX_SOLID_ANGLE`]: below, f64 rounding makes the angles unreliable and
 //! the two methods are equivalent anyway; above, the triangle nearly covers the hemisphere.
 //! The measurement that justifies it is `tests/render_light_sampling.rs`. Arithmetic is in f64
@@ -13,7 +13,11 @@
 
 use glam::{DVec3, Vec2, Vec3};
 
+/// Below this solid angle (sr) a triangle is sampled by area: f64 rounding makes the spherical
+/// angles unreliable, and the two methods agree anyway.
 pub const MIN_SOLID_ANGLE: f32 = 1e-4;
+/// Above this solid angle (sr, just under 2π) the triangle nearly covers the hemisphere and is
+/// sampled by area.
 pub const MAX_SOLID_ANGLE: f32 = 6.22;
 
 /// Solid angle of triangle `tri` seen from `p` (Van Oosterom & Strackee 1983).

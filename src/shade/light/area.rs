@@ -1,0 +1,314 @@
+//! Area lights: `light panel = area { mesh panel  transform { ... }  radiance 5  two_sided false
+//! samples 4 }`, and the emitters of OBJ materials with `Ke`.
+//!
+//! The triangles are kept in world space with a CDF over their areas. [`AreaLight::sample`]
+//! picks a triangle by area, then a direction towards it: uniform over the spherical triangle
+//! it subtends (`pdf = pmf / Ω`, see `spherical`) when [`LightSampling::SolidAngle`] is chosen
+//! and Ω is in the safe range, else a point uniform by area (`pdf = pmf · r² / (cos θ_l · a)`).
+//! [`AreaLight::pdf`], beside it, is the solid-angle density of that same procedure at a
+//! direction a BRDF ray found, which multiple importance sampling needs. The two share the rules
+//! they must agree on, written once: which side emits and with what cosine
+//! (`AreaLight::emitting_cosine`), and when a triangle is sampled by solid angle rather than
+//! by area (`solid_angle_in_range`).
+
+use glam::{Vec2, Vec3};
+
+use super::spherical;
+use crate::geom::triangle::moller_trumbore;
+use crate::geom::Ray;
+use crate::scene::LightSampling;
+use crate::shade::distribution::Distribution1D;
+
+/// An emitting triangle mesh in world space, with the table that samples its triangles by area.
+#[derive(Debug, Clone)]
+pub struct AreaLight {
+    /// Emitted radiance (W/(sr·m²) per channel), the same everywhere on the emitting side(s).
+    pub radiance: Vec3,
+    /// Whether the back (against the winding's normal) emits too.
+    pub two_sided: bool,
+    /// Shadow rays each time this light is picked (its `samples`; the scene's `light_samples`
+    /// sets how many picks a shading point makes).
+    pub samples: u32,
+    /// World-space triangles.
+    pub triangles: Vec<[Vec3; 3]>,
+    /// Unit front-face normals `(p1 − p0) × (p2 − p0)`, world space.
+    pub normals: Vec<Vec3>,
+    /// Sum of the triangles' areas.
+    pub total_area: f32,
+    by_area: Distribution1D,
+}
+
+/// A point on an emitter and its front normal.
+#[derive(Debug, Clone, Copy)]
+pub struct LightPoint {
+    /// World-space position.
+    pub position: Vec3,
+    /// Per-axis bound on the rounding error of `position` (`γ(7)·Σ|bᵢ pᵢ|`, rounded up to
+    /// 8 ulps), used to offset shadow-ray end points off the emitter.
+    pub error: Vec3,
+    /// Unit front-face normal of its triangle.
+    pub normal: Vec3,
+}
+
+/// A direction towards an area light, sampled from a shading point by [`AreaLight::sample`].
+#[derive(Debug, Clone, Copy)]
+pub struct AreaSample {
+    /// Unit direction from the shading point towards `point`.
+    pub wi: Vec3,
+    /// Where the direction meets the emitter: the shadow ray's end.
+    pub point: LightPoint,
+    /// The triangle of `point` (what [`AreaLight::pdf`] takes).
+    pub triangle: usize,
+    /// Radiance emitted towards the shading point.
+    pub radiance: Vec3,
+    /// `1 / pdf_solid_angle` of the sampling, triangle pick included (`Ω / pmf` or
+    /// `cos θ_l · a / (r² · pmf)`), as the estimator multiplies by it: the reciprocal of
+    /// [`AreaLight::pdf`] would round differently.
+    pub inv_pdf_solid_angle: f32,
+}
+
+/// The solid angle `Ω` that `tri` subtends from `p` if, under `mode`, directions towards it are
+/// sampled uniformly by solid angle; `None` if they are sampled by area (area sampling chosen,
+/// or `Ω` outside [`spherical::MIN_SOLID_ANGLE`, `spherical::MAX_SOLID_ANGLE`], where the
+/// spherical construction is unreliable).
+fn solid_angle_in_range(p: Vec3, tri: &[Vec3; 3], mode: LightSampling) -> Option<f32> {
+    if mode == LightSampling::SolidAngle {
+        let omega = spherical::solid_angle(p, tri);
+        if (spherical::MIN_SOLID_ANGLE..=spherical::MAX_SOLID_ANGLE).contains(&omega) {
+            return Some(omega);
+        }
+    }
+    None
+}
+
+impl AreaLight {
+    /// `None` when no triangle has an area (nothing can emit).
+    pub fn new(
+        radiance: Vec3,
+        two_sided: bool,
+        samples: u32,
+        triangles: Vec<[Vec3; 3]>,
+    ) -> Option<AreaLight> {
+        let crosses: Vec<Vec3> = triangles
+            .iter()
+            .map(|[p0, p1, p2]| (*p1 - *p0).cross(*p2 - *p0))
+            .collect();
+        let areas: Vec<f32> = crosses.iter().map(|c| c.length() / 2.0).collect();
+        let by_area = Distribution1D::new(&areas)?;
+        let total_area = areas.iter().filter(|a| a.is_finite()).sum();
+        Some(AreaLight {
+            radiance,
+            two_sided,
+            samples: samples.max(1),
+            normals: crosses.iter().map(|c| c.normalize_or_zero()).collect(),
+            triangles,
+            total_area,
+            by_area,
+        })
+    }
+
+    /// Heap memory of the world-space triangles, normals and area table.
+    pub fn bytes(&self) -> usize {
+        self.triangles.len() * std::mem::size_of::<[Vec3; 3]>()
+            + self.normals.len() * std::mem::size_of::<Vec3>()
+            + self.by_area.bytes()
+    }
+
+    /// A direction from the shading point `p` towards this light for `u` in [0, 1)²: a triangle
+    /// by area (with `u.x`, then rescaled), then a direction by solid angle or a point by area
+    /// (see the module doc). `None` when it sends nothing to `p` (`p` behind a one-sided
+    /// emitter, a degenerate configuration): a zero sample, no shadow ray.
+    pub fn sample(&self, p: Vec3, u: Vec2, mode: LightSampling) -> Option<AreaSample> {
+        let (t, pmf_triangle, u0) = self.pick(u.x);
+        let u = Vec2::new(u0, u.y);
+        let tri = &self.triangles[t];
+        // The back of a one-sided emitter sends nothing: no ray needed.
+        if !self.two_sided && self.normals[t].dot(p - tri[0]) <= 0.0 {
+            return None;
+        }
+        if solid_angle_in_range(p, tri, mode).is_some() {
+            let (wi, omega) = spherical::sample(p, tri, u)?;
+            // The point where the direction meets the triangle, rebuilt from barycentrics so
+            // its error bound is the same as for area samples. A direction that rounds to just
+            // outside an edge is dropped (a bias of the order of f32 rounding).
+            let b = moller_trumbore(&Ray::new(p, wi), tri[0], tri[1], tri[2])?;
+            return Some(AreaSample {
+                wi,
+                point: self.at_barycentrics(t, b.u, b.v),
+                triangle: t,
+                radiance: self.radiance,
+                inv_pdf_solid_angle: omega / pmf_triangle,
+            });
+        }
+        let point = self.point_on(t, u);
+        let to_light = point.position - p;
+        let dist2 = to_light.length_squared();
+        if dist2 == 0.0 || !dist2.is_finite() {
+            return None;
+        }
+        let wi = to_light / dist2.sqrt();
+        let cos_light = self.emitting_cosine(t, wi)?;
+        let area = pmf_triangle * self.total_area;
+        Some(AreaSample {
+            wi,
+            point,
+            triangle: t,
+            radiance: self.radiance,
+            inv_pdf_solid_angle: cos_light * area / (dist2 * pmf_triangle),
+        })
+    }
+
+    /// The solid-angle density with which [`AreaLight::sample`] produces direction `wi` (unit)
+    /// from `p`, reaching `p_light` on triangle `t` (triangle pick included). `None` when that
+    /// side of the triangle emits nothing (or `t` is not a triangle of this light): such a
+    /// direction carries no light at all.
+    pub fn pdf(
+        &self,
+        p: Vec3,
+        wi: Vec3,
+        t: usize,
+        p_light: Vec3,
+        mode: LightSampling,
+    ) -> Option<f32> {
+        let tri = self.triangles.get(t)?;
+        let cos_light = self.emitting_cosine(t, wi)?;
+        let pmf_triangle = self.triangle_pmf(t);
+        if let Some(omega) = solid_angle_in_range(p, tri, mode) {
+            return Some(pmf_triangle / omega);
+        }
+        let dist2 = (p_light - p).length_squared();
+        Some(dist2 / (cos_light * self.total_area))
+    }
+
+    /// The radiance a point of this light with unit front normal `ng` emits in direction `w`:
+    /// zero from the back of a one-sided emitter.
+    pub fn radiance_towards(&self, ng: Vec3, w: Vec3) -> Vec3 {
+        if self.two_sided || ng.dot(w) > 0.0 {
+            self.radiance
+        } else {
+            Vec3::ZERO
+        }
+    }
+
+    /// `cos θ_l` between triangle `t`'s emitting side and the light travelling against `wi` (a
+    /// unit direction towards the light): the absolute cosine for a two-sided emitter. `None`
+    /// when the light would leave through a side that does not emit.
+    fn emitting_cosine(&self, t: usize, wi: Vec3) -> Option<f32> {
+        let cos_light = -self.normals[t].dot(wi);
+        let cos_light = if self.two_sided {
+            cos_light.abs()
+        } else {
+            cos_light
+        };
+        if cos_light <= 0.0 {
+            return None;
+        }
+        Some(cos_light)
+    }
+
+    /// A triangle chosen with probability proportional to its area: its index, that
+    /// probability, and `u` rescaled to [0, 1) for reuse.
+    fn pick(&self, u: f32) -> (usize, f32, f32) {
+        self.by_area.sample(u)
+    }
+
+    /// The probability that [`AreaLight::pick`] chooses triangle `i`.
+    fn triangle_pmf(&self, i: usize) -> f32 {
+        self.by_area.pmf(i)
+    }
+
+    /// A point uniform by area on triangle `i`.
+    fn point_on(&self, i: usize, u: Vec2) -> LightPoint {
+        let s = u.x.sqrt();
+        self.at_barycentrics(i, s * (1.0 - u.y), s * u.y)
+    }
+
+    /// The point `(1 − b1 − b2)·p0 + b1·p1 + b2·p2` of triangle `i`.
+    fn at_barycentrics(&self, i: usize, b1: f32, b2: f32) -> LightPoint {
+        let [p0, p1, p2] = self.triangles[i];
+        let b0 = 1.0 - b1 - b2;
+        let abs_sum = (b0 * p0).abs() + (b1 * p1).abs() + (b2 * p2).abs();
+        LightPoint {
+            position: b0 * p0 + b1 * p1 + b2 * p2,
+            error: 4.0 * f32::EPSILON * abs_sum,
+            normal: self.normals[i],
+        }
+    }
+
+    /// Radiant flux (W per channel, averaged over channels) used to pick lights by power.
+    pub fn power(&self) -> f32 {
+        let sides = if self.two_sided { 2.0 } else { 1.0 };
+        std::f32::consts::PI * sides * self.total_area * self.radiance.element_sum() / 3.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn area_samples_land_on_the_mesh_uniformly() {
+        // Two triangles of areas 1 and 3 (a 1×1 and a 3×1 rectangle half).
+        let tris = vec![
+            [
+                Vec3::ZERO,
+                Vec3::new(2.0, 0.0, 0.0),
+                Vec3::new(0.0, 1.0, 0.0),
+            ],
+            [
+                Vec3::new(10.0, 0.0, 0.0),
+                Vec3::new(16.0, 0.0, 0.0),
+                Vec3::new(10.0, 1.0, 0.0),
+            ],
+        ];
+        let light = AreaLight::new(Vec3::ONE, false, 1, tris).expect("has area");
+        assert!((light.total_area - 4.0).abs() < 1e-6);
+        let n = 64;
+        let mut on_second = 0;
+        for i in 0..n {
+            for j in 0..n {
+                let u = Vec2::new((i as f32 + 0.5) / n as f32, (j as f32 + 0.5) / n as f32);
+                let (t, _, u0) = light.pick(u.x);
+                let p = light.point_on(t, Vec2::new(u0, u.y));
+                assert_eq!(p.normal, Vec3::Z);
+                assert!(p.position.z == 0.0 && p.position.y >= 0.0 && p.position.y <= 1.0);
+                if p.position.x >= 10.0 {
+                    on_second += 1;
+                }
+            }
+        }
+        assert_eq!(on_second, 3 * n * n / 4);
+    }
+
+    /// Every sample's `1 / inv_pdf_solid_angle` is what `pdf` says for its direction, in both
+    /// sampling modes and for a two-sided light seen from behind.
+    #[test]
+    fn pdf_is_the_density_of_sample() {
+        let tri = [
+            Vec3::new(-0.5, 1.0, -0.3),
+            Vec3::new(0.8, 1.2, 0.1),
+            Vec3::new(0.1, 0.9, 0.9),
+        ];
+        let big = [tri[0] * 3.0, tri[1] * 3.0, tri[2] * 3.0].map(|v| v + Vec3::Y);
+        let light = AreaLight::new(Vec3::ONE, true, 1, vec![tri, big]).expect("has area");
+        for mode in [LightSampling::SolidAngle, LightSampling::Area] {
+            for p in [Vec3::new(0.1, 0.0, 0.2), Vec3::new(0.0, 9.0, 0.0)] {
+                for k in 0..64 {
+                    let u = Vec2::new((k as f32 + 0.5) / 64.0, (k * 37 % 64) as f32 / 64.0);
+                    let Some(s) = light.sample(p, u, mode) else {
+                        continue;
+                    };
+                    let pdf = light
+                        .pdf(p, s.wi, s.triangle, s.point.position, mode)
+                        .expect("a sampled direction emits");
+                    let rel = (pdf * s.inv_pdf_solid_angle - 1.0).abs();
+                    assert!(
+                        rel < 1e-3,
+                        "{mode:?} from {p}: {pdf} vs 1/{}",
+                        s.inv_pdf_solid_angle
+                    );
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,125 @@
+//! The environment light: radiance from every direction no geometry blocks, from a constant
+//! colour and/or an equirectangular map ([`EnvMap`]), sampled as a mixture of the two.
+//!
+//! Syntax: `light sky = environment { image("sky.hdr")  intensity 1  rotate 90deg  visible true }`
+//! or `environment { rgb(0.2, 0.3, 0.5) }`. Several constant environments add up; at most one
+//! image is supported.
+//!
+//! A constant part is sampled uniformly over the sphere (`1 / 4π`); with a map as well, the two
+//! are mixed in proportion to their average radiance. [`Environment::sample`] and
+//! [`Environment::pdf`] sit side by side: the pdf is the density of exactly that mixture.
+
+use std::f32::consts::PI;
+
+use glam::{Vec2, Vec3};
+
+use super::env_map::{luminance, EnvMap, EnvSample};
+use crate::shade::sampling::uniform_sphere;
+
+/// The scene's environment: a constant part plus an optional map.
+#[derive(Debug, Clone)]
+pub struct Environment {
+    /// The sum of the scene's constant environments (radiance from every direction).
+    pub constant: Vec3,
+    /// The image environment, if any (added to `constant`).
+    pub map: Option<EnvMap>,
+    /// Whether escaped camera rays show it.
+    pub visible: bool,
+    /// Probability of sampling the map rather than the uniform sphere (set by
+    /// [`Environment::prepare_sampling`]).
+    map_fraction: f32,
+    /// Whether the sampling tables were built (only for scenes with geometry).
+    sampled: bool,
+}
+
+impl Environment {
+    /// An environment whose sampling is not prepared yet (see
+    /// [`Environment::prepare_sampling`]).
+    pub fn new(constant: Vec3, map: Option<EnvMap>, visible: bool) -> Environment {
+        Environment {
+            constant,
+            map,
+            visible,
+            map_fraction: 0.0,
+            sampled: false,
+        }
+    }
+
+    /// Whether nothing is emitted at all.
+    pub fn is_black(&self) -> bool {
+        self.constant.max_element() <= 0.0 && self.map.is_none()
+    }
+
+    /// Builds the map's table; returns `false` if the map turned out black (it is then dropped).
+    pub fn prepare_sampling(&mut self) -> bool {
+        let mut black_map = false;
+        if let Some(map) = &mut self.map {
+            // A map reused from the watch cache keeps the table it was given last time.
+            if !map.has_distribution() && !map.build_distribution() {
+                black_map = true;
+                self.map = None;
+            }
+        }
+        let map_weight = self.map.as_ref().map_or(0.0, |m| luminance(m.average()));
+        let constant_weight = luminance(self.constant.max(Vec3::ZERO));
+        self.map_fraction = if map_weight > 0.0 {
+            map_weight / (map_weight + constant_weight)
+        } else {
+            0.0
+        };
+        self.sampled = true;
+        !black_map
+    }
+
+    /// Solid-angle-weighted mean radiance (for picking lights by power).
+    pub fn average_radiance(&self) -> Vec3 {
+        self.constant + self.map.as_ref().map_or(Vec3::ZERO, EnvMap::average)
+    }
+
+    /// The power used to pick the environment among the lights, `None` before
+    /// [`Environment::prepare_sampling`] or when it emits nothing: `π · (π R²) · L̄`, the flux an
+    /// area light of the scene's cross-section (`R` = bounding-sphere radius) and the
+    /// environment's mean radiance `L̄` (averaged over channels) would emit, so that it compares
+    /// with [`super::AreaLight::power`] (`π · A · L`).
+    pub fn power(&self, scene_radius: f32) -> Option<f32> {
+        let mean = self.average_radiance().element_sum() / 3.0;
+        let power = PI * PI * scene_radius * scene_radius * mean;
+        (self.sampled && power > 0.0 && power.is_finite()).then_some(power)
+    }
+
+    /// Radiance from world direction `d` (unit).
+    pub fn radiance(&self, d: Vec3) -> Vec3 {
+        self.constant + self.map.as_ref().map_or(Vec3::ZERO, |m| m.radiance(d))
+    }
+
+    /// A direction with density `pdf_solid_angle` (the map by its table with probability
+    /// `map_fraction`, otherwise uniform over the sphere).
+    pub fn sample(&self, u: Vec2) -> Option<EnvSample> {
+        let f = self.map_fraction;
+        if u.x < f {
+            let map = self.map.as_ref()?;
+            let u_map = Vec2::new((u.x / f).min(1.0 - f32::EPSILON / 2.0), u.y);
+            let s = map.sample(u_map)?;
+            return Some(EnvSample {
+                wi: s.wi,
+                radiance: self.constant + s.radiance,
+                pdf_solid_angle: f * s.pdf_solid_angle + (1.0 - f) / (4.0 * PI),
+            });
+        }
+        let u_sphere = Vec2::new(((u.x - f) / (1.0 - f)).clamp(0.0, 1.0), u.y);
+        let wi = uniform_sphere(u_sphere);
+        Some(EnvSample {
+            wi,
+            radiance: self.radiance(wi),
+            pdf_solid_angle: self.pdf(wi),
+        })
+    }
+
+    /// The density of [`Environment::sample`] at world direction `d` (unit).
+    #[inline]
+    pub fn pdf(&self, d: Vec3) -> f32 {
+        let f = self.map_fraction;
+        let map = self.map.as_ref().map_or(0.0, |m| m.pdf(d));
+        f * map + (1.0 - f) / (4.0 * PI)
+    }
+}
