@@ -67,15 +67,28 @@ fn inline_mesh(positions: Vec<Vec3>, indices: Vec<[u32; 3]>) -> Mesh {
     }
 }
 
-fn scene_of(meshes: Vec<Mesh>, objects: Vec<(u32, Mat4)>) -> Scene {
+/// The scene, kept at the coordinates these tests trace in: an anchor triangle far below
+/// everything (where no test ray goes) makes the build keep (0, 0, 0) as its origin (`scene/build/origin.rs` moves
+/// the origin of a scene that lies far from it), so the intersection and ray-offset code is
+/// tested at large coordinates, as in a scene that spans them.
+fn scene_of(mut meshes: Vec<Mesh>, objects: Vec<(u32, Mat4)>) -> Scene {
     let mut desc = empty_desc(
         camera(Vec3::new(0.0, 0.0, -5.0), Vec3::ZERO, Vec3::Y, 40.0),
         settings(1, 1, 1),
     );
+    let anchor = meshes.len() as u32;
+    let far_below = Vec3::new(0.0, -1e7, 0.0);
+    meshes.push(inline_mesh(
+        vec![far_below, far_below + Vec3::X, far_below + Vec3::Z],
+        vec![[0, 1, 2]],
+    ));
     desc.meshes = meshes;
     desc.materials = vec![phong("white", Vec3::ONE, 0.0, 1.0)];
     desc.objects = objects.into_iter().map(|(m, t)| object(m, 0, t)).collect();
-    build(&desc, AccelKind::Bvh)
+    desc.objects.push(object(anchor, 0, Mat4::IDENTITY));
+    let scene = build(&desc, AccelKind::Bvh);
+    assert_eq!(scene.world_origin, glam::DVec3::ZERO);
+    scene
 }
 
 #[test]

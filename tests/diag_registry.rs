@@ -106,18 +106,22 @@ fn every_explanation_example_shows_its_code() {
     assert!(wrong.is_empty(), "{wrong:#?}");
 }
 
+/// Build-stage codes whose examples are whole scenes that need no files.
+const SELF_CONTAINED_BUILD: [Code; 5] = [
+    Code::BuildDegenerateMesh,
+    Code::BuildDegenerateTriangles,
+    Code::BuildSingularTransform,
+    Code::BuildLightFacesAway,
+    Code::BuildPrecisionLost,
+];
+
 /// Build-stage codes whose examples need no files: built, the mistake shows its code and the
 /// fix does not.
 #[test]
 fn self_contained_build_examples_show_their_code() {
     let loader = MemLoader::new();
     let opts = BuildOptions::default();
-    for code in [
-        Code::BuildDegenerateMesh,
-        Code::BuildDegenerateTriangles,
-        Code::BuildSingularTransform,
-        Code::BuildLightFacesAway,
-    ] {
+    for code in SELF_CONTAINED_BUILD {
         let mistake = example(code.explanation(), "Mistake").expect("a ```scn mistake");
         let fix = example(code.explanation(), "Fix").expect("a ```scn fix");
         let emitted = build_codes(mistake, &loader, &opts);
@@ -293,6 +297,11 @@ fn build_stage_codes() -> Vec<Code> {
     // A directory where a file should be: exists, cannot be read (relative to the crate root).
     let dir_scene = format!("{BASE}mesh m = obj(\"tests\")\nobject m {{ material grey }}\n");
     codes.extend(build_codes(&dir_scene, &FsLoader::new(), &opts));
+    for code in SELF_CONTAINED_BUILD {
+        if let Some(mistake) = example(code.explanation(), "Mistake") {
+            codes.extend(build_codes(mistake, &MemLoader::new(), &opts));
+        }
+    }
     codes
 }
 
@@ -351,12 +360,22 @@ fn obj_codes() -> Vec<Code> {
         ("short_face.obj", format!("{tri}f 1 2\n").into_bytes()),
         ("bad_index.obj", format!("{tri}f 1 2 x\n").into_bytes()),
         ("index.obj", format!("{tri}f 1 2 4\n").into_bytes()),
+        (
+            "rewound.obj",
+            format!("{tri}v 1 1 0\nf 1 2 4 3 1 2 4 3\n").into_bytes(),
+        ),
+        (
+            "bowtie.obj",
+            format!("{tri}v 1 1 0\nf 1 4 2 3\n").into_bytes(),
+        ),
     ]);
     let mut scenes = vec![
         "mesh m = obj(\"warn.obj\") { material \"nothere\" grey }\nobject m { material grey }"
             .to_string(),
     ];
     for f in [
+        "rewound",
+        "bowtie",
         "utf16",
         "bad_number",
         "missing_number",

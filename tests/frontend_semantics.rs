@@ -2,7 +2,7 @@
 //! functions, units), colour encodings, transform order, name resolution, unused declarations,
 //! include paths, and the CLI's exit codes and JSON diagnostics.
 
-use glam::{Mat4, Vec3};
+use glam::Vec3;
 use scnc::assets::{Loader, MemLoader};
 use scnc::compile::{compile_source, Compiled};
 use scnc::ir::{ColorInput, Light, MeshSource};
@@ -23,7 +23,7 @@ fn position_of(lets: &str) -> Vec3 {
     let c = compile(&format!("{lets}\nlight l = point {{ position p }}\n"));
     let scene = c.scene.unwrap_or_else(|| panic!("{:#?}", c.diagnostics));
     match &scene.lights[0] {
-        Light::Point(p) => p.position,
+        Light::Point(p) => p.position.as_vec3(),
         other => panic!("not a point light: {other:?}"),
     }
 }
@@ -102,7 +102,7 @@ fn transforms_compose_in_written_order_and_groups_nest() {
          group g { transform { translate (0, 5, 0) }  group h { transform { scale 2 }  object m { material w  transform { translate (1, 0, 0) } } } }\n",
     );
     let scene = c.scene.unwrap_or_else(|| panic!("{:#?}", c.diagnostics));
-    let p = |m: Mat4| m.transform_point3(Vec3::new(1.0, 0.0, 0.0));
+    let p = |m: glam::DMat4| m.as_mat4().transform_point3(Vec3::new(1.0, 0.0, 0.0));
     // Rotate first: (1,0,0) -> (0,0,-1), then translate -> (10,0,-1).
     assert!(close(
         p(scene.objects[0].world_from_object),
@@ -126,7 +126,7 @@ fn camera_frames_are_orthonormal_and_right_handed() {
     let scene = c.scene.unwrap_or_else(|| panic!("{:#?}", c.diagnostics));
     assert_eq!(scene.active_camera, 1);
     let cam = scene.camera().expect("active camera exists");
-    assert!(close(cam.eye, Vec3::new(5.0, 1.0, 0.0)));
+    assert!(close(cam.eye.as_vec3(), Vec3::new(5.0, 1.0, 0.0)));
     assert!(close(cam.forward, Vec3::new(-1.0, 0.0, 0.0)));
     assert!(close(cam.up, Vec3::Y));
     assert!(close(cam.right, cam.forward.cross(cam.up)));

@@ -3,34 +3,48 @@
 //!
 //! Formats: Radiance `.hdr` and OpenEXR through the `image` crate, PFM by hand (`PF` colour or
 //! `Pf` grey; bottom row first; a negative scale means little-endian), and PNG/JPEG decoded as
-//! sRGB and linearised. The format is recognised from the bytes, not the extension. Rows are
+//! sRGB and linearised. RGBE mantissas are centred as Radiance's own reader does (see
+//! [`centre_rgbe_mantissa`]); every other format's samples already stand for the centre of their
+//! quantisation step (8/16-bit integers are rounded by their writers, EXR half and float are exact). The format is recognised from the bytes, not the extension. Rows are
 //! returned top first. Nothing here panics on bad bytes: every problem is an [`ImageError`].
 //! Dimensions are checked against [`MAX_WIDTH`] × [`MAX_HEIGHT`] *before* decoding.
 
 use std::io::Cursor;
 
 use glam::Vec3;
-use image::{DynamicImage, ImageReader};
+use image::{DynamicImage, ImageFormat, ImageReader};
 
-/// The largest map accepted: 16384 × 8192 (1.6 GB of f32 RGB; larger maps are better
-/// downsampled, since the renderer looks texels up without filtering).
+/// The widest map accepted: 16384 (with [`MAX_HEIGHT`], 1.6 GB of f32 RGB; larger maps are
+/// better downsampled, since the renderer looks texels up without filtering).
 pub const MAX_WIDTH: u32 = 16384;
+/// The tallest map accepted: 8192 (an equirectangular map is twice as wide as it is tall).
 pub const MAX_HEIGHT: u32 = 8192;
 
 /// A decoded image: `width × height` linear RGB values, row 0 at the top.
 #[derive(Debug, Clone)]
 pub struct FloatImage {
+    /// Pixels per row.
     pub width: u32,
+    /// Rows.
     pub height: u32,
+    /// `width × height` linear RGB values, row by row from the top.
     pub pixels: Vec<Vec3>,
 }
 
+/// Why image bytes could not be decoded.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ImageError {
+    /// Not an image of a known format, truncated, or inconsistent.
     #[error("{0}")]
     Corrupt(String),
+    /// The header announces more pixels than the limit allows (nothing was allocated).
     #[error("{width} × {height} is larger than the {MAX_WIDTH} × {MAX_HEIGHT} limit")]
-    TooLarge { width: u32, height: u32 },
+    TooLarge {
+        /// The width the header announces.
+        width: u32,
+        /// The height the header announces.
+        height: u32,
+    },
 }
 
 /// Decodes `bytes` as PFM, Radiance HDR, OpenEXR, PNG or JPEG.
@@ -93,9 +107,38 @@ pub(crate) fn decode_checked(
         .map_err(|e| ImageError::Corrupt(e.to_string()))?;
     check_size(width, height, max)?;
     let mut full = reader()?;
+    let rgbe = full.format() == Some(ImageFormat::Hdr);
     full.no_limits();
-    full.decode()
-        .map_err(|e| ImageError::Corrupt(e.to_string()))
+    let mut image = full
+        .decode()
+        .map_err(|e| ImageError::Corrupt(e.to_string()))?;
+    if rgbe {
+        if let DynamicImage::ImageRgb32F(rgb) = &mut image {
+            for p in rgb.pixels_mut() {
+                p.0 = centre_rgbe_mantissa(Vec3::from_array(p.0)).to_array();
+            }
+        }
+    }
+    Ok(image)
+}
+
+/// Moves an RGBE pixel decoded as `m · 2^(e−136)` (the `image` crate's reading) to the centre of
+/// its quantisation step, `(m + ½) · 2^(e−136)`, as Radiance's `colr_color` reads it: writers
+/// (Radiance's `setcolr`, the `image` crate, the benchmark's `gen.py`) truncate, so the plain
+/// reading is biased dark by half a step, 0.2–0.4% on a typical sky.
+///
+/// The crate's floats are exact, and writers normalise (the largest mantissa is in 128..=255),
+/// so the step `2^(e−136)` is the largest channel's power of two divided by 128. A black pixel
+/// (`e = 0`) stays black; so do subnormal results (`e` ≤ 9, below 1e-38), where the step cannot
+/// be read back from the float.
+pub fn centre_rgbe_mantissa(rgb: Vec3) -> Vec3 {
+    let max = rgb.max_element();
+    if !max.is_normal() || max < 0.0 {
+        return rgb;
+    }
+    // 2^⌊log2 max⌋: the float with max's exponent bits and a zero mantissa.
+    let power = f32::from_bits(max.to_bits() & 0x7f80_0000);
+    rgb + Vec3::splat(power / 256.0)
 }
 
 fn check_size(

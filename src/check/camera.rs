@@ -39,7 +39,7 @@ impl Checker<'_> {
         let up = right.cross(forward);
         Some(ir::Camera {
             name: name.name.clone(),
-            eye: placed.eye.as_vec3(),
+            eye: placed.eye,
             forward: forward.as_vec3(),
             up: up.as_vec3(),
             right: right.as_vec3(),
@@ -83,7 +83,7 @@ impl Checker<'_> {
             );
             return None;
         }
-        let m = self.transforms(&props.transforms, "a camera")?.as_dmat4();
+        let m = self.transforms(&props.transforms, "a camera")?;
         Some(Placement {
             eye: m.transform_point3(DVec3::ZERO),
             forward: m.transform_vector3(DVec3::Z),

@@ -10,7 +10,7 @@
 //! false, samples 1 (1..=1024); environment intensity 1, rotate 0deg, visible true.
 //! A light that emits nothing is a warning.
 
-use glam::{DVec3, Mat4, Vec3};
+use glam::{DMat4, DVec3, Vec3};
 
 use super::names::Namespace;
 use super::props::{Prop, Props};
@@ -92,7 +92,7 @@ impl Checker<'_> {
         self.dark_warning(d, intensity);
         Some(ir::Light::Point(ir::PointLight {
             name: d.name.name.clone(),
-            position: position?.as_vec3(),
+            position: position?,
             intensity,
             span: d.name.span,
         }))
@@ -131,7 +131,7 @@ impl Checker<'_> {
         Some(ir::Light::Area(ir::AreaLight {
             name: d.name.name.clone(),
             mesh: mesh? as u32,
-            world_from_object: world.unwrap_or(Mat4::IDENTITY),
+            world_from_object: world.unwrap_or(DMat4::IDENTITY),
             radiance,
             two_sided: two_sided?,
             samples: samples? as u32,

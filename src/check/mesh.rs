@@ -3,6 +3,7 @@
 //! Syntax: `mesh tall = obj("meshes/tall.obj")`; `mesh tri = inline { positions [(0,0,0)
 //! (1,0,0) (0,1,0)]  normals [...]  uvs [(0,0) (1,0) (0,1)]  indices [0 1 2] }`;
 //! `mesh ball = sphere { radius 1  segments 48 }` (defaults 1 and 32; segments 3..=4096);
+//! `mesh gem = icosphere { subdivisions 5  radius 1 }` (see `icosphere.rs`);
 //! `mesh floor = quad { size (2, 2) }` (xz-plane facing +y; default 1 × 1);
 //! `mesh crate = box { size (1, 1, 1) }` (default unit cube). A number for `size` means all sides.
 //! Triangles are front-facing where their winding is counter-clockwise seen from the front:
@@ -33,6 +34,7 @@ impl Checker<'_> {
                 ir::MeshSource::Inline(self.inline_mesh(body, d.name.span)?)
             }
             (Some(MeshKind::Sphere), None) => ir::MeshSource::Builtin(self.sphere(body)?),
+            (Some(MeshKind::Icosphere), None) => ir::MeshSource::Builtin(self.icosphere(body)?),
             (Some(MeshKind::Quad), None) => ir::MeshSource::Builtin(self.quad(body)?),
             (Some(MeshKind::Box), None) => ir::MeshSource::Builtin(self.box_shape(body)?),
             (kind, _) => {
@@ -64,7 +66,7 @@ impl Checker<'_> {
     /// A word that is no mesh kind, or a kind written in the wrong form (`sphere("x")`).
     fn unknown_mesh_kind(&mut self, d: &Decl, name: &str, is_kind: bool) {
         let help = if is_kind {
-            "write `obj(\"file.obj\")`, or `inline`, `sphere`, `quad`, `box` with a block"
+            "write `obj(\"file.obj\")`, or `inline`, `sphere`, `icosphere`, `quad`, `box` with a block"
                 .to_string()
         } else {
             suggest::help_for(name, KINDS, "mesh kinds")

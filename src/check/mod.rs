@@ -11,6 +11,7 @@
 pub mod array;
 mod camera;
 mod eval;
+mod icosphere;
 mod inline_mesh;
 mod light;
 mod material;

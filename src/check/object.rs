@@ -5,7 +5,7 @@
 //! ... }` nests: an object's world matrix is `parent_group · ... · own transform`. Recursion depth
 //! is bounded by the parser's nesting cap.
 
-use glam::Mat4;
+use glam::DMat4;
 
 use super::names::Namespace;
 use super::Checker;
@@ -16,13 +16,13 @@ use crate::syntax::{GroupStmt, ObjectStmt, Stmt};
 impl Checker<'_> {
     pub(super) fn placement(&mut self, stmt: &Stmt) {
         match stmt {
-            Stmt::Object(o) => self.object(o, Mat4::IDENTITY),
-            Stmt::Group(g) => self.group(g, Mat4::IDENTITY),
+            Stmt::Object(o) => self.object(o, DMat4::IDENTITY),
+            Stmt::Group(g) => self.group(g, DMat4::IDENTITY),
             _ => {}
         }
     }
 
-    fn object(&mut self, o: &ObjectStmt, parent: Mat4) {
+    fn object(&mut self, o: &ObjectStmt, parent: DMat4) {
         let props = self.split(
             &o.body,
             "an object",
@@ -64,7 +64,7 @@ impl Checker<'_> {
         }
     }
 
-    fn group(&mut self, g: &GroupStmt, parent: Mat4) {
+    fn group(&mut self, g: &GroupStmt, parent: DMat4) {
         let _ = self.declare(Namespace::Group, &g.name.name, g.name.span);
         let props = self.split(
             &g.body,
@@ -75,7 +75,7 @@ impl Checker<'_> {
         );
         let local = self
             .transforms(&props.transforms, "a group")
-            .unwrap_or(Mat4::IDENTITY);
+            .unwrap_or(DMat4::IDENTITY);
         let world = parent * local;
         for o in props.objects {
             self.object(o, world);

@@ -38,7 +38,7 @@ pub fn look_at(eye: DVec3, target: DVec3, up: DVec3) -> Option<DMat4> {
 
 impl Checker<'_> {
     /// The matrix of every `transform` block in `blocks` (at most one is allowed), or identity.
-    pub fn transforms(&mut self, blocks: &[&Block], what: &str) -> Option<Mat4> {
+    pub fn transforms(&mut self, blocks: &[&Block], what: &str) -> Option<DMat4> {
         if let [first, second, ..] = blocks {
             self.error(
                 Diagnostic::error(
@@ -52,12 +52,12 @@ impl Checker<'_> {
         }
         match blocks.first() {
             Some(b) => self.transform(b),
-            None => Some(Mat4::IDENTITY),
+            None => Some(DMat4::IDENTITY),
         }
     }
 
     /// One `transform { ... }` block as a matrix (world from object).
-    pub fn transform(&mut self, block: &Block) -> Option<Mat4> {
+    pub fn transform(&mut self, block: &Block) -> Option<DMat4> {
         let props = self.split(block, "a transform", TRANSFORM_KEYS, TRANSFORM_KEYS, &[]);
         let mut m = DMat4::IDENTITY;
         let mut ok = true;
@@ -67,7 +67,8 @@ impl Checker<'_> {
                 None => ok = false,
             }
         }
-        ok.then(|| m.as_mat4())
+        // Kept in f64 to the build, which places the scene relative to an origin near it.
+        ok.then_some(m)
     }
 
     fn op(&mut self, p: &Prop) -> Option<DMat4> {

@@ -107,6 +107,7 @@ words! {
         "obj" => Obj,
         "inline" => Inline,
         "sphere" => Sphere,
+        "icosphere" => Icosphere,
         "quad" => Quad,
         "box" => Box,
     }
@@ -115,6 +116,8 @@ words! {
 pub const INLINE_MESH_KEYS: &[&str] = &["positions", "normals", "uvs", "indices"];
 /// `mesh NAME = sphere { ... }`.
 pub const SPHERE_KEYS: &[&str] = &["radius", "segments"];
+/// `mesh ball = icosphere { subdivisions 5  radius 0.6 }`.
+pub const ICOSPHERE_KEYS: &[&str] = &["subdivisions", "radius"];
 /// `mesh NAME = quad { ... }`.
 pub const QUAD_KEYS: &[&str] = &["size"];
 /// `mesh NAME = box { ... }`.
@@ -168,6 +171,7 @@ pub const PROPERTY_KEYS: &[&[&str]] = &[
     IMAGE_TEXTURE_KEYS,
     INLINE_MESH_KEYS,
     SPHERE_KEYS,
+    ICOSPHERE_KEYS,
     QUAD_KEYS,
     BOX_KEYS,
     OBJECT_KEYS,
@@ -217,6 +221,8 @@ pub enum MeshKind {
     Inline,
     /// `sphere { radius ... segments ... }`.
     Sphere,
+    /// `icosphere { subdivisions ... radius ... }`.
+    Icosphere,
     /// `quad { size ... }`.
     Quad,
     /// `box { size ... }`.

@@ -97,6 +97,7 @@ super::code::codes! {
         BuildBlackEnvironment = black_environment: "an environment map that is black everywhere",
         BuildLightFacesAway = light_faces_away: "a one-sided area light faces away from all geometry",
         BuildNoUvs = no_uvs: "a textured material on a mesh without UV coordinates",
+        BuildPrecisionLost = precision_lost: "an object f32 cannot place to a thousandth of its size",
         BuildNoCamera = no_camera: "the camera asked for does not exist",
     }
     /// Stage 3, OBJ and MTL files.
@@ -111,6 +112,8 @@ super::code::codes! {
         ObjNotUtf8 = not_utf8: "an OBJ or MTL file that is not UTF-8, read as Latin-1",
         ObjLinesSkipped = lines_skipped: "OBJ line and point elements, which are not surfaces",
         ObjPolygonFanned = polygon_fanned: "a large OBJ polygon triangulated as a fan",
+        ObjPolygonRewound = polygon_rewound: "an OBJ face that goes round its corners more than once",
+        ObjPolygonArea = polygon_area: "an OBJ face whose triangles do not cover its area exactly",
         ObjUnsupportedStatement = unsupported_statement: "OBJ statements scnc does not read",
         ObjMissingMtl = missing_mtl: "an OBJ's material library cannot be read",
         ObjUnknownMaterial = unknown_material: "an OBJ uses a material its libraries do not define",

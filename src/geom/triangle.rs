@@ -65,6 +65,9 @@ pub struct WatertightRay {
     /// The ray's `t_max`, in multiples of its `dir`.
     pub t_max: f32,
     shear: Mat3A,
+    /// `|dir|`, exactly 1 for (nearly) unit directions: turns the sheared `z` (in units of
+    /// `t`) back into a length for the error bound of the sheared `x` and `y`.
+    dir_length: f32,
 }
 
 impl WatertightRay {
@@ -96,10 +99,20 @@ impl WatertightRay {
             AXES[ky] - sy * AXES[kz],
             sz * AXES[kz],
         ];
+        // Camera, shadow and BRDF rays are unit length up to rounding; keeping exactly 1 for
+        // them keeps pbrt's bound (and every image) bit for bit. Object-space rays of scaled
+        // instances are not: their `t` is in units of a `dir` that may be 1e-6 or 1e6 long.
+        let length = d.length();
+        let dir_length = if (length - 1.0).abs() < 1e-5 {
+            1.0
+        } else {
+            length
+        };
         WatertightRay {
             origin: ray.origin.into(),
             t_max: ray.t_max,
             shear: Mat3A::from_cols(rows[0], rows[1], rows[2]).transpose(),
+            dir_length,
         }
     }
 }
@@ -163,12 +176,17 @@ pub fn watertight_a(r: &WatertightRay, p0: Vec3A, p1: Vec3A, p2: Vec3A) -> Optio
     // ray from a floor) can hit that triangle again, as its edge functions round with the
     // triangle's extent, not with the tiny distance. Only hits that passed every other test
     // pay for it.
+    // pbrt adds the sheared z to the error of the sheared x and y, which presumes a unit
+    // direction (z is in units of t); scaled by |dir| it is a length again, so the bound holds
+    // for the object-space rays of scaled instances too (it rejected every hit of a scene
+    // placed with scale 1e6, whose object-space rays are 1e-6 long).
     let max_zt = a.z.abs().max(b.z.abs()).max(c.z.abs());
     let max_xt = a.x.abs().max(b.x.abs()).max(c.x.abs());
     let max_yt = a.y.abs().max(b.y.abs()).max(c.y.abs());
     let delta_z = gamma(3) * max_zt;
-    let delta_x = gamma(5) * (max_xt + max_zt);
-    let delta_y = gamma(5) * (max_yt + max_zt);
+    let max_z_length = max_zt * r.dir_length;
+    let delta_x = gamma(5) * (max_xt + max_z_length);
+    let delta_y = gamma(5) * (max_yt + max_z_length);
     let delta_e = 2.0 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
     let max_e = u.abs().max(v.abs()).max(w.abs());
     let delta_t =

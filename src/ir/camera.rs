@@ -4,7 +4,7 @@
 //! or `camera main { transform { ... }  fov 40deg }` (the camera sits at its local origin, looks
 //! down its local +z with +y up). The checker turns both forms into the same orthonormal frame.
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 use serde::Serialize;
 
 use crate::source::Span;
@@ -15,8 +15,9 @@ use crate::source::Span;
 pub struct Camera {
     /// The name after `camera`, which `--camera` selects by.
     pub name: String,
-    /// Position of the pin-hole, world space.
-    pub eye: Vec3,
+    /// Position of the pin-hole, world space, in f64: the build places the scene relative to
+    /// an origin near it, so a scene far from (0, 0, 0) keeps its precision.
+    pub eye: DVec3,
     /// Unit view direction.
     pub forward: Vec3,
     /// Unit up vector, orthogonal to `forward`.

@@ -9,7 +9,7 @@
 //! light sky     = environment { image("sky.hdr")  intensity 1  rotate 90deg  visible true }
 //! ```
 
-use glam::{Mat4, Vec3};
+use glam::{DMat4, DVec3, Vec3};
 use serde::Serialize;
 
 use super::{AssetPath, MeshId};
@@ -31,8 +31,8 @@ pub enum Light {
 pub struct PointLight {
     /// The name after `light`.
     pub name: String,
-    /// World-space position.
-    pub position: Vec3,
+    /// World-space position, in f64 until the build (see `Object::world_from_object`).
+    pub position: DVec3,
     /// Radiant intensity (W/sr per channel, linear RGB).
     pub intensity: Vec3,
     /// The `light` declaration, for diagnostics raised while building.
@@ -47,8 +47,9 @@ pub struct AreaLight {
     pub name: String,
     /// The emitting mesh (a `quad` is lowered to a mesh of two triangles).
     pub mesh: MeshId,
-    /// Maps the mesh's object space to world space (the light's `transform`).
-    pub world_from_object: Mat4,
+    /// Maps the mesh's object space to world space (the light's `transform`), in f64 until
+    /// the build (see `Object::world_from_object`).
+    pub world_from_object: DMat4,
     /// Emitted radiance (linear RGB), non-negative.
     pub radiance: Vec3,
     /// Whether the back face emits too (`two_sided true`).

@@ -6,6 +6,7 @@
 //! mesh house = obj("house.obj") { material "roof tiles" slate  material glass clear  mtl false }
 //! mesh tri   = inline { positions [(0,0,0) (1,0,0) (0,1,0)]  indices [0 1 2] }
 //! mesh ball  = sphere { radius 1  segments 48 }
+//! mesh gem   = icosphere { subdivisions 5  radius 0.6 }
 //! mesh floor = quad { size (2, 2) }
 //! mesh crate = box { size (1, 1, 1) }
 //! ```
@@ -87,4 +88,12 @@ pub enum BuiltinShape {
     Box { size: Vec3 },
     /// A UV sphere: `segments` around the equator, `segments / 2` rings.
     Sphere { radius: f32, segments: u32 },
+    /// A subdivided icosahedron, flat-shaded: `20 · 4^subdivisions` triangles, vertex for
+    /// vertex the benchmark's `icosphere(subdivisions)` (bench/scenes/gen.py) scaled by `radius`.
+    Icosphere {
+        /// The circumradius: every vertex is at this distance from the centre.
+        radius: f32,
+        /// How many times each triangle was split into four (0 is the icosahedron).
+        subdivisions: u32,
+    },
 }

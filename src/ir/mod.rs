@@ -29,7 +29,7 @@ pub use render_settings::{
 };
 pub use texture::{Filter, Texture, TextureEncoding, TextureSource, WrapMode};
 
-use glam::Mat4;
+use glam::DMat4;
 use serde::Serialize;
 
 use crate::source::Span;
@@ -71,7 +71,9 @@ pub struct Object {
     /// material nor a `material` override covers.
     pub material: MaterialId,
     /// Maps the mesh's own coordinates to world coordinates (all group transforms applied).
-    pub world_from_object: Mat4,
+    /// In f64 (as the checker composed it): the build rounds it to f32 relative to an origin
+    /// near the scene, so a scene far from (0, 0, 0) keeps its precision.
+    pub world_from_object: DMat4,
     /// The `object` statement, for diagnostics raised while building.
     pub span: Span,
 }

@@ -29,7 +29,8 @@ impl PinholeCamera {
         let tan_half = (camera.fov_y_rad / 2.0).tan();
         let aspect = size_px.x / size_px.y;
         PinholeCamera {
-            eye: camera.eye,
+            // The build made the eye relative to the scene's origin: a small number.
+            eye: camera.eye.as_vec3(),
             forward: camera.forward,
             half_width: camera.right * tan_half * aspect,
             half_height: camera.up * tan_half,
@@ -54,7 +55,7 @@ mod tests {
     fn camera(fov_y_deg: f32) -> ir::Camera {
         ir::Camera {
             name: "main".into(),
-            eye: Vec3::new(1.0, 2.0, 3.0),
+            eye: glam::DVec3::new(1.0, 2.0, 3.0),
             forward: Vec3::Z,
             up: Vec3::Y,
             right: Vec3::Z.cross(Vec3::Y),

@@ -10,10 +10,12 @@
 
 mod assemble;
 mod materials;
+mod origin;
+mod placement;
 
 use std::time::Instant;
 
-use glam::{Affine3A, Mat3, Vec3, Vec4};
+use glam::{Affine3A, DVec3, Mat3, Vec3, Vec4};
 
 use super::cache::BuildCache;
 use super::env_load::load_env_map;
@@ -63,6 +65,7 @@ fn build_with(
         problems: Vec::new(),
         meshes: Vec::new(),
         mesh_slots: vec![None; desc.meshes.len()],
+        origin: DVec3::ZERO,
     };
     let assets_start = Instant::now();
     let assembled = b.assemble(options);
@@ -89,6 +92,7 @@ fn build_with(
     };
 
     let scene = Scene {
+        world_origin: b.origin,
         camera: a.camera,
         settings: desc.render.clone(),
         meshes: b.meshes,
@@ -118,6 +122,8 @@ struct Builder<'a> {
     meshes: Vec<TriMesh>,
     /// Per `ir::MeshId`: not tried yet, or `Some(index into meshes)` / `Some(None)` if it failed.
     mesh_slots: Vec<Option<Option<u32>>>,
+    /// World position of the render-ready scene's (0, 0, 0) (see `origin`).
+    origin: DVec3,
 }
 
 impl Builder<'_> {
@@ -228,7 +234,7 @@ impl Builder<'_> {
         for light in &self.desc.lights {
             match light {
                 ir::Light::Point(p) => lights.push(Light::Point(PointLight {
-                    position: p.position,
+                    position: origin::relative(p.position, self.origin),
                     intensity: p.intensity,
                 })),
                 ir::Light::Area(a) => {
@@ -240,6 +246,7 @@ impl Builder<'_> {
                     else {
                         continue;
                     };
+                    self.check_resolution(a.mesh, a.world_from_object, a.span, mesh);
                     let m = &self.meshes[mesh as usize];
                     let world: Vec<[Vec3; 3]> = m
                         .triangles
@@ -278,8 +285,8 @@ impl Builder<'_> {
     }
 
     /// The affine map and its normal matrix, or an error if it cannot place anything.
-    fn transform(&mut self, m: glam::Mat4, span: Span) -> Option<(Affine3A, Mat3)> {
-        let affine = Affine3A::from_mat4(m);
+    fn transform(&mut self, m: glam::DMat4, span: Span) -> Option<(Affine3A, Mat3)> {
+        let affine = origin::recentred(m, self.origin);
         let linear = Mat3::from(affine.matrix3);
         let det = linear.determinant();
         if !(det.is_finite() && det != 0.0 && m.is_finite()) {

@@ -158,6 +158,18 @@ pub enum BuildError {
         /// Where the scene says it.
         span: Span,
     },
+    /// An object f32 cannot place to a thousandth of its size.
+    #[error("the placement of mesh `{mesh}` is resolved only to {step:.1e} in f32, {:.2}% of its size {size:.1e}", 100.0 * step / size)]
+    PrecisionLost {
+        /// The mesh the object places.
+        mesh: String,
+        /// The smallest step its world positions can move by.
+        step: f64,
+        /// Its largest world-space extent.
+        size: f64,
+        /// The `object` statement.
+        span: Span,
+    },
     /// A problem inside an OBJ or MTL file, already a diagnostic with both places: the line
     /// of that file and the path literal in the `.scn` (its code is `scnc::obj::…`).
     #[error("{}", .0.message)]
@@ -188,6 +200,7 @@ impl BuildError {
             BuildError::BlackEnvironment { .. } => Code::BuildBlackEnvironment,
             BuildError::LightFacesAway { .. } => Code::BuildLightFacesAway,
             BuildError::NoUvs { .. } => Code::BuildNoUvs,
+            BuildError::PrecisionLost { .. } => Code::BuildPrecisionLost,
             BuildError::NoCamera { .. } => Code::BuildNoCamera,
             BuildError::Obj(d) => d.code,
         }
@@ -201,6 +214,7 @@ impl BuildError {
             | BuildError::InvalidPixels { .. }
             | BuildError::BlackEnvironment { .. }
             | BuildError::LightFacesAway { .. }
+            | BuildError::PrecisionLost { .. }
             | BuildError::NoUvs { .. } => Severity::Warning,
             BuildError::Obj(d) => d.severity,
             _ => Severity::Error,
@@ -222,6 +236,7 @@ impl BuildError {
             | BuildError::InvalidPixels { span, .. }
             | BuildError::BlackEnvironment { span, .. }
             | BuildError::LightFacesAway { span, .. }
+            | BuildError::PrecisionLost { span, .. }
             | BuildError::NoUvs { span, .. } => Some(*span),
             BuildError::NoCamera { .. } | BuildError::Obj(_) => None,
         }
@@ -241,6 +256,7 @@ impl BuildError {
             BuildError::BlackEnvironment { .. } => "this image is black",
             BuildError::LightFacesAway { .. } => "this light shines away from the scene",
             BuildError::NoUvs { .. } => "this object",
+            BuildError::PrecisionLost { .. } => "placed here",
             BuildError::NoCamera { .. } | BuildError::Obj(_) => "",
         }
     }
@@ -270,6 +286,9 @@ impl BuildError {
             BuildError::BlackEnvironment { .. } => Some(
                 "check the file's exposure, or remove the light; a constant colour needs no image"
                     .into(),
+            ),
+            BuildError::PrecisionLost { .. } => Some(
+                "f32 keeps about 7 digits: place small objects near the scene's other objects, and write vertices relative to the mesh's own origin (move the offset into `transform { translate ... }`)".into(),
             ),
             BuildError::LightFacesAway { .. } => Some(
                 "a one-sided light emits on the side its corners run counter-clockwise; reverse their order, turn the light around, or set `two_sided true`".into(),

@@ -144,7 +144,10 @@ pub enum DirectStrategy {
 /// Everything the renderer needs, ready to trace.
 #[derive(Debug)]
 pub struct Scene {
-    /// The camera to render from.
+    /// Where the scene's (0, 0, 0) is in the world the `.scn` describes: every position here
+    /// (instances, lights, the camera's eye) is relative to it (`build/origin.rs`).
+    pub world_origin: glam::DVec3,
+    /// The camera to render from (its eye relative to `world_origin`).
     pub camera: ir::Camera,
     /// The render settings, resolved (command-line choices included) before the build.
     pub settings: ir::RenderSettings,

@@ -1,7 +1,8 @@
 //! Stage 3: tessellation of the built-in shapes into [`TriMesh`]es with normals and UVs.
 //!
 //! Syntax: `mesh floor = quad { size (2, 2) }`, `mesh crate = box { size (1, 1, 1) }`,
-//! `mesh ball = sphere { radius 1  segments 48 }`. All shapes are centred at the origin and
+//! `mesh ball = sphere { radius 1  segments 48 }`, `mesh gem = icosphere { subdivisions 5
+//! radius 1 }` (the icosphere lives in `shapes/icosphere.rs`). All shapes are centred at the origin and
 //! wound counter-clockwise seen from outside, so `(p1 − p0) × (p2 − p0)` points outwards (this
 //! matters for one-sided area lights).
 
@@ -12,7 +13,10 @@ use glam::{Vec2, Vec3};
 use super::mesh::TriMesh;
 use crate::ir::BuiltinShape;
 
-/// The triangles of a built-in shape (`quad`, `box`, `sphere`).
+pub mod icosphere;
+
+/// The triangles of a built-in shape (`quad`, `box`, `sphere`, `icosphere`), in its own space
+/// (centred at the origin).
 pub fn tessellate(shape: &BuiltinShape) -> TriMesh {
     match *shape {
         BuiltinShape::Quad { size } => {
@@ -43,6 +47,10 @@ pub fn tessellate(shape: &BuiltinShape) -> TriMesh {
             m
         }
         BuiltinShape::Sphere { radius, segments } => sphere(radius, segments),
+        BuiltinShape::Icosphere {
+            radius,
+            subdivisions,
+        } => icosphere::icosphere(radius, subdivisions),
     }
 }
 

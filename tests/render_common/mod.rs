@@ -24,7 +24,7 @@ pub fn camera(eye: Vec3, target: Vec3, up_hint: Vec3, fov_y_deg: f32) -> Camera 
     let up = right.cross(forward);
     Camera {
         name: "main".into(),
-        eye,
+        eye: eye.as_dvec3(),
         forward,
         up,
         right,
@@ -84,7 +84,7 @@ pub fn object(mesh: u32, material: u32, world_from_object: Mat4) -> Object {
     Object {
         mesh,
         material,
-        world_from_object,
+        world_from_object: world_from_object.as_dmat4(),
         span: span(),
     }
 }
@@ -92,7 +92,7 @@ pub fn object(mesh: u32, material: u32, world_from_object: Mat4) -> Object {
 pub fn point_light(position: Vec3, intensity: f32) -> Light {
     Light::Point(PointLight {
         name: "bulb".into(),
-        position,
+        position: position.as_dvec3(),
         intensity: Vec3::splat(intensity),
         span: span(),
     })
@@ -108,7 +108,7 @@ pub fn area_light(
     Light::Area(AreaLight {
         name: "panel".into(),
         mesh,
-        world_from_object,
+        world_from_object: world_from_object.as_dmat4(),
         radiance: Vec3::splat(radiance),
         two_sided,
         samples,

@@ -39,7 +39,7 @@
 (declaration kind: (identifier) @type.builtin)
 ((call function: (identifier) @type.builtin)
   (#any-of? @type.builtin
-    "area" "box" "checker" "constant" "environment" "image" "inline" "obj"
+    "area" "box" "checker" "constant" "environment" "icosphere" "image" "inline" "obj"
     "phong" "point" "quad" "sphere"))
 
 ; Built-in functions (the colour constructors among them).
@@ -50,7 +50,7 @@
     "cross"))
 ((call function: (identifier) @function)
   (#not-any-of? @function
-    "area" "box" "checker" "constant" "environment" "image" "inline" "obj"
+    "area" "box" "checker" "constant" "environment" "icosphere" "image" "inline" "obj"
     "phong" "point" "quad" "sphere" "rgb" "linear" "srgb" "sin"
     "cos" "tan" "sqrt" "abs" "min" "max" "pow" "radians"
     "degrees" "normalize" "length" "dot" "cross"))
@@ -62,7 +62,7 @@
     "filter" "fov" "image" "indices" "intensity" "light_samples" "look_at" "max_samples" "noise" "quality" "max_samples" "noise" "quality" "material"
     "matrix" "mesh" "mtl" "normal_green" "normal_map" "normal_strength" "normals" "odd" "output"
     "position" "positions" "quad" "radiance" "radius" "resolution" "rotate" "samples"
-    "scale" "seed" "segments" "shininess" "size" "specular" "target" "tonemap"
+    "scale" "seed" "segments" "shininess" "size" "specular" "subdivisions" "target" "tonemap"
     "translate" "two_sided" "up" "uvs" "visible" "wrap"))
 ((block (identifier) @constant.builtin)
   (#any-of? @constant.builtin
@@ -76,7 +76,7 @@
     "filter" "fov" "image" "indices" "intensity" "light_samples" "look_at" "max_samples" "noise" "quality" "max_samples" "noise" "quality" "material"
     "matrix" "mesh" "mtl" "normal_green" "normal_map" "normal_strength" "normals" "odd" "output"
     "position" "positions" "quad" "radiance" "radius" "resolution" "rotate" "samples"
-    "scale" "seed" "segments" "shininess" "size" "specular" "target" "tonemap"
+    "scale" "seed" "segments" "shininess" "size" "specular" "subdivisions" "target" "tonemap"
     "translate" "two_sided" "up" "uvs" "visible" "wrap" "bilinear" "clamp"
     "data" "directx" "filmic" "grid" "mirror" "nearest" "opengl" "reinhard" "draft" "preview" "final" "draft" "preview" "final"
     "repeat" "rgss" "srgb" "trilinear" "true" "false"))

@@ -22,12 +22,12 @@ syn keyword scnKey contained ambient camera color diffuse encoding even exposure
 syn keyword scnKey contained image indices intensity light_samples look_at material matrix mesh mtl normal_green normal_map
 syn keyword scnKey contained normal_strength normals odd output position positions quad radiance radius resolution
 syn keyword scnKey contained rotate samples scale seed segments shininess size specular target tonemap
-syn keyword scnKey contained translate two_sided up uvs visible wrap
+syn keyword scnKey contained subdivisions translate two_sided up uvs visible wrap
 syn keyword scnKey contained quality noise max_samples
 
 " Kinds after `=`: `phong`, `sphere`, `image(\"file\")`, ...
 syn keyword scnKind area box checker constant environment image inline obj phong point
-syn keyword scnKind quad sphere
+syn keyword scnKind icosphere quad sphere
 
 " Bare words some keys take: `wrap repeat`, `tonemap filmic`.
 syn keyword scnWord contained bilinear clamp data directx filmic grid mirror nearest opengl reinhard

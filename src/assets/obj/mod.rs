@@ -9,6 +9,7 @@
 //! - [`encoding`]: UTF-16 transcoding, Latin-1 fallback for names;
 //! - [`lexer`], [`number`]: lines, comments, tokens, floats and indices;
 //! - [`polygon`]: triangulation (shorter-diagonal quads, ear clipping, degenerates dropped);
+//! - [`polygon_check`]: faces that repeat their corners, triangles that miss the Newell area;
 //! - [`model`]: OBJ statements, single indexing of `v/vt/vn` corners;
 //! - `model_notes`: the once-per-file warnings a parse leaves for the end;
 //! - `normals`: normals for the vertices a file with `vn`s left without one;
@@ -28,6 +29,7 @@ mod normals;
 pub mod number;
 pub mod phong;
 pub mod polygon;
+pub mod polygon_check;
 pub mod report;
 
 use crate::diag::Code;

@@ -23,6 +23,7 @@ use super::model_notes::Seen;
 use super::normals::fill_missing_normals;
 use super::number::{parse_f32, parse_index};
 use super::polygon::{triangulate, Scratch};
+use super::polygon_check::PolygonWarnings;
 use super::{Note, ObjError, Place};
 use crate::diag::Code;
 
@@ -141,6 +142,7 @@ struct Parser {
     local: Vec<[u32; 3]>,
     scratch: Scratch,
     seen: Seen,
+    polygons: PolygonWarnings,
 }
 
 impl Parser {
@@ -286,6 +288,9 @@ impl Parser {
         if o.fanned {
             self.seen.fanned.get_or_insert(at);
         }
+        let corners = self.corners.len();
+        self.polygons
+            .record(at, corners, o.loop_len, o.area_mismatch);
         let corners = &self.corners;
         self.model
             .triangles
@@ -363,6 +368,7 @@ impl Parser {
         m.runs
             .retain(|r| r.start < m.triangles.len() || r.start == 0);
         self.seen.notes(&mut m);
+        m.warnings.extend(self.polygons.notes());
         m
     }
 }

@@ -10,22 +10,32 @@
 //!   the loop always ends. Polygons above [`EAR_CLIP_MAX`] corners are fanned (the caller warns):
 //!   ear clipping is quadratic, and such faces are in practice convex caps.
 //! - Results of zero area (or with a NaN corner) are dropped and counted.
+//! - A face that lists the same corners several times over is triangulated from its first loop,
+//!   and every polygon of more than three corners has its triangles' area compared with its
+//!   Newell area (both in [`polygon_check`](super::polygon_check); the caller warns).
 //!
 //! For a planar simple polygon the triangles' areas sum to the Newell area (tests below and in
 //! `tests/obj_corpus.rs`).
 
 use glam::{Vec2, Vec3};
 
+use super::polygon_check::{area_mismatch, repeated_loop, AreaMismatch};
+
 /// Largest polygon that is ear-clipped; larger ones are fanned.
 pub const EAR_CLIP_MAX: usize = 4096;
 
 /// What triangulating one polygon did, besides appending triangles.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Outcome {
     /// Triangles of zero area (or with a non-finite corner) dropped.
     pub dropped: usize,
     /// Too large to ear-clip: fanned.
     pub fanned: bool,
+    /// How many of the corners were triangulated: all, or the first loop of a face that goes
+    /// round the same corners several times.
+    pub loop_len: usize,
+    /// The triangles do not cover the polygon's Newell area (more than three corners only).
+    pub area_mismatch: Option<AreaMismatch>,
 }
 
 /// Reusable buffers, so that a million faces allocate nothing.
@@ -53,7 +63,27 @@ pub fn newell(pts: &[Vec3]) -> Vec3 {
 
 /// Appends the triangles of polygon `pts` to `out`, as index triples into `pts`.
 pub fn triangulate(pts: &[Vec3], out: &mut Vec<[u32; 3]>, scratch: &mut Scratch) -> Outcome {
+    let loop_len = repeated_loop(pts).unwrap_or(pts.len());
+    let first = out.len();
+    let (mut o, exact) = triangulate_loop(&pts[..loop_len], out, scratch);
+    o.loop_len = loop_len;
+    if !exact {
+        o.area_mismatch = area_mismatch(&pts[..loop_len], &out[first..]);
+    }
+    o
+}
+
+/// [`triangulate`] for a polygon that goes round once; `true` when the triangles are known to
+/// cover the Newell area without measuring it: a triangle, or a quad split along a diagonal
+/// whose two halves both face along the Newell normal (their projected areas then add up to
+/// it exactly). Quads are most faces of most files, and this keeps their cost as it was.
+fn triangulate_loop(
+    pts: &[Vec3],
+    out: &mut Vec<[u32; 3]>,
+    scratch: &mut Scratch,
+) -> (Outcome, bool) {
     let mut o = Outcome::default();
+    let mut exact = pts.len() <= 3;
     let mut emit = |t: [usize; 3], o: &mut Outcome| {
         if degenerate(pts[t[0]], pts[t[1]], pts[t[2]]) {
             o.dropped += 1;
@@ -72,6 +102,7 @@ pub fn triangulate(pts: &[Vec3], out: &mut Vec<[u32; 3]>, scratch: &mut Scratch)
             let a_ok = inside(0, 1, 2) && inside(0, 2, 3);
             let b_ok = inside(1, 2, 3) && inside(1, 3, 0);
             let a_shorter = pts[0].distance_squared(pts[2]) <= pts[1].distance_squared(pts[3]);
+            exact = a_ok || b_ok;
             if b_ok && (!a_ok || !a_shorter) {
                 emit([1, 2, 3], &mut o);
                 emit([1, 3, 0], &mut o);
@@ -88,7 +119,7 @@ pub fn triangulate(pts: &[Vec3], out: &mut Vec<[u32; 3]>, scratch: &mut Scratch)
         }
         _ => ear_clip(pts, scratch, |t| emit(t, &mut o)),
     }
-    o
+    (o, exact)
 }
 
 fn degenerate(a: Vec3, b: Vec3, c: Vec3) -> bool {
@@ -279,6 +310,16 @@ mod tests {
     }
 
     #[test]
+    fn a_face_wound_several_times_is_triangulated_once() {
+        let comb = comb(3);
+        let (once, o) = run(&comb);
+        assert_eq!((o.loop_len, o.area_mismatch), (comb.len(), None));
+        let (thrice, o) = run(&comb.repeat(3));
+        assert_eq!(thrice, once, "the first loop, triangulated as alone");
+        assert_eq!((o.loop_len, o.area_mismatch), (comb.len(), None));
+    }
+
+    #[test]
     fn self_intersecting_and_nan_polygons_terminate() {
         let bow = [
             Vec3::ZERO,
@@ -289,6 +330,10 @@ mod tests {
         ];
         let (tris, o) = run(&bow);
         assert!(tris.len() + o.dropped <= 3);
+        assert!(
+            o.area_mismatch.is_some(),
+            "a bow tie has no exact triangulation"
+        );
         let nan = [Vec3::ZERO, Vec3::X, Vec3::NAN, Vec3::Y, Vec3::ONE];
         let (tris, o) = run(&nan);
         assert_eq!(tris.len() + o.dropped, 3);

@@ -30,7 +30,7 @@ impl Builder<'_> {
     pub(super) fn assemble(&mut self, options: &BuildOptions) -> Option<Assembled> {
         let desc = self.desc;
         let camera_index = options.camera.unwrap_or(desc.active_camera);
-        let camera = desc.cameras.get(camera_index).cloned();
+        let mut camera = desc.cameras.get(camera_index).cloned();
         if camera.is_none() {
             self.problems.push(BuildError::NoCamera {
                 which: match options.camera {
@@ -42,6 +42,11 @@ impl Builder<'_> {
         let (mut materials, mut textures) = self.materials();
         let mut parts = PartTables::default();
         let environment = self.environment();
+        // Every position from here on is relative to the world origin (`origin.rs`).
+        self.origin = self.world_origin();
+        if let Some(c) = camera.as_mut() {
+            c.eye -= self.origin;
+        }
         let mut instances = Vec::new();
         for object in &desc.objects {
             let Some(mesh) = self.mesh(object.mesh) else {
@@ -67,6 +72,7 @@ impl Builder<'_> {
                 normal_from_object,
                 part_base,
             });
+            self.check_resolution(object.mesh, object.world_from_object, object.span, mesh);
         }
         let lights = self.lights(&mut instances, environment, &mut parts);
         self.problems.append(&mut parts.unknown);
