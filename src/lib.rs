@@ -21,6 +21,13 @@
 //! shaded (BRDF, lights with `sample` beside `pdf`, textures, the environment map, sampling
 //! routines and distributions). The scene stores its types; the integrator calls them.
 
+#![warn(missing_docs)]
+// Set here rather than in Cargo.toml's [lints], which would reach tests/ and benches/ too: they
+// are crates of their own where an unwrap that fails is a failed test, as are this crate's
+// #[cfg(test)] modules (clippy.toml). Each invariant that still expects carries an allow with
+// its reason.
+#![deny(clippy::unwrap_used, clippy::expect_used)]
+
 pub mod assets;
 pub mod bvh;
 pub mod check;

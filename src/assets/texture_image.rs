@@ -25,8 +25,12 @@ pub const MAX_TEXTURE_SIDE: u32 = 8192;
 /// A decoded texture: `width × height` RGBA texels, row 0 at the top of the image.
 #[derive(Debug, Clone)]
 pub struct TexelImage {
+    /// Width in texels (1..=[`MAX_TEXTURE_SIDE`]).
     pub width: u32,
+    /// Height in texels (1..=[`MAX_TEXTURE_SIDE`]).
     pub height: u32,
+    /// `width · height` texels, row-major from the top row; RGB linear when decoded with
+    /// `srgb`, raw otherwise; alpha always raw.
     pub texels: Vec<Vec4>,
 }
 

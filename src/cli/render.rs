@@ -177,7 +177,12 @@ pub fn run(args: &RenderArgs) -> ExitCode {
     let built = compiled
         .and_then(|desc| resolve(args, desc))
         .and_then(|(desc, options)| scene::build(&desc, &loader, &options).map(|s| (desc, s)));
-    let finished = strict(built, &args.diag)
+    // What compile and build found is printed before a render that may take minutes, as a
+    // compiler prints its warnings before it links; what writing finds, after it.
+    let built = strict(built, &args.diag);
+    report(&built, &sources, &args.diag, JsonTo::Stdout);
+    let built_failed = built.has_errors();
+    let finished = Staged::new(built.value, Vec::new())
         .and_then(|(desc, scene)| render_and_write(args, &desc, scene, &mut phases));
     report(&finished, &sources, &args.diag, JsonTo::Stdout);
     match &finished.value {
@@ -195,7 +200,11 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             if args.stats {
                 eprintln!("{}", phases.report(scene, stats));
             }
-            exit_code(&finished)
+            if built_failed {
+                ExitCode::FAILURE
+            } else {
+                exit_code(&finished)
+            }
         }
         None => ExitCode::FAILURE,
     }

@@ -29,10 +29,14 @@ pub struct AssetPath {
     pub span: Span,
 }
 
+/// A `mesh NAME = ...` declaration: where its triangles come from.
 #[derive(Debug, Clone, Serialize)]
 pub struct Mesh {
+    /// The declared name (what `object { mesh NAME }` refers to).
     pub name: String,
+    /// File, inline arrays or built-in shape.
     pub source: MeshSource,
+    /// The declaration's span (diagnostics about the mesh as a whole point here).
     pub span: Span,
     /// Options of an `obj(...)` mesh (default for every other kind).
     #[serde(skip_serializing_if = "ObjOptions::is_default")]
@@ -48,24 +52,32 @@ pub struct ObjOptions {
     pub materials: Vec<ObjMaterialOverride>,
 }
 
+/// One `material OBJ_NAME SCN_MATERIAL` entry of an `obj(...)` mesh.
 #[derive(Debug, Clone, Serialize, PartialEq)]
 pub struct ObjMaterialOverride {
+    /// The material name as the OBJ's `usemtl` writes it.
     pub obj_name: String,
+    /// The scene material that replaces it.
     pub material: super::MaterialId,
+    /// The entry's span (an override no face uses is warned about here).
     pub span: Span,
 }
 
 impl ObjOptions {
+    /// True when nothing was written (the IR dump leaves the options out then).
     pub fn is_default(&self) -> bool {
         *self == ObjOptions::default()
     }
 }
 
+/// Where a mesh's triangles come from.
 #[derive(Debug, Clone, Serialize)]
 pub enum MeshSource {
     /// A Wavefront OBJ file (triangulated on load; normals and UVs kept).
     Obj(AssetPath),
+    /// `inline { positions [...] indices [...] }`: arrays written in the scene.
     Inline(InlineMesh),
+    /// `sphere`, `icosphere`, `quad` or `box`: tessellated at build time.
     Builtin(BuiltinShape),
 }
 
@@ -73,9 +85,13 @@ pub enum MeshSource {
 /// `normals` and `uvs` are empty or one per position.
 #[derive(Debug, Clone, Serialize)]
 pub struct InlineMesh {
+    /// Vertex positions in the mesh's own space.
     pub positions: Vec<Vec3>,
+    /// Per-vertex shading normals (not necessarily unit length), or empty for flat shading.
     pub normals: Vec<Vec3>,
+    /// Per-vertex texture coordinates, or empty.
     pub uvs: Vec<Vec2>,
+    /// Triangles as three indices into `positions` (and `normals`/`uvs`).
     pub indices: Vec<[u32; 3]>,
 }
 
@@ -83,11 +99,22 @@ pub struct InlineMesh {
 #[derive(Debug, Clone, Copy, Serialize)]
 pub enum BuiltinShape {
     /// A rectangle in the xz-plane facing +y, `size.x` by `size.y`; UVs span [0,1]².
-    Quad { size: glam::Vec2 },
+    Quad {
+        /// Extent along x and z.
+        size: glam::Vec2,
+    },
     /// An axis-aligned box of the given full extents; each face has its own UVs and normals.
-    Box { size: Vec3 },
+    Box {
+        /// Full extent along x, y and z.
+        size: Vec3,
+    },
     /// A UV sphere: `segments` around the equator, `segments / 2` rings.
-    Sphere { radius: f32, segments: u32 },
+    Sphere {
+        /// Distance of every vertex from the centre.
+        radius: f32,
+        /// Vertices around the equator (at least 3).
+        segments: u32,
+    },
     /// A subdivided icosahedron, flat-shaded: `20 · 4^subdivisions` triangles, vertex for
     /// vertex the benchmark's `icosphere(subdivisions)` (bench/scenes/gen.py) scaled by `radius`.
     Icosphere {
