@@ -189,12 +189,18 @@ fn mtl_colour_and_normal_maps_become_image_textures() {
     let normal = material.normal_map.as_ref().expect("norm is a normal map");
     assert_eq!(normal.strength, 0.5);
     // Colour maps are sRGB-decoded: the left texel is pure red, the right pure green.
-    let red = scene
-        .textures
-        .color(ColorInput::Texture(kd), glam::Vec2::new(0.25, 0.5), 1e-6);
-    let green = scene
-        .textures
-        .color(ColorInput::Texture(ks), glam::Vec2::new(0.75, 0.5), 1e-6);
+    let red = scene.textures.color(
+        ColorInput::Texture(kd),
+        glam::Vec2::new(0.25, 0.5),
+        scnc::shade::texture::Footprint::isotropic(1e-6),
+        &mut Default::default(),
+    );
+    let green = scene.textures.color(
+        ColorInput::Texture(ks),
+        glam::Vec2::new(0.75, 0.5),
+        scnc::shade::texture::Footprint::isotropic(1e-6),
+        &mut Default::default(),
+    );
     assert!((red - glam::Vec3::X).abs().max_element() < 1e-3, "{red}");
     assert!(
         (green - glam::Vec3::Y).abs().max_element() < 1e-3,

@@ -111,11 +111,12 @@ render {{ resolution {height_px} x {height_px} }}
         let ray = Ray::new(eye, dir);
         let hit = scene.accel.as_ref().and_then(|a| a.closest_hit(&ray));
         let hit = surface_hit(&scene, &hit.expect("hits the quad")).expect("valid");
-        let footprint = uv_footprint(&scene, &hit, dir);
+        let footprint = uv_footprint(&scene, &hit, dir, 1.0);
         let Some(Texture::Image { data, .. }) = &scene.textures.slots[0] else {
             panic!("an image texture");
         };
-        let lod = footprint.log2() + data.log2_size();
+        // The longer (major) axis: along the view, stretched by 1/cos θ.
+        let lod = footprint.width().log2() + 0.5 * (data.size().x * data.size().y).log2();
         // Closed form: one pixel's cone (α·d wide) stretched by 1/cos θ, in texels: the quad
         // maps `size` world units to 1 UV unit, i.e. to √(256·64) = 128 texels.
         let alpha = (2.0 * (fov_deg.to_radians() / 2.0).tan() / height_px as f32).atan();

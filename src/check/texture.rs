@@ -3,7 +3,7 @@
 //! Syntax: `texture wood = image("wood.png") { wrap repeat  filter trilinear }` (colour,
 //! sRGB-decoded), `texture bumps = image("bumps.png") { encoding data }` (data, read raw),
 //! `texture board = checker { even #ffffff  odd #202020  scale 8 }`,
-//! `texture grey = constant { color 0.5 }`. Defaults: wrap repeat, filter trilinear, encoding
+//! `texture grey = constant { color 0.5 }`. Defaults: wrap repeat, filter anisotropic, encoding
 //! srgb; checker even 0.8, odd 0.2, scale 4 (squares per UV unit).
 
 use glam::DVec3;
@@ -127,9 +127,9 @@ impl Checker<'_> {
                 .and_then(|e| self.choice::<ir::WrapMode>(e, "wrap mode")),
         };
         let filter = match props.get("filter") {
-            None => Some(ir::Filter::Trilinear),
+            None => Some(ir::Filter::Anisotropic),
             Some(p) => self
-                .one(p, "filter trilinear")
+                .one(p, "filter anisotropic")
                 .and_then(|e| self.choice::<ir::Filter>(e, "filter")),
         };
         let encoding = match props.get("encoding") {

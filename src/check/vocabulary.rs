@@ -90,11 +90,12 @@ words! {
     WRAP_WORDS: ir::WrapMode { "repeat" => Repeat, "clamp" => Clamp, "mirror" => Mirror, }
 }
 words! {
-    /// `filter trilinear`: texture filtering.
+    /// `filter anisotropic`: texture filtering.
     FILTER_WORDS: ir::Filter {
         "nearest" => Nearest,
         "bilinear" => Bilinear,
         "trilinear" => Trilinear,
+        "anisotropic" => Anisotropic,
     }
 }
 words! {

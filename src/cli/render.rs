@@ -211,6 +211,10 @@ pub fn run(args: &RenderArgs) -> ExitCode {
 }
 
 /// How a render that got as far as the renderer ended.
+#[allow(
+    clippy::large_enum_variant,
+    reason = "one value per render, moved once; boxing the stats buys nothing"
+)]
 enum Finished {
     /// Rendered, with a line per file written (the write's diagnostics say why any other
     /// was not).

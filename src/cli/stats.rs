@@ -1,6 +1,7 @@
 //! `--stats`: the time of each phase, rays by kind, throughput, what the build made and its
 //! memory (only the structures the scene uses), how often the per-sample loop took the paths of
-//! optional features, samples dropped as NaN or infinite, and peak memory.
+//! optional features (and, for textured scenes, how often the anisotropic texture filter ran
+//! and its mean taps), samples dropped as NaN or infinite, and peak memory.
 
 use std::fmt::Write;
 use std::time::Duration;
@@ -62,6 +63,14 @@ impl PhaseStats {
             "sample paths   {} textured, {} specular, {} environment; {} NaN/inf samples dropped",
             c.textured, c.specular, c.environment, c.nonfinite
         );
+        if c.textured > 0 {
+            let _ = writeln!(
+                s,
+                "texture filter {} anisotropic lookups, {:.1} taps each on average",
+                c.filter.anisotropic,
+                c.filter.mean_taps()
+            );
+        }
         let _ = writeln!(s, "{}", render.noise.summary());
         let _ = writeln!(s, "built");
         for b in scene.inventory() {

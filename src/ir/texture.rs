@@ -2,7 +2,7 @@
 //!
 //! Syntax:
 //! ```text
-//! texture wood  = image("wood.png") { wrap repeat  filter trilinear }
+//! texture wood  = image("wood.png") { wrap repeat  filter anisotropic }
 //! texture bumps = image("bumps.png") { encoding data }
 //! texture board = checker { even #ffffff  odd #202020  scale 8 }
 //! ```
@@ -31,9 +31,20 @@ pub enum Filter {
     Nearest,
     /// The four nearest texels of the full-resolution image, weighted by distance.
     Bilinear,
-    /// Bilinear within two mip levels chosen from the pixel footprint; only this mode builds a
+    /// Bilinear within two mip levels chosen from the pixel footprint's longer axis; builds a
     /// mip pyramid.
     Trilinear,
+    /// The default: trilinear taps spread along the footprint's major axis where it is
+    /// anisotropic (a surface seen at a grazing angle), one trilinear lookup where it is not;
+    /// builds a mip pyramid.
+    Anisotropic,
+}
+
+impl Filter {
+    /// Whether this filter reads a mip pyramid (and so needs the pixel's footprint).
+    pub fn is_mip_filtered(self) -> bool {
+        matches!(self, Filter::Trilinear | Filter::Anisotropic)
+    }
 }
 
 /// How an image's stored values map to linear values.

@@ -13,7 +13,9 @@
 //! one strategy alone for tests and measurements.
 //!
 //! Textured materials look their inputs up with the pixel's ray-cone footprint
-//! (`shade::texture::footprint`, which picks the mip level); a normal map replaces the shading
+//! (`shade::texture::footprint`: an ellipse, scaled down as the pixel's sample count grows, so
+//! the filtered image converges; computed only when the scene has a mip-filtered texture),
+//! normal maps included; a normal map replaces the shading
 //! normal (`shade::normal_map`, bent by
 //! the Iray reflection fix where it faces away from the viewer). Untextured materials skip both
 //! behind one branch.
@@ -39,7 +41,8 @@ use crate::scene::{DirectStrategy, Scene, Surface};
 use crate::shade::brdf::Phong;
 use crate::shade::normal_map;
 use crate::shade::surface::{offset_origin, surface_hit, SurfaceHit};
-use crate::shade::texture::footprint;
+use crate::shade::texture::footprint::{self, Footprint};
+use crate::shade::texture::FilterStats;
 use crate::shade::{AreaLight, Light, Picked};
 
 /// Rays traced, by kind, and how often the per-sample loop took the paths of optional features
@@ -61,6 +64,8 @@ pub struct RayCounts {
     /// Pixel samples whose radiance was NaN or infinite and was dropped (counted by the film
     /// loop, never by `radiance`).
     pub nonfinite: u64,
+    /// Anisotropic texture lookups and their taps.
+    pub filter: FilterStats,
 }
 
 impl RayCounts {
@@ -73,6 +78,7 @@ impl RayCounts {
         self.specular += o.specular;
         self.environment += o.environment;
         self.nonfinite += o.nonfinite;
+        self.filter.add(&o.filter);
     }
 }
 
@@ -85,8 +91,21 @@ pub(super) const STREAM_ENVIRONMENT: u64 = 1;
 pub(super) const STREAM_BRDF: u64 = 2;
 const STREAM_LIGHTS: u64 = 3;
 
-/// Radiance arriving at the camera along `ray` (a unit-direction camera ray).
+/// Radiance arriving at the camera along `ray` (a unit-direction camera ray), textures filtered
+/// over the whole pixel's footprint (a one-sample pixel's).
 pub fn radiance(scene: &Scene, ray: &Ray, sampler: &mut Sampler, counts: &mut RayCounts) -> Vec3 {
+    radiance_scaled(scene, ray, 1.0, sampler, counts)
+}
+
+/// [`radiance`], with the texture footprint scaled by `footprint_scale`
+/// (`shade::texture::footprint::footprint_scale` of the pixel's sample count).
+pub fn radiance_scaled(
+    scene: &Scene,
+    ray: &Ray,
+    footprint_scale: f32,
+    sampler: &mut Sampler,
+    counts: &mut RayCounts,
+) -> Vec3 {
     counts.camera += 1;
     let hit = scene
         .accel
@@ -108,22 +127,35 @@ pub fn radiance(scene: &Scene, ray: &Ray, sampler: &mut Sampler, counts: &mut Ra
             Some(Light::Area(a)) => a.radiance_towards(hit.ng, wo),
             _ => Vec3::ZERO,
         },
-        Surface::Material(m) => shade(scene, &hit, m, -wo, sampler, counts),
+        Surface::Material(m) => {
+            let at = Camera {
+                dir: -wo,
+                footprint_scale,
+            };
+            shade(scene, &hit, m, at, sampler, counts)
+        }
     }
 }
 
-/// `dir` is the unit direction of the camera ray that found `hit`.
+/// The camera ray that found a hit: its unit direction and its footprint scale.
+#[derive(Clone, Copy)]
+struct Camera {
+    dir: Vec3,
+    footprint_scale: f32,
+}
+
 fn shade(
     scene: &Scene,
     hit: &SurfaceHit,
     material: u32,
-    dir: Vec3,
+    camera: Camera,
     sampler: &mut Sampler,
     counts: &mut RayCounts,
 ) -> Vec3 {
     let Some(mat) = scene.materials.get(material as usize) else {
         return Vec3::ZERO;
     };
+    let dir = camera.dir;
     let wo = -dir;
     let ng = if hit.ng.dot(wo) < 0.0 {
         -hit.ng
@@ -132,24 +164,27 @@ fn shade(
     };
     let flip = hit.ns.dot(ng) < 0.0;
     let mut ns = if flip { -hit.ns } else { hit.ns };
-    // Only textured materials pay for the footprint (and normal-mapped ones for the map).
-    let footprint = if mat.is_textured() {
-        counts.textured += 1;
-        footprint::uv_footprint(scene, hit, dir)
+    // Only textured materials pay for the footprint (and normal-mapped ones for the map), and
+    // only when a texture is mip-filtered.
+    let textured = mat.is_textured();
+    let footprint = if textured && scene.textures.any_mip_filtered() {
+        footprint::uv_footprint(scene, hit, dir, camera.footprint_scale)
     } else {
-        0.0
+        Footprint::default()
     };
+    counts.textured += u64::from(textured);
+    let fs = &mut counts.filter;
     if let Some(map) = &mat.normal_map {
-        if let Some(mapped) = normal_map::mapped_normal(scene, hit, map, footprint) {
+        if let Some(mapped) = normal_map::mapped_normal(scene, hit, map, footprint, fs) {
             let mapped = if flip { -mapped } else { mapped };
             ns = normal_map::ensure_valid_reflection(ng, wo, mapped);
         }
     }
     let t = &scene.textures;
     let phong = Phong {
-        diffuse: t.color(mat.diffuse, hit.uv, footprint),
-        specular: t.color(mat.specular, hit.uv, footprint),
-        shininess: t.scalar(mat.shininess, hit.uv, footprint),
+        diffuse: t.color(mat.diffuse, hit.uv, footprint, fs),
+        specular: t.color(mat.specular, hit.uv, footprint, fs),
+        shininess: t.scalar(mat.shininess, hit.uv, footprint, fs),
     };
     if phong.specular != Vec3::ZERO {
         counts.specular += 1;

@@ -25,10 +25,11 @@ use rayon::prelude::*;
 
 use self::camera::PinholeCamera;
 use self::estimate::{Accumulator, NoiseStats, PixelEstimate};
-use self::integrator::{radiance, RayCounts};
+use self::integrator::{radiance_scaled, RayCounts};
 use self::rng::Sampler;
 use crate::film::Film;
 use crate::scene::Scene;
+use crate::shade::texture::footprint::footprint_scale;
 
 /// Side of the square tiles the image is cut into (one unit of parallel work).
 pub const TILE_SIZE: u32 = 16;
@@ -287,12 +288,15 @@ impl Job<'_> {
     fn pixel(&self, x: u32, y: u32, counts: &mut RayCounts) -> PixelEstimate {
         let mut acc = Accumulator::default();
         let Some(a) = &self.adaptive else {
-            self.batch(x, y, 0, self.offsets, &mut acc, counts);
+            let scale = footprint_scale(self.offsets.len() as u32);
+            self.batch(x, y, 0, (self.offsets, scale), &mut acc, counts);
             return acc.finish(self.offsets.len() as u32, false);
         };
         let mut taken = 0;
         for b in 0..a.batches {
-            self.batch(x, y, b, a.offsets, &mut acc, counts);
+            // Textures are filtered for the samples the pixel will have by this batch's end.
+            let scale = footprint_scale(taken + a.offsets.len() as u32);
+            self.batch(x, y, b, (a.offsets, scale), &mut acc, counts);
             taken += a.offsets.len() as u32;
             if b + 1 >= estimate::MIN_BATCHES && acc.relative_error() <= a.target {
                 return acc.finish(taken, false);
@@ -302,13 +306,14 @@ impl Job<'_> {
     }
 
     /// Batch `batch` of the pixel: one sample at each of `offsets`, with its own
-    /// stratification sets (batch 0 is a fixed-count render's only batch).
+    /// stratification sets (batch 0 is a fixed-count render's only batch), textures filtered
+    /// with the footprint scaled by `footprint_scale`.
     fn batch(
         &self,
         x: u32,
         y: u32,
         batch: u32,
-        offsets: &[Vec2],
+        (offsets, footprint_scale): (&[Vec2], f32),
         acc: &mut Accumulator,
         counts: &mut RayCounts,
     ) {
@@ -332,7 +337,7 @@ impl Job<'_> {
             let o = (*offset + shift).fract();
             let ray = self.camera.ray(Vec2::new(x as f32, y as f32) + o);
             let mut sampler = Sampler::for_batch_sample(seed, x, y, batch, s as u32, count);
-            let l = radiance(self.scene, &ray, &mut sampler, counts);
+            let l = radiance_scaled(self.scene, &ray, footprint_scale, &mut sampler, counts);
             // A non-finite sample (a degenerate configuration the guards missed) must not
             // poison the pixel; it is counted for `--stats` instead (and as black in the mean).
             if l.is_finite() {

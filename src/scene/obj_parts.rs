@@ -279,7 +279,7 @@ fn part_material(p: &ObjPhong, maps: &PartMaps, textures: &mut Textures) -> Surf
         textures.slots.push(Some(Texture::Image {
             data: data.clone(),
             wrap: WrapMode::Repeat,
-            filter: Filter::Trilinear,
+            filter: Filter::Anisotropic,
         }));
         textures.slots.len() as u32 - 1
     };

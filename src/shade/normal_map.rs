@@ -19,6 +19,7 @@
 use glam::{Vec2, Vec3};
 
 use super::surface::SurfaceHit;
+use super::texture::{FilterStats, Footprint};
 use crate::ir::{ColorInput, GreenConvention, NormalMap};
 use crate::scene::Scene;
 
@@ -28,7 +29,8 @@ pub fn mapped_normal(
     scene: &Scene,
     hit: &SurfaceHit,
     map: &NormalMap,
-    footprint: f32,
+    footprint: Footprint,
+    stats: &mut FilterStats,
 ) -> Option<Vec3> {
     let inst = scene.instances.get(hit.hit.instance as usize)?;
     let tangents = scene.tangents.get(inst.mesh as usize)?;
@@ -55,7 +57,7 @@ pub fn mapped_normal(
     let bitangent = handedness * n.cross(tangent);
     let c = scene
         .textures
-        .color(ColorInput::Texture(map.texture), hit.uv, footprint);
+        .color(ColorInput::Texture(map.texture), hit.uv, footprint, stats);
     let local = decode(c, map.green, map.strength);
     let mapped = (tangent * local.x + bitangent * local.y + n * local.z).normalize_or_zero();
     Some(if mapped.is_finite() && mapped != Vec3::ZERO {

@@ -66,7 +66,7 @@
     "translate" "two_sided" "up" "uvs" "visible" "wrap"))
 ((block (identifier) @constant.builtin)
   (#any-of? @constant.builtin
-    "bilinear" "clamp" "data" "directx" "filmic" "grid" "mirror" "nearest"
+    "anisotropic" "bilinear" "clamp" "data" "directx" "filmic" "grid" "mirror" "nearest"
     "opengl" "reinhard" "draft" "preview" "final" "draft" "preview" "final" "repeat" "rgss" "srgb" "trilinear"))
 ((identifier) @boolean
   (#any-of? @boolean "true" "false"))
@@ -77,7 +77,7 @@
     "matrix" "mesh" "mtl" "normal_green" "normal_map" "normal_strength" "normals" "odd" "output"
     "position" "positions" "quad" "radiance" "radius" "resolution" "rotate" "samples"
     "scale" "seed" "segments" "shininess" "size" "specular" "subdivisions" "target" "tonemap"
-    "translate" "two_sided" "up" "uvs" "visible" "wrap" "bilinear" "clamp"
+    "translate" "two_sided" "up" "uvs" "visible" "wrap" "anisotropic" "bilinear" "clamp"
     "data" "directx" "filmic" "grid" "mirror" "nearest" "opengl" "reinhard" "draft" "preview" "final" "draft" "preview" "final"
     "repeat" "rgss" "srgb" "trilinear" "true" "false"))
 ((binary_expression (identifier) @variable)

@@ -30,7 +30,7 @@ syn keyword scnKind area box checker constant environment image inline obj phong
 syn keyword scnKind icosphere quad sphere
 
 " Bare words some keys take: `wrap repeat`, `tonemap filmic`.
-syn keyword scnWord contained bilinear clamp data directx filmic grid mirror nearest opengl reinhard
+syn keyword scnWord contained anisotropic bilinear clamp data directx filmic grid mirror nearest opengl reinhard
 syn keyword scnWord contained repeat rgss srgb trilinear
 syn keyword scnWord contained draft preview final
 

@@ -5,14 +5,15 @@
 //! checker {…} | constant {…}`. Only textures reachable from materials that objects use are
 //! built. Image files are grouped by (path, encoding): each is read and decoded once however
 //! many textures and materials name it, and its mip pyramid is built once, only when one of
-//! those textures filters trilinearly. Each failure is one error at the path literal.
+//! those textures is mip-filtered (trilinear or anisotropic). Each failure is one error at the
+//! path literal.
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::sync::Arc;
 
 use super::Builder;
-use crate::ir::{self, ColorInput, Filter, ScalarInput, TextureEncoding, TextureSource};
+use crate::ir::{self, ColorInput, ScalarInput, TextureEncoding, TextureSource};
 use crate::scene::texture_load::load_image_texture;
 use crate::scene::SurfaceMaterial;
 use crate::shade::texture::image::ImageData;
@@ -45,7 +46,7 @@ impl Builder<'_> {
                 }
             }
         }
-        // One load per (file, encoding); mipmaps if any texture on it is trilinear.
+        // One load per (file, encoding); mipmaps if any texture on it is mip-filtered.
         let mut files: BTreeMap<(PathBuf, bool), (&ir::AssetPath, TextureEncoding, bool)> =
             BTreeMap::new();
         for (t, _) in reachable.iter().enumerate().filter(|(_, r)| **r) {
@@ -58,7 +59,7 @@ impl Builder<'_> {
             {
                 let key = (file.path.clone(), *encoding == TextureEncoding::Srgb);
                 let entry = files.entry(key).or_insert((file, *encoding, false));
-                entry.2 |= *filter == Filter::Trilinear;
+                entry.2 |= filter.is_mip_filtered();
             }
         }
         let mut loaded: BTreeMap<(PathBuf, bool), Arc<ImageData>> = BTreeMap::new();

@@ -1,6 +1,7 @@
 //! Shading layer: image texture storage and lookup — texels, wrap modes, filters and the mip
 //! pyramid behind `texture wood = image("wood.png") { wrap repeat|clamp|mirror  filter
-//! nearest|bilinear|trilinear }` (decoding the file is the build's, `scene::texture_load`).
+//! nearest|bilinear|trilinear|anisotropic }` (decoding the file is the build's,
+//! `scene::texture_load`; the anisotropic filter is `anisotropic`'s).
 //!
 //! Conventions (those of OpenGL and OBJ files): u runs left to right, v bottom to top, and image
 //! row 0 is the top of the image, so UV (0, 0) is the bottom-left corner of the picture. Texel
@@ -11,7 +12,7 @@
 //! clamps them to the edge, `mirror` reflects them every other period (…, 1, 0, 0, 1, …, w−1,
 //! w−1, …).
 //!
-//! The pyramid (built only for `filter trilinear`, see [`ImageData::new`]) halves each side
+//! The pyramid (built only for `filter trilinear` and `anisotropic`, see [`ImageData::new`]) halves each side
 //! (rounding down, never below 1) and box-filters exactly: each texel of level k+1 averages the
 //! area of level k it covers, with fractional weights when a side is odd, so non-power-of-two
 //! and non-square images keep their mean at every level. `lod` is the level as a real number
@@ -19,6 +20,8 @@
 
 use glam::{Vec2, Vec4};
 
+use super::anisotropic::{self, FilterStats};
+use super::footprint::Footprint;
 use crate::ir::{Filter, WrapMode};
 
 /// One level of the pyramid.
@@ -32,7 +35,7 @@ pub struct MipLevel {
     pub texels: Vec<Vec4>,
 }
 
-/// A decoded image and (for trilinear filtering) its pyramid, shared by every texture that
+/// A decoded image and (for mip filtering) its pyramid, shared by every texture that
 /// names the same file with the same encoding.
 #[derive(Debug, Clone)]
 pub struct ImageData {
@@ -77,43 +80,75 @@ impl ImageData {
             .sum()
     }
 
-    /// `log2(√(w·h))`: added to `log2` of a footprint in UV units it gives the mip level.
-    pub fn log2_size(&self) -> f32 {
-        0.5 * ((self.width() as f32).log2() + (self.height() as f32).log2())
+    /// `(w, h)` of the full-resolution image: UV units times this are texels.
+    pub fn size(&self) -> Vec2 {
+        Vec2::new(self.width() as f32, self.height() as f32)
     }
 
-    /// The filtered value at `uv`. `lod` is only used by trilinear filtering.
-    pub fn lookup(&self, uv: Vec2, wrap: WrapMode, filter: Filter, lod: f32) -> Vec4 {
-        let base = &self.levels[0];
+    /// The filtered value at `uv` for a pixel whose footprint there is `footprint` (only the
+    /// mip-filtered modes use it); anisotropic lookups are counted in `stats`.
+    pub fn lookup(
+        &self,
+        uv: Vec2,
+        wrap: WrapMode,
+        filter: Filter,
+        footprint: Footprint,
+        stats: &mut FilterStats,
+    ) -> Vec4 {
         match filter {
-            Filter::Nearest => base.nearest(uv, wrap),
-            Filter::Bilinear => base.bilinear(uv, wrap),
-            Filter::Trilinear => {
-                let top = (self.levels.len() - 1) as f32;
-                // NaN (a degenerate footprint) lands on level 0.
-                let lod = if lod > 0.0 { lod.min(top) } else { 0.0 };
-                let l0 = lod.floor();
-                let f = lod - l0;
-                let a = self.levels[l0 as usize].bilinear(uv, wrap);
-                if f == 0.0 {
-                    return a;
-                }
-                let b = self.levels[l0 as usize + 1].bilinear(uv, wrap);
-                a + (b - a) * f
+            Filter::Nearest => self.levels[0].nearest(uv, wrap),
+            Filter::Bilinear => self.levels[0].bilinear(uv, wrap),
+            Filter::Trilinear => self.trilinear(uv, wrap, self.lod(footprint)),
+            Filter::Anisotropic if self.levels.len() > 1 => {
+                anisotropic::lookup(self, uv, wrap, footprint, stats)
             }
+            Filter::Anisotropic => self.levels[0].bilinear(uv, wrap),
         }
+    }
+
+    /// The isotropic mip level of a footprint: `log2` of its longer axis in texels (the GPU
+    /// convention: level 0 when a texel spans the footprint).
+    pub fn lod(&self, footprint: Footprint) -> f32 {
+        let (a, b) = footprint.in_texels(self.size());
+        a.length().max(b.length()).log2()
+    }
+
+    /// The filtered value at `uv` at mip level `lod` (nearest and bilinear read level 0; the
+    /// mip-filtered modes are trilinear at `lod`).
+    pub fn at_lod(&self, uv: Vec2, wrap: WrapMode, filter: Filter, lod: f32) -> Vec4 {
+        match filter {
+            Filter::Nearest => self.levels[0].nearest(uv, wrap),
+            Filter::Bilinear => self.levels[0].bilinear(uv, wrap),
+            Filter::Trilinear | Filter::Anisotropic => self.trilinear(uv, wrap, lod),
+        }
+    }
+
+    /// Bilinear lookups in the two levels around `lod`, blended; `lod` is clamped to the
+    /// pyramid (NaN, a degenerate footprint, lands on level 0).
+    pub fn trilinear(&self, uv: Vec2, wrap: WrapMode, lod: f32) -> Vec4 {
+        let top = (self.levels.len() - 1) as f32;
+        let lod = if lod > 0.0 { lod.min(top) } else { 0.0 };
+        let l0 = lod.floor();
+        let f = lod - l0;
+        let a = self.levels[l0 as usize].bilinear(uv, wrap);
+        if f == 0.0 {
+            return a;
+        }
+        let b = self.levels[l0 as usize + 1].bilinear(uv, wrap);
+        a + (b - a) * f
     }
 }
 
 impl MipLevel {
-    fn texel(&self, x: i64, y: i64, wrap: WrapMode) -> Vec4 {
+    /// The texel at integer indices `(x, y)`, wrapped.
+    pub(super) fn texel(&self, x: i64, y: i64, wrap: WrapMode) -> Vec4 {
         let x = wrap_index(x, self.width, wrap);
         let y = wrap_index(y, self.height, wrap);
         self.texels[y * self.width as usize + x]
     }
 
     /// Continuous texel coordinates of `uv` (texel centres at half-integers).
-    fn coords(&self, uv: Vec2) -> Vec2 {
+    pub(super) fn coords(&self, uv: Vec2) -> Vec2 {
         Vec2::new(uv.x * self.width as f32, (1.0 - uv.y) * self.height as f32)
     }
 
@@ -254,7 +289,7 @@ mod tests {
                 let uv = centre(i as f32, j as f32, 4.0, 2.0);
                 let want = Vec4::new(i as f32, j as f32, (10 * j + i) as f32, 1.0);
                 for filter in [Filter::Nearest, Filter::Bilinear, Filter::Trilinear] {
-                    let got = img.lookup(uv, WrapMode::Clamp, filter, 0.0);
+                    let got = img.at_lod(uv, WrapMode::Clamp, filter, 0.0);
                     assert!(
                         (got - want).abs().max_element() < 1e-5,
                         "{filter:?} {i},{j}"
@@ -264,7 +299,7 @@ mod tests {
         }
         // UV (0, 0) is the bottom-left corner: the last row, first column.
         assert_eq!(
-            img.lookup(Vec2::new(0.01, 0.01), WrapMode::Clamp, Filter::Nearest, 0.0)
+            img.at_lod(Vec2::new(0.01, 0.01), WrapMode::Clamp, Filter::Nearest, 0.0)
                 .z,
             10.0
         );
@@ -274,7 +309,7 @@ mod tests {
     fn wrap_modes_at_known_texels() {
         let img = ramp(4, 2);
         let at = |i: f32, wrap| {
-            img.lookup(centre(i, 0.0, 4.0, 2.0), wrap, Filter::Nearest, 0.0)
+            img.at_lod(centre(i, 0.0, 4.0, 2.0), wrap, Filter::Nearest, 0.0)
                 .x
         };
         // One texel left of the image, and five to the right.
@@ -288,20 +323,20 @@ mod tests {
         // Bilinear half-way between the last and the first column.
         let edge = Vec2::new(1.0, 1.0 - 0.5 / 2.0);
         assert_eq!(
-            img.lookup(edge, WrapMode::Repeat, Filter::Bilinear, 0.0).x,
+            img.at_lod(edge, WrapMode::Repeat, Filter::Bilinear, 0.0).x,
             1.5
         );
         assert_eq!(
-            img.lookup(edge, WrapMode::Clamp, Filter::Bilinear, 0.0).x,
+            img.at_lod(edge, WrapMode::Clamp, Filter::Bilinear, 0.0).x,
             3.0
         );
         assert_eq!(
-            img.lookup(edge, WrapMode::Mirror, Filter::Bilinear, 0.0).x,
+            img.at_lod(edge, WrapMode::Mirror, Filter::Bilinear, 0.0).x,
             3.0
         );
         // Bilinear a quarter of the way from texel 1 to texel 2.
         let q = Vec2::new(2.25 / 4.0, 0.75);
-        assert!((img.lookup(q, WrapMode::Repeat, Filter::Bilinear, 0.0).x - 1.75).abs() < 1e-6);
+        assert!((img.at_lod(q, WrapMode::Repeat, Filter::Bilinear, 0.0).x - 1.75).abs() < 1e-6);
     }
 
     #[test]
@@ -328,27 +363,27 @@ mod tests {
     fn trilinear_blends_levels_and_clamps_lod() {
         let img = ramp(4, 4);
         let uv = Vec2::new(0.3, 0.6);
-        let l0 = img.lookup(uv, WrapMode::Repeat, Filter::Bilinear, 0.0);
+        let l0 = img.at_lod(uv, WrapMode::Repeat, Filter::Bilinear, 0.0);
         let l1 = img.levels[1].bilinear(uv, WrapMode::Repeat);
-        let mid = img.lookup(uv, WrapMode::Repeat, Filter::Trilinear, 0.5);
+        let mid = img.at_lod(uv, WrapMode::Repeat, Filter::Trilinear, 0.5);
         assert!((mid - (l0 + l1) / 2.0).abs().max_element() < 1e-5);
         // Whole levels: a texel centre of level 1 returns that texel, for every wrap mode.
         for wrap in [WrapMode::Repeat, WrapMode::Clamp, WrapMode::Mirror] {
-            let at = img.lookup(centre(1.0, 0.0, 2.0, 2.0), wrap, Filter::Trilinear, 1.0);
+            let at = img.at_lod(centre(1.0, 0.0, 2.0, 2.0), wrap, Filter::Trilinear, 1.0);
             assert!((at - img.levels[1].texels[1]).abs().max_element() < 1e-5);
             // (1.5, 0.5) is level 1's texel (1, 0): the mean of level 0's 2 × 2 block there.
             assert!((at - Vec4::new(2.5, 0.5, 7.5, 1.0)).abs().max_element() < 1e-5);
         }
         let top = img.levels[2].texels[0];
         assert_eq!(
-            img.lookup(uv, WrapMode::Repeat, Filter::Trilinear, 99.0),
+            img.at_lod(uv, WrapMode::Repeat, Filter::Trilinear, 99.0),
             top
         );
         for bad in [f32::NAN, -3.0, f32::NEG_INFINITY] {
-            assert_eq!(img.lookup(uv, WrapMode::Repeat, Filter::Trilinear, bad), l0);
+            assert_eq!(img.at_lod(uv, WrapMode::Repeat, Filter::Trilinear, bad), l0);
         }
         for uv in [Vec2::splat(f32::NAN), Vec2::splat(1e30), Vec2::splat(-1e30)] {
-            let v = img.lookup(uv, WrapMode::Mirror, Filter::Trilinear, 1.3);
+            let v = img.at_lod(uv, WrapMode::Mirror, Filter::Trilinear, 1.3);
             assert!(v.is_finite());
         }
     }

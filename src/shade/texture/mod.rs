@@ -1,20 +1,24 @@
 //! Shading layer: material inputs evaluated at a hit's UV.
 //!
 //! Syntax: `texture board = checker { even #ffffff  odd #202020  scale 8 }`, constants,
-//! `texture wood = image("wood.png") { wrap repeat  filter trilinear }` (see `image`),
+//! `texture wood = image("wood.png") { wrap repeat  filter anisotropic }` (see `image`),
 //! and `phong { diffuse board  specular 0.4  shininess 64 }`.
 //!
-//! A lookup takes the hit's UV and its footprint: the width of the pixel's ray cone on the
-//! surface, measured in UV units (see `footprint`). A trilinear image texture turns it
-//! into a mip level `log2(footprint · √(w·h))`; other textures ignore it.
+//! A lookup takes the hit's UV and its footprint: the ellipse of the pixel's ray cone on the
+//! surface, in UV units (see `footprint`). A trilinear image texture turns its longer axis
+//! into a mip level; an anisotropic one filters along it (see `anisotropic`); other textures
+//! ignore it. Anisotropic lookups are counted in a [`FilterStats`] for `--stats`.
 
 use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 
+pub mod anisotropic;
 pub mod footprint;
 pub mod image;
 
+pub use self::anisotropic::FilterStats;
+pub use self::footprint::Footprint;
 use self::image::ImageData;
 use crate::ir::{ColorInput, Filter, ScalarInput, WrapMode};
 
@@ -57,23 +61,50 @@ pub struct Textures {
 const MAX_NESTING: u32 = 16;
 
 impl Textures {
-    /// The colour of `input` at `uv`; `footprint` is the pixel's width in UV units.
-    pub fn color(&self, input: ColorInput, uv: Vec2, footprint: f32) -> Vec3 {
-        self.color_at_depth(input, uv, footprint, 0)
+    /// The colour of `input` at `uv`, for a pixel whose footprint there is `footprint`.
+    pub fn color(
+        &self,
+        input: ColorInput,
+        uv: Vec2,
+        footprint: Footprint,
+        stats: &mut FilterStats,
+    ) -> Vec3 {
+        self.color_at_depth(input, uv, footprint, stats, 0)
     }
 
     /// A scalar input: a constant, or the red channel of a texture.
-    pub fn scalar(&self, input: ScalarInput, uv: Vec2, footprint: f32) -> f32 {
+    pub fn scalar(
+        &self,
+        input: ScalarInput,
+        uv: Vec2,
+        footprint: Footprint,
+        stats: &mut FilterStats,
+    ) -> f32 {
         match input {
             ScalarInput::Constant(v) => v,
             ScalarInput::Texture(id) => {
-                self.color_at_depth(ColorInput::Texture(id), uv, footprint, 0)
+                self.color_at_depth(ColorInput::Texture(id), uv, footprint, stats, 0)
                     .x
             }
         }
     }
 
-    fn color_at_depth(&self, input: ColorInput, uv: Vec2, footprint: f32, depth: u32) -> Vec3 {
+    /// Whether any texture reads a mip pyramid: without one, no lookup needs a footprint.
+    pub fn any_mip_filtered(&self) -> bool {
+        self.slots.iter().flatten().any(|t| match t {
+            Texture::Image { filter, .. } => filter.is_mip_filtered(),
+            Texture::Constant(_) | Texture::Checker { .. } => false,
+        })
+    }
+
+    fn color_at_depth(
+        &self,
+        input: ColorInput,
+        uv: Vec2,
+        footprint: Footprint,
+        stats: &mut FilterStats,
+        depth: u32,
+    ) -> Vec3 {
         let id = match input {
             ColorInput::Constant(c) => return c,
             ColorInput::Texture(id) => id,
@@ -87,11 +118,10 @@ impl Textures {
                 let cell = (uv * *scale).floor();
                 let parity = (cell.x + cell.y).rem_euclid(2.0);
                 let pick = if parity < 0.5 { *even } else { *odd };
-                self.color_at_depth(pick, uv, footprint, depth + 1)
+                self.color_at_depth(pick, uv, footprint, stats, depth + 1)
             }
             Some(Texture::Image { data, wrap, filter }) => {
-                let lod = footprint.log2() + data.log2_size();
-                data.lookup(uv, *wrap, *filter, lod).truncate()
+                data.lookup(uv, *wrap, *filter, footprint, stats).truncate()
             }
             None => Vec3::ZERO,
         }
@@ -111,15 +141,24 @@ mod tests {
                 scale: 2.0,
             })],
         };
-        let at = |u, v| t.color(ColorInput::Texture(0), Vec2::new(u, v), 0.0).x;
+        let mut stats = FilterStats::default();
+        let mut at = |u, v| {
+            t.color(
+                ColorInput::Texture(0),
+                Vec2::new(u, v),
+                Footprint::default(),
+                &mut stats,
+            )
+            .x
+        };
         assert_eq!(at(0.1, 0.1), 1.0);
         assert_eq!(at(0.6, 0.1), 0.0);
         assert_eq!(at(0.6, 0.6), 1.0);
         assert_eq!(at(-0.1, 0.1), 0.0);
-        assert_eq!(
-            t.scalar(ScalarInput::Texture(0), Vec2::new(0.1, 0.6), 0.0),
-            0.0
-        );
+        let mut stats = FilterStats::default();
+        let uv = Vec2::new(0.1, 0.6);
+        let fp = Footprint::default();
+        assert_eq!(t.scalar(ScalarInput::Texture(0), uv, fp, &mut stats), 0.0);
     }
 
     #[test]
@@ -131,6 +170,13 @@ mod tests {
                 scale: 1.0,
             })],
         };
-        assert_eq!(t.color(ColorInput::Texture(0), Vec2::ZERO, 0.0), Vec3::ZERO);
+        let mut stats = FilterStats::default();
+        let c = t.color(
+            ColorInput::Texture(0),
+            Vec2::ZERO,
+            Footprint::default(),
+            &mut stats,
+        );
+        assert_eq!(c, Vec3::ZERO);
     }
 }
