@@ -97,12 +97,14 @@ pub fn multi_tap(
     let taps = n as u32;
     stats.anisotropic += 1;
     stats.taps += u64::from(taps);
-    let mut sum = Vec4::ZERO;
-    for i in 0..taps {
-        let offset = (i as f32 + 0.5) / n - 0.5;
-        sum += img.trilinear(uv + major * offset, wrap, lod);
+    let tap = |i: u32| img.trilinear(uv + major * ((i as f32 + 0.5) / n - 0.5), wrap, lod);
+    // Deviations from the first tap are averaged, so a flat image returns its texel exactly.
+    let first = tap(0);
+    let mut deviation = Vec4::ZERO;
+    for i in 1..taps {
+        deviation += tap(i) - first;
     }
-    sum / n
+    first + deviation / n
 }
 
 /// Heckbert's EWA over the two mip levels around the (eccentricity-capped) minor axis's level.
@@ -185,6 +187,8 @@ fn ewa_level(
     let (s0, s1) = ((c.x - u_half).ceil() as i64, (c.x + u_half).floor() as i64);
     let (t0, t1) = ((c.y - v_half).ceil() as i64, (c.y + v_half).floor() as i64);
     let table = weights();
+    // Deviations from one texel are averaged, so a flat image returns its texel exactly.
+    let base = level.texel(c.x.round() as i64, c.y.round() as i64, wrap);
     let (mut sum, mut total) = (Vec4::ZERO, 0.0);
     for t in t0..=t1 {
         let dt = t as f32 - c.y;
@@ -193,14 +197,14 @@ fn ewa_level(
             let r2 = a * ds * ds + b * ds * dt + cc * dt * dt;
             if r2 < 1.0 {
                 let w = table[((r2 * WEIGHTS as f32) as usize).min(WEIGHTS - 1)];
-                sum += level.texel(s, t, wrap) * w;
+                sum += (level.texel(s, t, wrap) - base) * w;
                 total += w;
                 stats.taps += 1;
             }
         }
     }
     if total > 0.0 {
-        sum / total
+        base + sum / total
     } else {
         level.bilinear(uv, wrap)
     }
@@ -245,7 +249,7 @@ mod tests {
                         multi_tap(&img, uv, wrap, fp, &mut stats),
                         ewa(&img, uv, wrap, fp, &mut stats),
                     ] {
-                        assert!((got - want).abs().max_element() < 1e-5, "{fp:?}");
+                        assert_eq!(got, want, "{fp:?}");
                     }
                 }
             }

@@ -224,16 +224,13 @@ fn downsample(src: &MipLevel) -> MipLevel {
     for y in 0..src.height as usize {
         let line = &src.texels[y * src.width as usize..][..src.width as usize];
         for (x, taps) in wx.iter().enumerate() {
-            rows[y * width as usize + x] = taps.iter().map(|&(i, w)| line[i] * w).sum();
+            rows[y * width as usize + x] = weighted(taps, |i| line[i]);
         }
     }
     let mut texels = vec![Vec4::ZERO; width as usize * height as usize];
     for (y, taps) in wy.iter().enumerate() {
         for x in 0..width as usize {
-            texels[y * width as usize + x] = taps
-                .iter()
-                .map(|&(j, w)| rows[j * width as usize + x] * w)
-                .sum();
+            texels[y * width as usize + x] = weighted(taps, |j| rows[j * width as usize + x]);
         }
     }
     MipLevel {
@@ -241,6 +238,19 @@ fn downsample(src: &MipLevel) -> MipLevel {
         height,
         texels,
     }
+}
+
+/// `Σ wᵢ·texel(i)` for weights summing to 1, as the first texel plus the weighted deviations
+/// from it, so that a flat region stays exactly flat (the weights' float sum is not exactly 1).
+fn weighted(taps: &[(usize, f32)], texel: impl Fn(usize) -> Vec4) -> Vec4 {
+    let Some(&(first, _)) = taps.first() else {
+        return Vec4::ZERO;
+    };
+    let base = texel(first);
+    base + taps
+        .iter()
+        .map(|&(i, w)| (texel(i) - base) * w)
+        .sum::<Vec4>()
 }
 
 /// For each destination texel of `dst` covering `src/dst` source texels: the source texels it
@@ -357,6 +367,12 @@ mod tests {
             ImageData::new(4, 2, vec![Vec4::ONE; 8], false).levels.len(),
             1
         );
+        // A flat image stays exactly flat at every level, odd sides included.
+        let flat = ImageData::new(37, 21, vec![Vec4::splat(0.3); 37 * 21], true);
+        assert!(flat
+            .levels
+            .iter()
+            .all(|l| l.texels.iter().all(|&t| t == Vec4::splat(0.3))));
     }
 
     #[test]
