@@ -6,7 +6,8 @@
 //!   overall (issue 20; figures in `docs/textures.md`);
 //! - the default filter's error keeps falling with samples (log-log slope of MSE against spp,
 //!   as `tests/quality.rs` does for cornell): the footprint shrinks as max(1/8, 1/√spp);
-//! - a flat image renders the same bits under every filter;
+//! - a flat image renders the same bits under every filter; `--stats`' anisotropic lookups
+//!   and taps are counted for the default filter and are zero for the others;
 //! - a flat normal map renders the image of no normal map; a uniformly tilted one gives the
 //!   closed-form shading of the tilted normal;
 //! - bad texture files are diagnostics at the path literal, never panics; a textured mesh
@@ -279,6 +280,31 @@ fn a_flat_image_renders_identically_under_every_filter() {
         );
     }
     assert!(first.iter().any(|p| p.x > 0.0), "the ground is lit");
+}
+
+#[test]
+fn stats_count_anisotropic_lookups_only_for_mip_filtered_textures() {
+    let mut loader = MemLoader::new();
+    loader.insert("checker.png", checker_png(64, 8));
+    let options = RenderOptions { threads: Some(2) };
+    let counts = |filter: &str| {
+        let mut scene = build_ok(&horizon(filter), &loader);
+        scene.settings.fix_samples(4);
+        let (_, stats) =
+            render(&scene, &options, &|_| {}, &AtomicBool::new(false)).expect("renders");
+        stats.counts
+    };
+    let aniso = counts("anisotropic");
+    assert!(aniso.textured > 0);
+    // The horizon view is grazing almost everywhere: most lookups take several taps.
+    assert!(aniso.filter.anisotropic * 2 > aniso.textured, "{aniso:?}");
+    let mean = aniso.filter.mean_taps();
+    assert!((2.0..=16.0).contains(&mean), "mean taps {mean}");
+    for filter in ["nearest", "bilinear", "trilinear"] {
+        let c = counts(filter);
+        assert_eq!(c.filter.anisotropic, 0, "{filter}");
+        assert_eq!(c.filter.taps, 0, "{filter}");
+    }
 }
 
 fn lit_plane(normal_map: &str) -> String {
