@@ -37,9 +37,10 @@ use scnc::shade::Texture;
 const WIDTH: u32 = 160;
 const HEIGHT: u32 = 100;
 /// Distance bands along the ground (metres from the eye's foot), for the per-band table.
+/// The image's bottom row sees the ground about 3 m away.
 const BANDS: [(f32, f32); 5] = [
-    (0.0, 3.0),
-    (3.0, 10.0),
+    (0.0, 5.0),
+    (5.0, 10.0),
     (10.0, 30.0),
     (30.0, 100.0),
     (100.0, f32::INFINITY),
