@@ -133,6 +133,13 @@ render {{ resolution {height_px} x {height_px} }}
             "d {distance} θ {angle_deg}: λ {lod}, closed form {expected}"
         );
         assert_eq!(data.levels.len(), 9, "256 × 64 down to 1 × 1");
+        // The minor axis is the cone's width across the view, not stretched by the angle.
+        let across = alpha * distance / size;
+        let minor = footprint.minor.length();
+        assert!(
+            (minor / across - 1.0).abs() < 0.01,
+            "d {distance} θ {angle_deg}: minor {minor}, closed form {across}"
+        );
     }
 }
 
