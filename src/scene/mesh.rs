@@ -42,7 +42,8 @@ pub struct MeshPart {
 
 /// Decoded MTL maps of one part: `map_Kd` and `map_Ks` (sRGB colour, replacing `Kd` / `Ks`)
 /// and `norm` (a tangent-space normal map, data, strength from `-bm`). Mipmapped: they are
-/// filtered trilinearly with repeat wrapping, as MTL's default `-clamp off` says.
+/// filtered with the default `anisotropic` filter and repeat wrapping (MTL's default
+/// `-clamp off`).
 #[derive(Debug, Clone, Default)]
 pub struct PartMaps {
     /// `map_Kd`.

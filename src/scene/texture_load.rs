@@ -4,7 +4,7 @@
 //! A missing, unreadable, corrupt, truncated, empty (0 × n) or oversized file (beyond
 //! `assets::texture_image::MAX_TEXTURE_SIDE` on a side) is an error labelled at the path
 //! literal in the `.scn`. The mip pyramid is built here, once per file and encoding, when any
-//! texture naming the file filters trilinearly.
+//! texture naming the file is mip-filtered (`trilinear` or `anisotropic`).
 
 use std::sync::Arc;
 
