@@ -314,6 +314,32 @@ fn stats_count_anisotropic_lookups_only_for_mip_filtered_textures() {
     }
 }
 
+#[test]
+fn adaptive_textured_renders_filter_per_batch_and_are_the_same_bits_on_any_thread_count() {
+    let mut loader = MemLoader::new();
+    loader.insert("checker.png", checker_png(64, 8));
+    let mut scene = build_ok(&horizon("anisotropic"), &loader);
+    // Each batch of 16 filters with the footprint of the samples taken by its end.
+    scene.settings.noise = Some(0.02);
+    scene.settings.max_samples = Some(64);
+    let run = |threads| {
+        let options = RenderOptions {
+            threads: Some(threads),
+        };
+        let (film, stats) =
+            render(&scene, &options, &|_| {}, &AtomicBool::new(false)).expect("renders");
+        (film.pixels().to_vec(), stats.counts.filter)
+    };
+    let (one, filter_one) = run(1);
+    let (three, filter_three) = run(3);
+    assert!(
+        one == three,
+        "adaptive textured render differs across thread counts"
+    );
+    assert_eq!(filter_one, filter_three);
+    assert!(filter_one.anisotropic > 0);
+}
+
 fn lit_plane(normal_map: &str) -> String {
     format!(
         "scnc 1
