@@ -1,6 +1,8 @@
 //! `scnc render FILE [-o out.png] [--quality draft|preview|final] [--spp N] [--noise E
 //! [--max-samples N]] [--variance-out FILE] [--threads N] [--camera NAME] [--accel bvh|none]
-//! [--resolution WxH] [--stats]`: the whole pipeline once, from `.scn` to image file.
+//! [--resolution WxH] [--tile K/N] [--stats]`: the whole pipeline once, from `.scn` to image
+//! file. `--tile K/N` renders one band of rows into an OpenEXR tile for `scnc merge` (see
+//! [`super::tile`]).
 //!
 //! Precedence of the sample count: a command-line flag beats the scene; at each level an
 //! explicit count beats a preset. So `--spp` > `--quality` > `render { samples }` >
@@ -29,6 +31,7 @@ use super::stats::PhaseStats;
 use crate::assets::FsLoader;
 use crate::bvh::AccelKind;
 use crate::cli::targets::{camera_index, output_targets};
+use crate::cli::tile::{self, TilePlan};
 use crate::compile::compile;
 use crate::diag::{Diagnostic, Staged};
 use crate::film::{self, WriteSettings};
@@ -88,6 +91,11 @@ pub struct RenderArgs {
     /// Override the scene's resolution, e.g. `320x240`.
     #[arg(long, value_name = "WxH", value_parser = parse_resolution)]
     pub resolution: Option<(u32, u32)>,
+    /// Render only tile K of N (from 0) of the image, a band of rows, into an OpenEXR tile
+    /// (`-o part_K.exr`) that `scnc merge` assembles with the others, bit for bit as one
+    /// render would have made the image.
+    #[arg(long, value_name = "K/N", value_parser = tile::parse_tile, conflicts_with = "variance_out")]
+    pub tile: Option<(u32, u32)>,
     /// Print phase times, ray counts, Mrays/s, BVH size and peak memory.
     #[arg(long)]
     pub stats: bool,
@@ -176,14 +184,16 @@ pub fn run(args: &RenderArgs) -> ExitCode {
     phases.compile = t.elapsed();
     let built = compiled
         .and_then(|desc| resolve(args, desc))
-        .and_then(|(desc, options)| scene::build(&desc, &loader, &options).map(|s| (desc, s)));
+        .and_then(|(desc, options, plan)| {
+            scene::build(&desc, &loader, &options).map(|s| (desc, s, plan))
+        });
     // What compile and build found is printed before a render that may take minutes, as a
     // compiler prints its warnings before it links; what writing finds, after it.
     let built = strict(built, &args.diag);
     report(&built, &sources, &args.diag, JsonTo::Stdout);
     let built_failed = built.has_errors();
     let finished = Staged::new(built.value, Vec::new())
-        .and_then(|(desc, scene)| render_and_write(args, &desc, scene, &mut phases));
+        .and_then(|(desc, scene, plan)| render_and_write(args, &desc, scene, plan, &mut phases));
     report(&finished, &sources, &args.diag, JsonTo::Stdout);
     match &finished.value {
         Some(Finished::Cancelled) => {
@@ -220,8 +230,9 @@ enum Finished {
 }
 
 /// The command line's settings into the scene, before anything is built: `--camera` (a
-/// diagnostic if the scene has no such camera), `--accel`, and the render settings.
-fn resolve(args: &RenderArgs, mut desc: ir::SceneDesc) -> Staged<(ir::SceneDesc, BuildOptions)> {
+/// diagnostic if the scene has no such camera), `--accel`, the render settings, and the
+/// `--tile` plan (diagnostics for a non-EXR output or too many tiles).
+fn resolve(args: &RenderArgs, mut desc: ir::SceneDesc) -> Staged<Resolved> {
     let camera = match args.camera.as_deref().map(|name| camera_index(&desc, name)) {
         None => None,
         Some(Ok(i)) => Some(i),
@@ -232,8 +243,23 @@ fn resolve(args: &RenderArgs, mut desc: ir::SceneDesc) -> Staged<(ir::SceneDesc,
         AccelArg::Bvh => AccelKind::Bvh,
         AccelArg::None => AccelKind::None,
     };
-    Staged::ok((desc, BuildOptions { accel, camera }))
+    let plan = match args.tile {
+        None => None,
+        Some(k_n) => {
+            let targets = output_targets(args.output.as_deref(), &args.scene.file, &desc);
+            let chosen = camera.unwrap_or(desc.active_camera);
+            let accel_name = format!("{:?}", args.accel).to_ascii_lowercase();
+            match tile::plan(k_n, &desc, chosen, &accel_name, &targets) {
+                Ok(plan) => Some(plan),
+                Err(problems) => return Staged::failed(problems),
+            }
+        }
+    };
+    Staged::ok((desc, BuildOptions { accel, camera }, plan))
 }
+
+/// The scene with the command line applied, what to build it with, and the tile to render.
+type Resolved = (ir::SceneDesc, BuildOptions, Option<TilePlan>);
 
 /// The render settings the flags give (see `ir::RenderSettings::resolve` for the precedence).
 fn setting_flags(args: &RenderArgs) -> SettingFlags {
@@ -251,6 +277,7 @@ fn render_and_write(
     args: &RenderArgs,
     desc: &ir::SceneDesc,
     scene: Scene,
+    plan: Option<TilePlan>,
     phases: &mut PhaseStats,
 ) -> Staged<Finished> {
     phases.asset_load = scene.timings.asset_load;
@@ -271,7 +298,11 @@ fn render_and_write(
             bar.set_position((f * 1000.0) as u64);
         }
     };
-    let rendered = render::render_with_error(&scene, &options, &progress, &cancel);
+    let window = plan.map_or(
+        render::PixelWindow::full(scene.settings.width, scene.settings.height),
+        |p| p.window,
+    );
+    let rendered = render::render_window(&scene, &options, window, &progress, &cancel);
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
@@ -280,7 +311,7 @@ fn render_and_write(
     };
     phases.render = rendered.stats.wall;
     let t = Instant::now();
-    let (written, diagnostics) = write_outputs(args, desc, &scene, &rendered);
+    let (written, diagnostics) = write_outputs(args, desc, &scene, plan.as_ref(), &rendered);
     phases.write = t.elapsed();
     Staged::new(
         Some(Finished::Rendered(Box::new(scene), rendered.stats, written)),
@@ -295,12 +326,19 @@ fn write_outputs(
     args: &RenderArgs,
     desc: &ir::SceneDesc,
     scene: &Scene,
+    plan: Option<&TilePlan>,
     rendered: &render::Rendered,
 ) -> (Vec<String>, Vec<Diagnostic>) {
     let settings = WriteSettings::from_render(&scene.settings);
     let (mut lines, mut diagnostics) = (Vec::new(), Vec::new());
     for (path, span) in output_targets(args.output.as_deref(), &args.scene.file, desc) {
-        let written = film::write(&rendered.film, &path, &settings, span);
+        let written = match plan {
+            Some(p) => Staged::from_result(
+                film::tile::write_tile(&rendered.film, p.window, &p.header, &path)
+                    .map_err(|e| e.to_diagnostic(span)),
+            ),
+            None => film::write(&rendered.film, &path, &settings, span),
+        };
         if written.value.is_some() {
             lines.push(format!("wrote {}", path.display()));
         }

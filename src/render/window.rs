@@ -56,9 +56,9 @@ impl PixelWindow {
 }
 
 /// Tile `k` of `n` of a `width`×`height` image: a band of whole rows (see the module doc).
-/// `None` when `k >= n` or the band is empty (more tiles than rows).
+/// `None` when `k >= n` or there are more tiles than rows (some bands would be empty).
 pub fn split(k: u32, n: u32, width: u32, height: u32) -> Option<PixelWindow> {
-    if k >= n || width == 0 {
+    if k >= n || n > height || width == 0 {
         return None;
     }
     let row = |i: u32| (u64::from(i) * u64::from(height) / u64::from(n)) as u32;
@@ -100,6 +100,11 @@ mod tests {
         assert_eq!(split(3, 3, 10, 10), None);
         assert_eq!(split(0, 0, 10, 10), None);
         assert_eq!(split(0, 5, 10, 2), None);
-        assert!(split(1, 5, 10, 2).is_none() || split(2, 5, 10, 2).is_none());
+        assert_eq!(
+            split(1, 5, 10, 4),
+            None,
+            "every tile of 5 over 4 rows is refused"
+        );
+        assert!(split(4, 4, 10, 4).is_none() && split(3, 4, 10, 4).is_some());
     }
 }
