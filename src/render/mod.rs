@@ -9,6 +9,9 @@
 //! `render { noise 0.01  max_samples 4096 }` samples each pixel adaptively, in batches, until
 //! the relative standard error of its mean is below the target (see [`estimate`]); every render
 //! also estimates each pixel's standard error ([`render_with_error`]) for `--variance-out`.
+//!
+//! [`render_window`] renders only a rectangle of the image ([`window`]; `--tile K/N`), each of
+//! its pixels with exactly the bits of the full render.
 
 pub mod camera;
 pub mod estimate;
