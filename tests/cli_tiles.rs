@@ -204,3 +204,35 @@ fn merge_refuses_what_is_not_one_image_and_writes_nothing() {
         &dir,
     );
 }
+
+/// The identity ignores where the scene file lies: tiles of a textured scene rendered from two
+/// working directories (so every asset's resolved path differs) merge into the direct image.
+#[test]
+fn tiles_from_different_working_directories_merge() {
+    let dir = workdir("cwd");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let out = |name: &str| dir.join(name).display().to_string();
+    let small = ["--resolution", "24x16", "--spp", "1"];
+    let run = |cwd: &Path, scene: &str, extra: &[&str], o: &str| {
+        let mut args = vec!["render", scene];
+        args.extend_from_slice(&small);
+        args.extend_from_slice(extra);
+        args.extend(["-o", o]);
+        ok(&args, cwd);
+    };
+    run(root, "examples/textured.scn", &[], &out("direct.png"));
+    run(
+        root,
+        "examples/textured.scn",
+        &["--tile", "0/2"],
+        &out("t0.exr"),
+    );
+    run(
+        &root.join("examples"),
+        "textured.scn",
+        &["--tile", "1/2"],
+        &out("t1.exr"),
+    );
+    ok(&["merge", "t0.exr", "t1.exr", "-o", "merged.png"], &dir);
+    assert!(bytes(dir.join("merged.png")) == bytes(dir.join("direct.png")));
+}
