@@ -51,25 +51,43 @@ impl Compiled {
 /// Stage entry: compiles the scene file at `path`, reading it and its includes through
 /// `loader`. `sources` receives every file read (it is replaced, so pass an empty map).
 pub fn compile(path: &Path, loader: &dyn Loader, sources: &mut SourceMap) -> Staged<ir::SceneDesc> {
-    let (read, staged) = compile_file(path, loader).into_staged();
+    compile_frame(path, loader, sources, 0.0)
+}
+
+/// [`compile`] with the predefined constant `frame` set to `frame` (`scnc render --frame F`).
+pub fn compile_frame(
+    path: &Path,
+    loader: &dyn Loader,
+    sources: &mut SourceMap,
+    frame: f64,
+) -> Staged<ir::SceneDesc> {
+    let mut d = Driver::new(loader);
+    d.frame = frame;
+    let (read, staged) = d.compile_root(path).into_staged();
     *sources = read;
     staged
 }
 
 /// Compiles the scene file at `path`, reading it and its includes through `loader`.
 pub fn compile_file(path: &Path, loader: &dyn Loader) -> Compiled {
-    let mut d = Driver::new(loader);
-    match loader.read(path) {
-        Ok(bytes) => {
-            let name = path.display().to_string();
-            d.add_root(path, &name, &bytes);
+    Driver::new(loader).compile_root(path)
+}
+
+impl Driver<'_> {
+    /// Reads the root file at `path` (a diagnostic if it cannot be) and compiles it.
+    fn compile_root(mut self, path: &Path) -> Compiled {
+        match self.loader.read(path) {
+            Ok(bytes) => {
+                let name = path.display().to_string();
+                self.add_root(path, &name, &bytes);
+            }
+            Err(e) => self.diags.push(
+                Diagnostic::error(Code::IoRead, format!("cannot read {}: {e}", path.display()))
+                    .help("check the path"),
+            ),
         }
-        Err(e) => d.diags.push(
-            Diagnostic::error(Code::IoRead, format!("cannot read {}: {e}", path.display()))
-                .help("check the path"),
-        ),
+        self.finish()
     }
-    d.finish()
 }
 
 /// Compiles `text` as if it were the file `name` (includes resolve relative to `name`'s
@@ -87,6 +105,8 @@ struct Driver<'l> {
     statements: Vec<Stmt>,
     /// Files on the include stack: (normalised path, span of the include that entered it).
     stack: Vec<(PathBuf, Option<Span>)>,
+    /// The predefined constant `frame`.
+    frame: f64,
 }
 
 impl<'l> Driver<'l> {
@@ -97,6 +117,7 @@ impl<'l> Driver<'l> {
             diags: Vec::new(),
             statements: Vec::new(),
             stack: Vec::new(),
+            frame: 0.0,
         }
     }
 
@@ -276,11 +297,13 @@ impl<'l> Driver<'l> {
             sources,
             mut diags,
             statements,
+            frame: self_frame,
             ..
         } = self;
         let parse_failed = diags.iter().any(Diagnostic::is_error);
         let scene = if sources.files().next().is_some() {
-            let (scene, check_diags) = check::check(&statements, &sources).into_parts();
+            let (scene, check_diags) =
+                check::check_frame(&statements, &sources, self_frame).into_parts();
             // When parsing failed, statements are missing: suppress checker errors that only
             // say something is missing, unknown or unused, which would be noise.
             diags.extend(

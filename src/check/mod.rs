@@ -45,6 +45,8 @@ pub struct Checker<'s> {
     pub diags: Vec<Diagnostic>,
     /// The `let` constants evaluated so far, with where each was declared.
     pub lets: HashMap<String, (Value, Span)>,
+    /// The value of the predefined constant `frame` (`--frame F`; 0 when not animating).
+    pub frame: f64,
     /// Constants whose value had an error: uses stay silent instead of cascading.
     pub poisoned: std::collections::HashSet<String>,
     tables: [Table; 6],
@@ -69,6 +71,7 @@ impl<'s> Checker<'s> {
             sources,
             diags: Vec::new(),
             lets: HashMap::new(),
+            frame: 0.0,
             poisoned: Default::default(),
             tables: Default::default(),
             textures: Vec::new(),
@@ -114,7 +117,7 @@ impl<'s> Checker<'s> {
     }
 
     fn let_stmt(&mut self, name: &crate::syntax::Ident, value: &crate::syntax::Expr) {
-        if matches!(name.name.as_str(), "true" | "false") {
+        if matches!(name.name.as_str(), "true" | "false" | "frame") {
             self.error(
                 Diagnostic::error(
                     Code::CheckReservedName,
@@ -151,7 +154,13 @@ impl<'s> Checker<'s> {
 /// Checks parsed statements (every file's, includes expanded in place, in order) and lowers
 /// them into the IR. `sources` gives file paths for resolving relative asset paths.
 pub fn check(statements: &[Stmt], sources: &SourceMap) -> Staged<ir::SceneDesc> {
+    check_frame(statements, sources, 0.0)
+}
+
+/// [`check`] with the predefined constant `frame` set to `frame` (`scnc render --frame F`).
+pub fn check_frame(statements: &[Stmt], sources: &SourceMap, frame: f64) -> Staged<ir::SceneDesc> {
     let mut cx = Checker::new(sources);
+    cx.frame = frame;
     let mut decls: [Vec<&Decl>; 4] = Default::default();
     let mut renders = Vec::new();
     let mut cameras = Vec::new();

@@ -1,6 +1,6 @@
 //! `scnc render FILE [-o out.png] [--quality draft|preview|final] [--spp N] [--noise E
 //! [--max-samples N]] [--variance-out FILE] [--threads N] [--camera NAME] [--accel bvh|none]
-//! [--resolution WxH] [--tile K/N] [--stats]`: the whole pipeline once, from `.scn` to image
+//! [--resolution WxH] [--tile K/N] [--frame F] [--stats]`: the whole pipeline once, from `.scn` to image
 //! file. `--tile K/N` renders one band of rows into an OpenEXR tile for `scnc merge` (see
 //! [`super::tile`]).
 //!
@@ -32,7 +32,7 @@ use crate::assets::FsLoader;
 use crate::bvh::AccelKind;
 use crate::cli::targets::{camera_index, output_targets};
 use crate::cli::tile::{self, TilePlan};
-use crate::compile::compile;
+use crate::compile::compile_frame;
 use crate::diag::{Diagnostic, Staged};
 use crate::film::{self, WriteSettings};
 use crate::ir::{self, Quality, SettingFlags};
@@ -96,6 +96,10 @@ pub struct RenderArgs {
     /// render would have made the image.
     #[arg(long, value_name = "K/N", value_parser = tile::parse_tile, conflicts_with = "variance_out")]
     pub tile: Option<(u32, u32)>,
+    /// The value of the predefined constant `frame` in the scene's expressions (default 0),
+    /// e.g. `rotate y (frame * 1.5deg)` for a turntable.
+    #[arg(long, value_name = "F", value_parser = parse_frame, allow_hyphen_values = true)]
+    pub frame: Option<f64>,
     /// Print phase times, ray counts, Mrays/s, BVH size and peak memory.
     #[arg(long)]
     pub stats: bool,
@@ -142,6 +146,16 @@ pub fn parse_noise(s: &str) -> Result<f32, String> {
     }
 }
 
+/// `--frame F`: a finite number.
+fn parse_frame(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(f) if f.is_finite() => Ok(f),
+        _ => Err(format!(
+            "the frame is a finite number such as 12, got `{s}`"
+        )),
+    }
+}
+
 fn parse_variance_path(s: &str) -> Result<PathBuf, String> {
     let path = PathBuf::from(s);
     match film::format_for_path(&path) {
@@ -180,7 +194,11 @@ pub fn run(args: &RenderArgs) -> ExitCode {
     let mut sources = SourceMap::new();
     let mut phases = PhaseStats::default();
     let t = Instant::now();
-    let compiled = strict(compile(&args.scene.file, &loader, &mut sources), &args.diag);
+    let frame = args.frame.unwrap_or(0.0);
+    let compiled = strict(
+        compile_frame(&args.scene.file, &loader, &mut sources, frame),
+        &args.diag,
+    );
     phases.compile = t.elapsed();
     let built = compiled
         .and_then(|desc| resolve(args, desc))

@@ -1,0 +1,75 @@
+//! The predefined constant `frame` and `scnc render --frame F`: `frame` is 0 by default, takes
+//! the flag's value in any expression (so the IR and the image change with it), and cannot be
+//! redefined with `let`.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use scnc::assets::MemLoader;
+use scnc::compile::compile_source;
+use scnc::diag::Code;
+
+const TURNTABLE: &str = "scnc 1
+camera main { eye (0, 1, -5)  target (0, 1, 0)  fov 40deg }
+material grey = phong { diffuse 0.5 }
+mesh box = box { size (1, 1, 1) }
+object box { material grey  transform { rotate y (frame * 10deg)  translate (frame * 0.05, 1, 0) } }
+light sun = point { position (3, 4, -3)  intensity rgb(20, 20, 20) }
+render { resolution 24 x 16  samples 1 }
+";
+
+fn scnc(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_scnc"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("the scnc binary runs")
+}
+
+fn workdir() -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("scnc-cli-frame-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    std::fs::write(dir.join("turn.scn"), TURNTABLE).expect("write scene");
+    dir
+}
+
+fn render(dir: &Path, extra: &[&str], out: &str) -> Vec<u8> {
+    let mut args = vec!["render", "turn.scn", "-o", out];
+    args.extend_from_slice(extra);
+    let o = scnc(&args, dir);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    std::fs::read(dir.join(out)).expect("image written")
+}
+
+#[test]
+fn frame_flag_sets_the_constant_and_defaults_to_zero() {
+    let dir = workdir();
+    let default = render(&dir, &[], "d.pfm");
+    assert_eq!(render(&dir, &["--frame", "0"], "f0.pfm"), default);
+    let f9 = render(&dir, &["--frame", "9"], "f9.pfm");
+    assert_ne!(f9, default, "frame 9 turns and moves the box");
+    assert_eq!(render(&dir, &["--frame", "9"], "f9b.pfm"), f9);
+    let neg = render(&dir, &["--frame", "-3"], "fm3.pfm");
+    assert_ne!(neg, default);
+    let bad = scnc(
+        &["render", "turn.scn", "--frame", "inf", "-o", "x.png"],
+        &dir,
+    );
+    assert_eq!(bad.status.code(), Some(2), "a non-finite frame is refused");
+}
+
+#[test]
+fn frame_is_reserved_and_a_number() {
+    let loader = MemLoader::new();
+    let compiled = compile_source("s.scn", &format!("{TURNTABLE}let frame = 2\n"), &loader);
+    let codes: Vec<Code> = compiled.diagnostics.iter().map(|d| d.code).collect();
+    assert!(codes.contains(&Code::CheckReservedName), "{codes:?}");
+    let compiled = compile_source(
+        "s.scn",
+        &format!("{TURNTABLE}let a = frame + 1deg\n"),
+        &loader,
+    );
+    let codes: Vec<Code> = compiled.diagnostics.iter().map(|d| d.code).collect();
+    assert!(codes.contains(&Code::CheckBadOperands), "{codes:?}");
+}
