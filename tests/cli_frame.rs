@@ -26,8 +26,8 @@ fn scnc(args: &[&str], dir: &Path) -> Output {
         .expect("the scnc binary runs")
 }
 
-fn workdir() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("scnc-cli-frame-{}", std::process::id()));
+fn workdir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("scnc-cli-frame-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("temp dir");
     std::fs::write(dir.join("turn.scn"), TURNTABLE).expect("write scene");
@@ -44,7 +44,7 @@ fn render(dir: &Path, extra: &[&str], out: &str) -> Vec<u8> {
 
 #[test]
 fn frame_flag_sets_the_constant_and_defaults_to_zero() {
-    let dir = workdir();
+    let dir = workdir("flag");
     let default = render(&dir, &[], "d.pfm");
     assert_eq!(render(&dir, &["--frame", "0"], "f0.pfm"), default);
     let f9 = render(&dir, &["--frame", "9"], "f9.pfm");
@@ -72,4 +72,37 @@ fn frame_is_reserved_and_a_number() {
     );
     let codes: Vec<Code> = compiled.diagnostics.iter().map(|d| d.code).collect();
     assert!(codes.contains(&Code::CheckBadOperands), "{codes:?}");
+}
+
+#[test]
+fn frames_number_the_files_equal_single_frames_and_reuse_meshes() {
+    let dir = workdir("frames");
+    let o = scnc(
+        &["render", "turn.scn", "--frames", "0..4:2", "-o", "f_##.pfm"],
+        &dir,
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    for f in ["f_00.pfm", "f_02.pfm", "f_04.pfm"] {
+        assert!(dir.join(f).exists(), "{f}: {err}");
+    }
+    assert!(!dir.join("f_01.pfm").exists());
+    assert_eq!(
+        std::fs::read(dir.join("f_02.pfm")).expect("frame 2"),
+        render(&dir, &["--frame", "2"], "single2.pfm")
+    );
+    // The box turns (its BVH placement changes) but its mesh is built once.
+    let line = err
+        .lines()
+        .find(|l| l.starts_with("frame 2:"))
+        .expect("frame 2 line");
+    assert!(!line.contains("meshes") && line.contains("bvh"), "{line}");
+    let o = scnc(
+        &["render", "turn.scn", "--frames", "0..1", "-o", "f.png"],
+        &dir,
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("scnc::cli::frames_without_pattern"), "{err}");
+    assert!(!dir.join("f.png").exists());
 }

@@ -7,9 +7,11 @@
 mod bench;
 mod check;
 mod explain;
+mod frames;
 mod inspect;
 mod ir;
 mod merge;
+mod parse;
 mod render;
 pub mod report;
 mod stats;

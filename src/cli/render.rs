@@ -1,6 +1,6 @@
 //! `scnc render FILE [-o out.png] [--quality draft|preview|final] [--spp N] [--noise E
 //! [--max-samples N]] [--variance-out FILE] [--threads N] [--camera NAME] [--accel bvh|none]
-//! [--resolution WxH] [--tile K/N] [--frame F] [--stats]`: the whole pipeline once, from `.scn` to image
+//! [--resolution WxH] [--tile K/N] [--frame F | --frames A..B[:STEP]] [--stats]`: the whole pipeline once, from `.scn` to image
 //! file. `--tile K/N` renders one band of rows into an OpenEXR tile for `scnc merge` (see
 //! [`super::tile`]).
 //!
@@ -30,6 +30,8 @@ use super::report::{exit_code, report, strict, DiagArgs, JsonTo, SceneArg};
 use super::stats::PhaseStats;
 use crate::assets::FsLoader;
 use crate::bvh::AccelKind;
+use crate::cli::frames::{self, FrameRange};
+pub use crate::cli::parse::{parse_frame, parse_noise, parse_resolution, parse_variance_path};
 use crate::cli::targets::{camera_index, output_targets};
 use crate::cli::tile::{self, TilePlan};
 use crate::compile::compile_frame;
@@ -37,7 +39,7 @@ use crate::diag::{Diagnostic, Staged};
 use crate::film::{self, WriteSettings};
 use crate::ir::{self, Quality, SettingFlags};
 use crate::render::{self, RenderOptions, RenderStats};
-use crate::scene::{self, BuildOptions, Scene};
+use crate::scene::{self, BuildCache, BuildOptions, Scene};
 use crate::source::SourceMap;
 
 /// Which acceleration structure traces the rays.
@@ -100,6 +102,12 @@ pub struct RenderArgs {
     /// e.g. `rotate y (frame * 1.5deg)` for a turntable.
     #[arg(long, value_name = "F", value_parser = parse_frame, allow_hyphen_values = true)]
     pub frame: Option<f64>,
+    /// Render frames A to B (inclusive) every STEP (default 1), each to `-o`'s name with its
+    /// run of `#`s replaced by the zero-padded frame number (`-o out_####.png`); meshes, BVH
+    /// and textures that do not depend on `frame` are built once.
+    #[arg(long, value_name = "A..B[:STEP]", value_parser = frames::parse_frames,
+          conflicts_with = "frame", allow_hyphen_values = true)]
+    pub frames: Option<FrameRange>,
     /// Print phase times, ray counts, Mrays/s, BVH size and peak memory.
     #[arg(long)]
     pub stats: bool,
@@ -131,65 +139,18 @@ impl QualityArg {
     }
 }
 
-/// `--noise`: a relative standard error in 0.0001..=1, as in the scene language.
-pub fn parse_noise(s: &str) -> Result<f32, String> {
-    let x: f64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("`{s}` is not a number (try 0.01 for 1%)"))?;
-    if (1e-4..=1.0).contains(&x) {
-        Ok(x as f32)
-    } else {
-        Err(format!(
-            "the noise target is a relative error in 0.0001..=1 (0.01 is 1%), got {s}"
-        ))
-    }
-}
-
-/// `--frame F`: a finite number.
-fn parse_frame(s: &str) -> Result<f64, String> {
-    match s.trim().parse::<f64>() {
-        Ok(f) if f.is_finite() => Ok(f),
-        _ => Err(format!(
-            "the frame is a finite number such as 12, got `{s}`"
-        )),
-    }
-}
-
-fn parse_variance_path(s: &str) -> Result<PathBuf, String> {
-    let path = PathBuf::from(s);
-    match film::format_for_path(&path) {
-        Some(ir::OutputFormat::Exr | ir::OutputFormat::Pfm) => Ok(path),
-        _ => Err(format!(
-            "the variance image is linear float: give a .exr or .pfm file, got `{s}`"
-        )),
-    }
-}
-
-/// Largest side accepted by `--resolution`, as in the scene language.
-const MAX_SIDE: u32 = 16384;
-
-pub(super) fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s
-        .split_once(['x', 'X'])
-        .ok_or_else(|| format!("expected WIDTHxHEIGHT such as 320x240, got `{s}`"))?;
-    let side = |v: &str| -> Result<u32, String> {
-        let n: u32 = v
-            .trim()
-            .parse()
-            .map_err(|_| format!("`{v}` is not a whole number"))?;
-        if (1..=MAX_SIDE).contains(&n) {
-            Ok(n)
-        } else {
-            Err(format!("each side must be 1..={MAX_SIDE}, got {n}"))
-        }
-    };
-    Ok((side(w)?, side(h)?))
-}
-
 /// `scnc render`: resolve the settings, compile, build, render, write; then report every
 /// diagnostic of the chain once.
 pub fn run(args: &RenderArgs) -> ExitCode {
+    match args.frames {
+        Some(range) => frames::run(args, range),
+        None => run_frame(args, None),
+    }
+}
+
+/// One render of `args` (its `frame`), building through `cache` when given (`--frames`); the
+/// scene goes back into the cache afterwards.
+pub(super) fn run_frame(args: &RenderArgs, mut cache: Option<&mut BuildCache>) -> ExitCode {
     let loader = FsLoader::new();
     let mut sources = SourceMap::new();
     let mut phases = PhaseStats::default();
@@ -203,7 +164,11 @@ pub fn run(args: &RenderArgs) -> ExitCode {
     let built = compiled
         .and_then(|desc| resolve(args, desc))
         .and_then(|(desc, options, plan)| {
-            scene::build(&desc, &loader, &options).map(|s| (desc, s, plan))
+            match cache.as_deref_mut() {
+                Some(c) => scene::build_cached(&desc, &loader, &options, c),
+                None => scene::build(&desc, &loader, &options),
+            }
+            .map(|s| (desc, s, plan))
         });
     // What compile and build found is printed before a render that may take minutes, as a
     // compiler prints its warnings before it links; what writing finds, after it.
@@ -213,6 +178,20 @@ pub fn run(args: &RenderArgs) -> ExitCode {
     let finished = Staged::new(built.value, Vec::new())
         .and_then(|(desc, scene, plan)| render_and_write(args, &desc, scene, plan, &mut phases));
     report(&finished, &sources, &args.diag, JsonTo::Stdout);
+    let code = finish(args, &phases, built_failed, &finished);
+    if let (Some(c), Some(Finished::Rendered(scene, ..))) = (cache, finished.value) {
+        c.recycle(*scene);
+    }
+    code
+}
+
+/// Prints what the render wrote (and `--stats`); the exit code.
+fn finish(
+    args: &RenderArgs,
+    phases: &PhaseStats,
+    built_failed: bool,
+    finished: &Staged<Finished>,
+) -> ExitCode {
     match &finished.value {
         Some(Finished::Cancelled) => {
             eprintln!("render cancelled; no image written");
@@ -231,7 +210,7 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             if built_failed {
                 ExitCode::FAILURE
             } else {
-                exit_code(&finished)
+                exit_code(finished)
             }
         }
         None => ExitCode::FAILURE,
