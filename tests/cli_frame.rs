@@ -106,3 +106,29 @@ fn frames_number_the_files_equal_single_frames_and_reuse_meshes() {
     assert!(err.contains("scnc::cli::frames_without_pattern"), "{err}");
     assert!(!dir.join("f.png").exists());
 }
+
+/// Tiles of frames: `--frames` with `--tile` numbers each tile file; tiles of one frame merge
+/// into that frame's direct render, tiles of two frames are refused (their identities differ).
+#[test]
+fn tiles_of_frames_merge_per_frame() {
+    let dir = workdir("tiles");
+    for k in 0..2 {
+        let (tile, out) = (format!("{k}/2"), format!("t{k}_#.exr"));
+        let o = scnc(
+            &[
+                "render", "turn.scn", "--frames", "0..1", "--tile", &tile, "-o", &out,
+            ],
+            &dir,
+        );
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    let o = scnc(&["merge", "t0_1.exr", "t1_1.exr", "-o", "m1.png"], &dir);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        std::fs::read(dir.join("m1.png")).expect("merged"),
+        render(&dir, &["--frame", "1"], "d1.png")
+    );
+    let o = scnc(&["merge", "t0_0.exr", "t1_1.exr", "-o", "bad.png"], &dir);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("scnc::merge::mismatch"));
+    assert!(!dir.join("bad.png").exists());
+}

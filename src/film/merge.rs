@@ -84,7 +84,7 @@ fn mismatches(first: &Part, parts: &[Part]) -> Vec<Diagnostic> {
             )
             .help(
                 "render every tile from the same scene file with the same flags \
-                 (--spp, --resolution, --quality, --noise, --camera, --accel); \
+                 (--spp, --resolution, --quality, --noise, --camera, --accel, --frame); \
                  re-render the stale tiles",
             )
         })
