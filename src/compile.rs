@@ -51,18 +51,29 @@ impl Compiled {
 /// Stage entry: compiles the scene file at `path`, reading it and its includes through
 /// `loader`. `sources` receives every file read (it is replaced, so pass an empty map).
 pub fn compile(path: &Path, loader: &dyn Loader, sources: &mut SourceMap) -> Staged<ir::SceneDesc> {
-    compile_frame(path, loader, sources, 0.0)
+    compile_with(path, loader, sources, &Overrides::default())
 }
 
-/// [`compile`] with the predefined constant `frame` set to `frame` (`scnc render --frame F`).
-pub fn compile_frame(
+/// What the command line sets in the scene's language.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Overrides {
+    /// The predefined constant `frame` (`--frame F`).
+    pub frame: f64,
+    /// `--define NAME=VALUE`, in order: each `VALUE` replaces `let NAME`'s expression.
+    pub defines: Vec<(String, String)>,
+}
+
+/// [`compile`] with the command line's [`Overrides`]. Each define's value is parsed as the
+/// source file `--define NAME` (`let NAME = VALUE`), so its diagnostics point into it.
+pub fn compile_with(
     path: &Path,
     loader: &dyn Loader,
     sources: &mut SourceMap,
-    frame: f64,
+    overrides: &Overrides,
 ) -> Staged<ir::SceneDesc> {
     let mut d = Driver::new(loader);
-    d.frame = frame;
+    d.frame = overrides.frame;
+    d.pending_defines.clone_from(&overrides.defines);
     let (read, staged) = d.compile_root(path).into_staged();
     *sources = read;
     staged
@@ -86,6 +97,9 @@ impl Driver<'_> {
                     .help("check the path"),
             ),
         }
+        for (name, value) in std::mem::take(&mut self.pending_defines) {
+            self.add_define(&name, &value);
+        }
         self.finish()
     }
 }
@@ -107,6 +121,10 @@ struct Driver<'l> {
     stack: Vec<(PathBuf, Option<Span>)>,
     /// The predefined constant `frame`.
     frame: f64,
+    /// `--define`s not parsed yet (after the root file, which must be file 0).
+    pending_defines: Vec<(String, String)>,
+    /// `--define`s parsed: the name and the value's expression.
+    defines: Vec<(String, syntax::Expr)>,
 }
 
 impl<'l> Driver<'l> {
@@ -118,6 +136,28 @@ impl<'l> Driver<'l> {
             statements: Vec::new(),
             stack: Vec::new(),
             frame: 0.0,
+            pending_defines: Vec::new(),
+            defines: Vec::new(),
+        }
+    }
+
+    /// Parses `--define NAME=VALUE` as the source `let NAME = VALUE`.
+    fn add_define(&mut self, name: &str, value: &str) {
+        let label = format!("--define {name}");
+        let text = format!("scnc 1\nlet {name} = {value}\n");
+        let id = self.sources.add(
+            PathBuf::from(&label),
+            &label,
+            std::sync::Arc::<str>::from(text),
+        );
+        let text = self.sources.get(id).text.clone();
+        let (file, diags) = syntax::parse(id, &text).into_parts();
+        self.diags.extend(diags);
+        let lets = file.into_iter().flat_map(|f| f.statements);
+        for stmt in lets {
+            if let Stmt::Let { name, value, .. } = stmt {
+                self.defines.push((name.name, value));
+            }
         }
     }
 
@@ -298,12 +338,13 @@ impl<'l> Driver<'l> {
             mut diags,
             statements,
             frame: self_frame,
+            defines,
             ..
         } = self;
         let parse_failed = diags.iter().any(Diagnostic::is_error);
         let scene = if sources.files().next().is_some() {
             let (scene, check_diags) =
-                check::check_frame(&statements, &sources, self_frame).into_parts();
+                check::check_with(&statements, &sources, self_frame, defines).into_parts();
             // When parsing failed, statements are missing: suppress checker errors that only
             // say something is missing, unknown or unused, which would be noise.
             diags.extend(

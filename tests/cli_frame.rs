@@ -1,6 +1,7 @@
 //! The predefined constant `frame` and `scnc render --frame F`: `frame` is 0 by default, takes
 //! the flag's value in any expression (so the IR and the image change with it), and cannot be
-//! redefined with `let`.
+//! redefined with `let`; `--frames` numbers its files; `--define NAME=VALUE` replaces a `let`
+//! with a value of the same type.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -12,7 +13,8 @@ use scnc::diag::Code;
 const TURNTABLE: &str = "scnc 1
 camera main { eye (0, 1, -5)  target (0, 1, 0)  fov 40deg }
 material grey = phong { diffuse 0.5 }
-mesh box = box { size (1, 1, 1) }
+let side = 1
+mesh box = box { size (side, side, side) }
 object box { material grey  transform { rotate y (frame * 10deg)  translate (frame * 0.05, 1, 0) } }
 light sun = point { position (3, 4, -3)  intensity rgb(20, 20, 20) }
 render { resolution 24 x 16  samples 1 }
@@ -131,4 +133,36 @@ fn tiles_of_frames_merge_per_frame() {
     let o = scnc(&["merge", "t0_0.exr", "t1_1.exr", "-o", "bad.png"], &dir);
     assert!(String::from_utf8_lossy(&o.stderr).contains("scnc::merge::mismatch"));
     assert!(!dir.join("bad.png").exists());
+}
+
+#[test]
+fn define_replaces_a_let_of_the_same_type() {
+    let dir = workdir("define");
+    let default = render(&dir, &[], "d.pfm");
+    assert_eq!(render(&dir, &["--define", "side=1"], "same.pfm"), default);
+    assert_eq!(
+        render(&dir, &["--define", "side=0.5 + 0.5"], "expr.pfm"),
+        default
+    );
+    assert_ne!(render(&dir, &["--define", "side=1.5"], "big.pfm"), default);
+    for (value, code, says) in [
+        ("sid=2", "scnc::cli::unknown_define", "did you mean `side`?"),
+        ("side=2deg", "scnc::cli::define_type", "an angle"),
+        ("side=(1,", "scnc::syntax::", "--define side"),
+    ] {
+        let o = scnc(
+            &["render", "turn.scn", "--define", value, "-o", "bad.png"],
+            &dir,
+        );
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{value}: {err}");
+        assert!(err.contains(code) && err.contains(says), "{value}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+    assert!(!dir.join("bad.png").exists());
+    let o = scnc(
+        &["render", "turn.scn", "--define", "side", "-o", "bad.png"],
+        &dir,
+    );
+    assert_eq!(o.status.code(), Some(2), "NAME=VALUE is required");
 }

@@ -10,6 +10,7 @@
 
 pub mod array;
 mod camera;
+mod define;
 mod eval;
 mod icosphere;
 mod inline_mesh;
@@ -47,6 +48,8 @@ pub struct Checker<'s> {
     pub lets: HashMap<String, (Value, Span)>,
     /// The value of the predefined constant `frame` (`--frame F`; 0 when not animating).
     pub frame: f64,
+    /// `--define NAME=VALUE` overrides: name → (value expression, used by a `let`).
+    pub defines: HashMap<String, (crate::syntax::Expr, bool)>,
     /// Constants whose value had an error: uses stay silent instead of cascading.
     pub poisoned: std::collections::HashSet<String>,
     tables: [Table; 6],
@@ -72,6 +75,7 @@ impl<'s> Checker<'s> {
             diags: Vec::new(),
             lets: HashMap::new(),
             frame: 0.0,
+            defines: HashMap::new(),
             poisoned: Default::default(),
             tables: Default::default(),
             textures: Vec::new(),
@@ -140,7 +144,7 @@ impl<'s> Checker<'s> {
             );
             return;
         }
-        match self.eval(value) {
+        match self.eval(value).and_then(|v| self.define_override(name, v)) {
             Some(v) => {
                 self.lets.insert(name.name.clone(), (v, name.span));
             }
@@ -154,13 +158,20 @@ impl<'s> Checker<'s> {
 /// Checks parsed statements (every file's, includes expanded in place, in order) and lowers
 /// them into the IR. `sources` gives file paths for resolving relative asset paths.
 pub fn check(statements: &[Stmt], sources: &SourceMap) -> Staged<ir::SceneDesc> {
-    check_frame(statements, sources, 0.0)
+    check_with(statements, sources, 0.0, Vec::new())
 }
 
-/// [`check`] with the predefined constant `frame` set to `frame` (`scnc render --frame F`).
-pub fn check_frame(statements: &[Stmt], sources: &SourceMap, frame: f64) -> Staged<ir::SceneDesc> {
+/// [`check`] with the predefined constant `frame` set to `frame` (`scnc render --frame F`)
+/// and `let`s overridden by `defines` (`--define NAME=VALUE`: the name and the parsed value).
+pub fn check_with(
+    statements: &[Stmt],
+    sources: &SourceMap,
+    frame: f64,
+    defines: Vec<(String, crate::syntax::Expr)>,
+) -> Staged<ir::SceneDesc> {
     let mut cx = Checker::new(sources);
     cx.frame = frame;
+    cx.defines = defines.into_iter().map(|(n, e)| (n, (e, false))).collect();
     let mut decls: [Vec<&Decl>; 4] = Default::default();
     let mut renders = Vec::new();
     let mut cameras = Vec::new();
@@ -224,6 +235,7 @@ pub fn check_frame(statements: &[Stmt], sources: &SourceMap, frame: f64) -> Stag
                 .help("merge them into one"),
         );
     }
+    cx.unused_defines();
     let settings = cx.render(renders.first().map(|(b, s)| (*b, *s)));
     let scene = cx.finish(settings);
     let failed = cx.diags.iter().any(Diagnostic::is_error);

@@ -63,3 +63,21 @@ pub fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
     };
     Ok((side(w)?, side(h)?))
 }
+
+/// `--define NAME=VALUE`: a name (letters, digits, `_`, not starting with a digit) and a
+/// non-empty value, split at the first `=`.
+pub fn parse_define(s: &str) -> Result<(String, String), String> {
+    let (name, value) = s
+        .split_once('=')
+        .ok_or_else(|| format!("expected NAME=VALUE such as radius=2, got `{s}`"))?;
+    let name = name.trim();
+    let ident = name
+        .chars()
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    if !ident || value.trim().is_empty() {
+        return Err(format!("expected NAME=VALUE such as radius=2, got `{s}`"));
+    }
+    Ok((name.to_string(), value.trim().to_string()))
+}

@@ -31,10 +31,12 @@ use super::stats::PhaseStats;
 use crate::assets::FsLoader;
 use crate::bvh::AccelKind;
 use crate::cli::frames::{self, FrameRange};
-pub use crate::cli::parse::{parse_frame, parse_noise, parse_resolution, parse_variance_path};
+pub use crate::cli::parse::{
+    parse_define, parse_frame, parse_noise, parse_resolution, parse_variance_path,
+};
 use crate::cli::targets::{camera_index, output_targets};
 use crate::cli::tile::{self, TilePlan};
-use crate::compile::compile_frame;
+use crate::compile::{compile_with, Overrides};
 use crate::diag::{Diagnostic, Staged};
 use crate::film::{self, WriteSettings};
 use crate::ir::{self, Quality, SettingFlags};
@@ -108,6 +110,10 @@ pub struct RenderArgs {
     #[arg(long, value_name = "A..B[:STEP]", value_parser = frames::parse_frames,
           conflicts_with = "frame", allow_hyphen_values = true)]
     pub frames: Option<FrameRange>,
+    /// Replace the value of the scene's `let NAME = …` with VALUE (an expression of the same
+    /// type), e.g. `--define radius=2` or `--define tint='rgb(1, 0.5, 0)'`; repeatable.
+    #[arg(long, value_name = "NAME=VALUE", value_parser = parse_define)]
+    pub define: Vec<(String, String)>,
     /// Print phase times, ray counts, Mrays/s, BVH size and peak memory.
     #[arg(long)]
     pub stats: bool,
@@ -155,9 +161,12 @@ pub(super) fn run_frame(args: &RenderArgs, mut cache: Option<&mut BuildCache>) -
     let mut sources = SourceMap::new();
     let mut phases = PhaseStats::default();
     let t = Instant::now();
-    let frame = args.frame.unwrap_or(0.0);
+    let overrides = Overrides {
+        frame: args.frame.unwrap_or(0.0),
+        defines: args.define.clone(),
+    };
     let compiled = strict(
-        compile_frame(&args.scene.file, &loader, &mut sources, frame),
+        compile_with(&args.scene.file, &loader, &mut sources, &overrides),
         &args.diag,
     );
     phases.compile = t.elapsed();

@@ -136,6 +136,8 @@ super::code::codes! {
         CliUnknownCamera = unknown_camera: "`--camera` names no camera of the scene",
         CliTileNotExr = tile_not_exr: "`--tile K/N` with an output that is not an `.exr` file",
         CliTooManyTiles = too_many_tiles: "`--tile K/N` asks for more tiles than the image has rows",
+        CliUnknownDefine = unknown_define: "`--define NAME=VALUE` names no `let` constant of the scene",
+        CliDefineType = define_type: "`--define NAME=VALUE` gives a value of another type than the scene's",
         CliFramesWithoutPattern = frames_without_pattern: "`--frames` without `-o NAME_####.EXT` to number the files",
     }
     /// `scnc merge`: assembling the tiles of `scnc render --tile K/N`.
