@@ -51,25 +51,57 @@ impl Compiled {
 /// Stage entry: compiles the scene file at `path`, reading it and its includes through
 /// `loader`. `sources` receives every file read (it is replaced, so pass an empty map).
 pub fn compile(path: &Path, loader: &dyn Loader, sources: &mut SourceMap) -> Staged<ir::SceneDesc> {
-    let (read, staged) = compile_file(path, loader).into_staged();
+    compile_with(path, loader, sources, &Overrides::default())
+}
+
+/// What the command line sets in the scene's language.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Overrides {
+    /// The predefined constant `frame` (`--frame F`).
+    pub frame: f64,
+    /// `--define NAME=VALUE`, in order: each `VALUE` replaces `let NAME`'s expression.
+    pub defines: Vec<(String, String)>,
+}
+
+/// [`compile`] with the command line's [`Overrides`]. Each define's value is parsed as the
+/// source file `--define NAME` (`let NAME = VALUE`), so its diagnostics point into it.
+pub fn compile_with(
+    path: &Path,
+    loader: &dyn Loader,
+    sources: &mut SourceMap,
+    overrides: &Overrides,
+) -> Staged<ir::SceneDesc> {
+    let mut d = Driver::new(loader);
+    d.frame = overrides.frame;
+    d.pending_defines.clone_from(&overrides.defines);
+    let (read, staged) = d.compile_root(path).into_staged();
     *sources = read;
     staged
 }
 
 /// Compiles the scene file at `path`, reading it and its includes through `loader`.
 pub fn compile_file(path: &Path, loader: &dyn Loader) -> Compiled {
-    let mut d = Driver::new(loader);
-    match loader.read(path) {
-        Ok(bytes) => {
-            let name = path.display().to_string();
-            d.add_root(path, &name, &bytes);
+    Driver::new(loader).compile_root(path)
+}
+
+impl Driver<'_> {
+    /// Reads the root file at `path` (a diagnostic if it cannot be) and compiles it.
+    fn compile_root(mut self, path: &Path) -> Compiled {
+        match self.loader.read(path) {
+            Ok(bytes) => {
+                let name = path.display().to_string();
+                self.add_root(path, &name, &bytes);
+            }
+            Err(e) => self.diags.push(
+                Diagnostic::error(Code::IoRead, format!("cannot read {}: {e}", path.display()))
+                    .help("check the path"),
+            ),
         }
-        Err(e) => d.diags.push(
-            Diagnostic::error(Code::IoRead, format!("cannot read {}: {e}", path.display()))
-                .help("check the path"),
-        ),
+        for (name, value) in std::mem::take(&mut self.pending_defines) {
+            self.add_define(&name, &value);
+        }
+        self.finish()
     }
-    d.finish()
 }
 
 /// Compiles `text` as if it were the file `name` (includes resolve relative to `name`'s
@@ -87,6 +119,12 @@ struct Driver<'l> {
     statements: Vec<Stmt>,
     /// Files on the include stack: (normalised path, span of the include that entered it).
     stack: Vec<(PathBuf, Option<Span>)>,
+    /// The predefined constant `frame`.
+    frame: f64,
+    /// `--define`s not parsed yet (after the root file, which must be file 0).
+    pending_defines: Vec<(String, String)>,
+    /// `--define`s parsed: the name and the value's expression.
+    defines: Vec<(String, syntax::Expr)>,
 }
 
 impl<'l> Driver<'l> {
@@ -97,6 +135,29 @@ impl<'l> Driver<'l> {
             diags: Vec::new(),
             statements: Vec::new(),
             stack: Vec::new(),
+            frame: 0.0,
+            pending_defines: Vec::new(),
+            defines: Vec::new(),
+        }
+    }
+
+    /// Parses `--define NAME=VALUE` as the source `let NAME = VALUE`.
+    fn add_define(&mut self, name: &str, value: &str) {
+        let label = format!("--define {name}");
+        let text = format!("scnc 1\nlet {name} = {value}\n");
+        let id = self.sources.add(
+            PathBuf::from(&label),
+            &label,
+            std::sync::Arc::<str>::from(text),
+        );
+        let text = self.sources.get(id).text.clone();
+        let (file, diags) = syntax::parse(id, &text).into_parts();
+        self.diags.extend(diags);
+        let lets = file.into_iter().flat_map(|f| f.statements);
+        for stmt in lets {
+            if let Stmt::Let { name, value, .. } = stmt {
+                self.defines.push((name.name, value));
+            }
         }
     }
 
@@ -276,11 +337,14 @@ impl<'l> Driver<'l> {
             sources,
             mut diags,
             statements,
+            frame: self_frame,
+            defines,
             ..
         } = self;
         let parse_failed = diags.iter().any(Diagnostic::is_error);
         let scene = if sources.files().next().is_some() {
-            let (scene, check_diags) = check::check(&statements, &sources).into_parts();
+            let (scene, check_diags) =
+                check::check_with(&statements, &sources, self_frame, defines).into_parts();
             // When parsing failed, statements are missing: suppress checker errors that only
             // say something is missing, unknown or unused, which would be noise.
             diags.extend(

@@ -147,6 +147,7 @@ fn every_registered_code_is_emitted() {
     emitted.extend(obj_codes());
     emitted.extend(write_codes());
     emitted.extend(cli_codes());
+    emitted.extend(tile_codes());
     for (code, why) in UNTRIGGERABLE {
         assert!(
             !emitted.contains(code),
@@ -429,4 +430,102 @@ fn cli_codes() -> Vec<Code> {
         );
     }
     codes
+}
+
+/// The codes of `scnc render --tile` and `scnc merge`: tiles of a tiny cornell box, then
+/// merges that must fail.
+fn tile_codes() -> Vec<Code> {
+    let scnc = env!("CARGO_BIN_EXE_scnc");
+    let cornell = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/cornell.scn");
+    let dir = std::env::temp_dir().join(format!("scnc_diag_registry_tiles_{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let run = |args: &[&str]| {
+        let out = Command::new(scnc)
+            .current_dir(&dir)
+            .args(args)
+            .output()
+            .expect("run scnc");
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let small = ["--resolution", "8x6", "--spp", "1"];
+    for (tile, spp, out) in [
+        ("0/2", "1", "a.exr"),
+        ("1/2", "1", "b.exr"),
+        ("1/2", "4", "c.exr"),
+    ] {
+        let mut args = vec!["render", cornell, "--resolution", "8x6", "--spp", spp];
+        args.extend(["--tile", tile, "-o", out]);
+        run(&args);
+    }
+    std::fs::write(dir.join("cut.exr"), b"\x76\x2f\x31\x01").expect("write");
+    let mut whole = vec!["render", cornell, "-o", "whole.exr"];
+    whole.extend(small);
+    run(&whole);
+    let mut stderr = String::new();
+    for args in [
+        vec![
+            "render",
+            cornell,
+            "--resolution",
+            "8x6",
+            "--tile",
+            "0/2",
+            "-o",
+            "a.png",
+        ],
+        vec![
+            "render",
+            cornell,
+            "--resolution",
+            "8x6",
+            "--tile",
+            "0/7",
+            "-o",
+            "a.exr",
+        ],
+        vec![
+            "render",
+            cornell,
+            "--resolution",
+            "8x6",
+            "--frames",
+            "0..1",
+            "-o",
+            "f.png",
+        ],
+        vec![
+            "render",
+            cornell,
+            "--resolution",
+            "8x6",
+            "--define",
+            "nope=1",
+            "-o",
+            "a.png",
+        ],
+        vec![
+            "render",
+            cornell,
+            "--resolution",
+            "8x6",
+            "--define",
+            "red=2",
+            "-o",
+            "a.png",
+        ],
+        vec!["merge", "a.exr", "c.exr", "-o", "m.png"],
+        vec!["merge", "a.exr", "a.exr", "b.exr", "-o", "m.png"],
+        vec!["merge", "a.exr", "-o", "m.png"],
+        vec!["merge", "a.exr", "cut.exr", "-o", "m.png"],
+        vec!["merge", "a.exr", "whole.exr", "-o", "m.png"],
+    ] {
+        stderr.push_str(&run(&args));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    Code::ALL
+        .iter()
+        .copied()
+        .filter(|c| stderr.contains(&format!("[{}]", c.as_str())))
+        .collect()
 }

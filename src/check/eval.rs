@@ -152,6 +152,7 @@ impl Checker<'_> {
         match name {
             "true" => return Some(Value::Bool(true)),
             "false" => return Some(Value::Bool(false)),
+            "frame" => return Some(Value::Num(self.frame)),
             _ => {}
         }
         if let Some((v, _)) = self.lets.get(name) {

@@ -10,6 +10,7 @@
 
 pub mod array;
 mod camera;
+mod define;
 mod eval;
 mod icosphere;
 mod inline_mesh;
@@ -45,6 +46,10 @@ pub struct Checker<'s> {
     pub diags: Vec<Diagnostic>,
     /// The `let` constants evaluated so far, with where each was declared.
     pub lets: HashMap<String, (Value, Span)>,
+    /// The value of the predefined constant `frame` (`--frame F`; 0 when not animating).
+    pub frame: f64,
+    /// `--define NAME=VALUE` overrides: name → (value expression, used by a `let`).
+    pub defines: HashMap<String, (crate::syntax::Expr, bool)>,
     /// Constants whose value had an error: uses stay silent instead of cascading.
     pub poisoned: std::collections::HashSet<String>,
     tables: [Table; 6],
@@ -69,6 +74,8 @@ impl<'s> Checker<'s> {
             sources,
             diags: Vec::new(),
             lets: HashMap::new(),
+            frame: 0.0,
+            defines: HashMap::new(),
             poisoned: Default::default(),
             tables: Default::default(),
             textures: Vec::new(),
@@ -114,7 +121,7 @@ impl<'s> Checker<'s> {
     }
 
     fn let_stmt(&mut self, name: &crate::syntax::Ident, value: &crate::syntax::Expr) {
-        if matches!(name.name.as_str(), "true" | "false") {
+        if matches!(name.name.as_str(), "true" | "false" | "frame") {
             self.error(
                 Diagnostic::error(
                     Code::CheckReservedName,
@@ -137,7 +144,7 @@ impl<'s> Checker<'s> {
             );
             return;
         }
-        match self.eval(value) {
+        match self.eval(value).and_then(|v| self.define_override(name, v)) {
             Some(v) => {
                 self.lets.insert(name.name.clone(), (v, name.span));
             }
@@ -151,7 +158,20 @@ impl<'s> Checker<'s> {
 /// Checks parsed statements (every file's, includes expanded in place, in order) and lowers
 /// them into the IR. `sources` gives file paths for resolving relative asset paths.
 pub fn check(statements: &[Stmt], sources: &SourceMap) -> Staged<ir::SceneDesc> {
+    check_with(statements, sources, 0.0, Vec::new())
+}
+
+/// [`check`] with the predefined constant `frame` set to `frame` (`scnc render --frame F`)
+/// and `let`s overridden by `defines` (`--define NAME=VALUE`: the name and the parsed value).
+pub fn check_with(
+    statements: &[Stmt],
+    sources: &SourceMap,
+    frame: f64,
+    defines: Vec<(String, crate::syntax::Expr)>,
+) -> Staged<ir::SceneDesc> {
     let mut cx = Checker::new(sources);
+    cx.frame = frame;
+    cx.defines = defines.into_iter().map(|(n, e)| (n, (e, false))).collect();
     let mut decls: [Vec<&Decl>; 4] = Default::default();
     let mut renders = Vec::new();
     let mut cameras = Vec::new();
@@ -215,6 +235,7 @@ pub fn check(statements: &[Stmt], sources: &SourceMap) -> Staged<ir::SceneDesc> 
                 .help("merge them into one"),
         );
     }
+    cx.unused_defines();
     let settings = cx.render(renders.first().map(|(b, s)| (*b, *s)));
     let scene = cx.finish(settings);
     let failed = cx.diags.iter().any(Diagnostic::is_error);

@@ -7,12 +7,16 @@
 mod bench;
 mod check;
 mod explain;
+mod frames;
 mod inspect;
 mod ir;
+mod merge;
+mod parse;
 mod render;
 pub mod report;
 mod stats;
 mod targets;
+mod tile;
 mod watch;
 
 use std::process::ExitCode;
@@ -24,6 +28,7 @@ pub use check::CheckArgs;
 pub use explain::ExplainArgs;
 pub use inspect::InspectArgs;
 pub use ir::IrArgs;
+pub use merge::MergeArgs;
 pub use render::{AccelArg, RenderArgs};
 pub use report::{DiagArgs, DiagnosticFormat, JsonTo, SceneArg};
 pub use watch::WatchArgs;
@@ -55,6 +60,9 @@ pub enum Command {
     ///
     /// Every diagnostic has a code; `scnc explain CODE` says what it means and how to fix it.
     Render(RenderArgs),
+    /// Assemble the tiles of `scnc render --tile K/N` into one image, bit for bit as a single
+    /// render would have made it (PNG, EXR, HDR or PFM by extension).
+    Merge(MergeArgs),
     /// Print a scene's validated intermediate representation as JSON.
     Ir(IrArgs),
     /// Render, then re-render on every change of the scene, its includes and assets, with a
@@ -82,6 +90,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Check(args) => check::run(&args),
         Command::Ir(args) => ir::run(&args),
         Command::Render(args) => render::run(&args),
+        Command::Merge(args) => merge::run(&args),
         Command::Watch(args) => watch::run(&args),
         Command::Inspect(args) => inspect::run(&args),
         Command::Bench(args) => bench::run(&args),

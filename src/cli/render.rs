@@ -1,6 +1,8 @@
 //! `scnc render FILE [-o out.png] [--quality draft|preview|final] [--spp N] [--noise E
 //! [--max-samples N]] [--variance-out FILE] [--threads N] [--camera NAME] [--accel bvh|none]
-//! [--resolution WxH] [--stats]`: the whole pipeline once, from `.scn` to image file.
+//! [--resolution WxH] [--tile K/N] [--frame F | --frames A..B[:STEP]] [--stats]`: the whole pipeline once, from `.scn` to image
+//! file. `--tile K/N` renders one band of rows into an OpenEXR tile for `scnc merge` (see
+//! [`super::tile`]).
 //!
 //! Precedence of the sample count: a command-line flag beats the scene; at each level an
 //! explicit count beats a preset. So `--spp` > `--quality` > `render { samples }` >
@@ -28,13 +30,18 @@ use super::report::{exit_code, report, strict, DiagArgs, JsonTo, SceneArg};
 use super::stats::PhaseStats;
 use crate::assets::FsLoader;
 use crate::bvh::AccelKind;
+use crate::cli::frames::{self, FrameRange};
+pub use crate::cli::parse::{
+    parse_define, parse_frame, parse_noise, parse_resolution, parse_variance_path,
+};
 use crate::cli::targets::{camera_index, output_targets};
-use crate::compile::compile;
+use crate::cli::tile::{self, TilePlan};
+use crate::compile::{compile_with, Overrides};
 use crate::diag::{Diagnostic, Staged};
 use crate::film::{self, WriteSettings};
 use crate::ir::{self, Quality, SettingFlags};
 use crate::render::{self, RenderOptions, RenderStats};
-use crate::scene::{self, BuildOptions, Scene};
+use crate::scene::{self, BuildCache, BuildOptions, Scene};
 use crate::source::SourceMap;
 
 /// Which acceleration structure traces the rays.
@@ -88,6 +95,25 @@ pub struct RenderArgs {
     /// Override the scene's resolution, e.g. `320x240`.
     #[arg(long, value_name = "WxH", value_parser = parse_resolution)]
     pub resolution: Option<(u32, u32)>,
+    /// Render only tile K of N (from 0) of the image, a band of rows, into an OpenEXR tile
+    /// (`-o part_K.exr`) that `scnc merge` assembles with the others, bit for bit as one
+    /// render would have made the image.
+    #[arg(long, value_name = "K/N", value_parser = tile::parse_tile, conflicts_with = "variance_out")]
+    pub tile: Option<(u32, u32)>,
+    /// The value of the predefined constant `frame` in the scene's expressions (default 0),
+    /// e.g. `rotate y (frame * 1.5deg)` for a turntable.
+    #[arg(long, value_name = "F", value_parser = parse_frame, allow_hyphen_values = true)]
+    pub frame: Option<f64>,
+    /// Render frames A to B (inclusive) every STEP (default 1), each to `-o`'s name with its
+    /// run of `#`s replaced by the zero-padded frame number (`-o out_####.png`); meshes, BVH
+    /// and textures that do not depend on `frame` are built once.
+    #[arg(long, value_name = "A..B[:STEP]", value_parser = frames::parse_frames,
+          conflicts_with = "frame", allow_hyphen_values = true)]
+    pub frames: Option<FrameRange>,
+    /// Replace the value of the scene's `let NAME = …` with VALUE (an expression of the same
+    /// type), e.g. `--define radius=2` or `--define tint='rgb(1, 0.5, 0)'`; repeatable.
+    #[arg(long, value_name = "NAME=VALUE", value_parser = parse_define)]
+    pub define: Vec<(String, String)>,
     /// Print phase times, ray counts, Mrays/s, BVH size and peak memory.
     #[arg(long)]
     pub stats: bool,
@@ -119,72 +145,62 @@ impl QualityArg {
     }
 }
 
-/// `--noise`: a relative standard error in 0.0001..=1, as in the scene language.
-pub fn parse_noise(s: &str) -> Result<f32, String> {
-    let x: f64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("`{s}` is not a number (try 0.01 for 1%)"))?;
-    if (1e-4..=1.0).contains(&x) {
-        Ok(x as f32)
-    } else {
-        Err(format!(
-            "the noise target is a relative error in 0.0001..=1 (0.01 is 1%), got {s}"
-        ))
-    }
-}
-
-fn parse_variance_path(s: &str) -> Result<PathBuf, String> {
-    let path = PathBuf::from(s);
-    match film::format_for_path(&path) {
-        Some(ir::OutputFormat::Exr | ir::OutputFormat::Pfm) => Ok(path),
-        _ => Err(format!(
-            "the variance image is linear float: give a .exr or .pfm file, got `{s}`"
-        )),
-    }
-}
-
-/// Largest side accepted by `--resolution`, as in the scene language.
-const MAX_SIDE: u32 = 16384;
-
-pub(super) fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s
-        .split_once(['x', 'X'])
-        .ok_or_else(|| format!("expected WIDTHxHEIGHT such as 320x240, got `{s}`"))?;
-    let side = |v: &str| -> Result<u32, String> {
-        let n: u32 = v
-            .trim()
-            .parse()
-            .map_err(|_| format!("`{v}` is not a whole number"))?;
-        if (1..=MAX_SIDE).contains(&n) {
-            Ok(n)
-        } else {
-            Err(format!("each side must be 1..={MAX_SIDE}, got {n}"))
-        }
-    };
-    Ok((side(w)?, side(h)?))
-}
-
 /// `scnc render`: resolve the settings, compile, build, render, write; then report every
 /// diagnostic of the chain once.
 pub fn run(args: &RenderArgs) -> ExitCode {
+    match args.frames {
+        Some(range) => frames::run(args, range),
+        None => run_frame(args, None),
+    }
+}
+
+/// One render of `args` (its `frame`), building through `cache` when given (`--frames`); the
+/// scene goes back into the cache afterwards.
+pub(super) fn run_frame(args: &RenderArgs, mut cache: Option<&mut BuildCache>) -> ExitCode {
     let loader = FsLoader::new();
     let mut sources = SourceMap::new();
     let mut phases = PhaseStats::default();
     let t = Instant::now();
-    let compiled = strict(compile(&args.scene.file, &loader, &mut sources), &args.diag);
+    let overrides = Overrides {
+        frame: args.frame.unwrap_or(0.0),
+        defines: args.define.clone(),
+    };
+    let compiled = strict(
+        compile_with(&args.scene.file, &loader, &mut sources, &overrides),
+        &args.diag,
+    );
     phases.compile = t.elapsed();
     let built = compiled
         .and_then(|desc| resolve(args, desc))
-        .and_then(|(desc, options)| scene::build(&desc, &loader, &options).map(|s| (desc, s)));
+        .and_then(|(desc, options, plan)| {
+            match cache.as_deref_mut() {
+                Some(c) => scene::build_cached(&desc, &loader, &options, c),
+                None => scene::build(&desc, &loader, &options),
+            }
+            .map(|s| (desc, s, plan))
+        });
     // What compile and build found is printed before a render that may take minutes, as a
     // compiler prints its warnings before it links; what writing finds, after it.
     let built = strict(built, &args.diag);
     report(&built, &sources, &args.diag, JsonTo::Stdout);
     let built_failed = built.has_errors();
     let finished = Staged::new(built.value, Vec::new())
-        .and_then(|(desc, scene)| render_and_write(args, &desc, scene, &mut phases));
+        .and_then(|(desc, scene, plan)| render_and_write(args, &desc, scene, plan, &mut phases));
     report(&finished, &sources, &args.diag, JsonTo::Stdout);
+    let code = finish(args, &phases, built_failed, &finished);
+    if let (Some(c), Some(Finished::Rendered(scene, ..))) = (cache, finished.value) {
+        c.recycle(*scene);
+    }
+    code
+}
+
+/// Prints what the render wrote (and `--stats`); the exit code.
+fn finish(
+    args: &RenderArgs,
+    phases: &PhaseStats,
+    built_failed: bool,
+    finished: &Staged<Finished>,
+) -> ExitCode {
     match &finished.value {
         Some(Finished::Cancelled) => {
             eprintln!("render cancelled; no image written");
@@ -203,7 +219,7 @@ pub fn run(args: &RenderArgs) -> ExitCode {
             if built_failed {
                 ExitCode::FAILURE
             } else {
-                exit_code(&finished)
+                exit_code(finished)
             }
         }
         None => ExitCode::FAILURE,
@@ -224,8 +240,9 @@ enum Finished {
 }
 
 /// The command line's settings into the scene, before anything is built: `--camera` (a
-/// diagnostic if the scene has no such camera), `--accel`, and the render settings.
-fn resolve(args: &RenderArgs, mut desc: ir::SceneDesc) -> Staged<(ir::SceneDesc, BuildOptions)> {
+/// diagnostic if the scene has no such camera), `--accel`, the render settings, and the
+/// `--tile` plan (diagnostics for a non-EXR output or too many tiles).
+fn resolve(args: &RenderArgs, mut desc: ir::SceneDesc) -> Staged<Resolved> {
     let camera = match args.camera.as_deref().map(|name| camera_index(&desc, name)) {
         None => None,
         Some(Ok(i)) => Some(i),
@@ -236,8 +253,23 @@ fn resolve(args: &RenderArgs, mut desc: ir::SceneDesc) -> Staged<(ir::SceneDesc,
         AccelArg::Bvh => AccelKind::Bvh,
         AccelArg::None => AccelKind::None,
     };
-    Staged::ok((desc, BuildOptions { accel, camera }))
+    let plan = match args.tile {
+        None => None,
+        Some(k_n) => {
+            let targets = output_targets(args.output.as_deref(), &args.scene.file, &desc);
+            let chosen = camera.unwrap_or(desc.active_camera);
+            let accel_name = format!("{:?}", args.accel).to_ascii_lowercase();
+            match tile::plan(k_n, &desc, chosen, &accel_name, &targets) {
+                Ok(plan) => Some(plan),
+                Err(problems) => return Staged::failed(problems),
+            }
+        }
+    };
+    Staged::ok((desc, BuildOptions { accel, camera }, plan))
 }
+
+/// The scene with the command line applied, what to build it with, and the tile to render.
+type Resolved = (ir::SceneDesc, BuildOptions, Option<TilePlan>);
 
 /// The render settings the flags give (see `ir::RenderSettings::resolve` for the precedence).
 fn setting_flags(args: &RenderArgs) -> SettingFlags {
@@ -255,6 +287,7 @@ fn render_and_write(
     args: &RenderArgs,
     desc: &ir::SceneDesc,
     scene: Scene,
+    plan: Option<TilePlan>,
     phases: &mut PhaseStats,
 ) -> Staged<Finished> {
     phases.asset_load = scene.timings.asset_load;
@@ -275,7 +308,11 @@ fn render_and_write(
             bar.set_position((f * 1000.0) as u64);
         }
     };
-    let rendered = render::render_with_error(&scene, &options, &progress, &cancel);
+    let window = plan.map_or(
+        render::PixelWindow::full(scene.settings.width, scene.settings.height),
+        |p| p.window,
+    );
+    let rendered = render::render_window(&scene, &options, window, &progress, &cancel);
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
@@ -284,7 +321,7 @@ fn render_and_write(
     };
     phases.render = rendered.stats.wall;
     let t = Instant::now();
-    let (written, diagnostics) = write_outputs(args, desc, &scene, &rendered);
+    let (written, diagnostics) = write_outputs(args, desc, &scene, plan.as_ref(), &rendered);
     phases.write = t.elapsed();
     Staged::new(
         Some(Finished::Rendered(Box::new(scene), rendered.stats, written)),
@@ -299,12 +336,19 @@ fn write_outputs(
     args: &RenderArgs,
     desc: &ir::SceneDesc,
     scene: &Scene,
+    plan: Option<&TilePlan>,
     rendered: &render::Rendered,
 ) -> (Vec<String>, Vec<Diagnostic>) {
     let settings = WriteSettings::from_render(&scene.settings);
     let (mut lines, mut diagnostics) = (Vec::new(), Vec::new());
     for (path, span) in output_targets(args.output.as_deref(), &args.scene.file, desc) {
-        let written = film::write(&rendered.film, &path, &settings, span);
+        let written = match plan {
+            Some(p) => Staged::from_result(
+                film::tile::write_tile(&rendered.film, p.window, &p.header, &path)
+                    .map_err(|e| e.to_diagnostic(span)),
+            ),
+            None => film::write(&rendered.film, &path, &settings, span),
+        };
         if written.value.is_some() {
             lines.push(format!("wrote {}", path.display()));
         }

@@ -118,10 +118,17 @@ pub fn print_diagnostic_list(
         DiagnosticFormat::Human => {
             let tty = std::io::stderr().is_terminal();
             for d in diags {
+                // The fancy rendering carries the `scnc explain` pointer in its help; the plain
+                // one (kept byte-stable for snapshots and logs) gets it as a last note here.
                 let text = if tty {
                     render_fancy(d, sources, true)
                 } else {
-                    render_plain(d, sources, 100)
+                    let plain = render_plain(d, sources, 100);
+                    format!(
+                        "{}\n   = note: {}\n",
+                        plain.trim_end(),
+                        d.code.explain_hint()
+                    )
                 };
                 eprintln!("{text}");
             }

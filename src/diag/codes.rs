@@ -134,6 +134,19 @@ super::code::codes! {
     /// Command-line options.
     cli {
         CliUnknownCamera = unknown_camera: "`--camera` names no camera of the scene",
+        CliTileNotExr = tile_not_exr: "`--tile K/N` with an output that is not an `.exr` file",
+        CliTooManyTiles = too_many_tiles: "`--tile K/N` asks for more tiles than the image has rows",
+        CliUnknownDefine = unknown_define: "`--define NAME=VALUE` names no `let` constant of the scene",
+        CliDefineType = define_type: "`--define NAME=VALUE` gives a value of another type than the scene's",
+        CliFramesWithoutPattern = frames_without_pattern: "`--frames` without `-o NAME_####.EXT` to number the files",
+    }
+    /// `scnc merge`: assembling the tiles of `scnc render --tile K/N`.
+    merge {
+        MergeUnreadable = unreadable: "a tile file cannot be read, or is truncated or corrupt",
+        MergeNotATile = not_a_tile: "an OpenEXR file that is not a tile of `scnc render --tile`",
+        MergeMismatch = mismatch: "tiles of different scenes or settings",
+        MergeOverlap = overlap: "two tiles cover the same pixels",
+        MergeMissing = missing: "the tiles do not cover the whole image",
     }
     /// `scnc inspect`.
     inspect {

@@ -7,6 +7,8 @@
 
 pub mod compare;
 mod encode;
+pub mod merge;
+pub mod tile;
 pub mod tonemap;
 mod write;
 

@@ -11,6 +11,7 @@
 //! The types derive `Serialize` so that `scnc ir` and the insta snapshots can print them.
 
 mod camera;
+pub mod identity;
 mod light;
 mod material;
 mod mesh;

@@ -9,6 +9,9 @@
 //! `render { noise 0.01  max_samples 4096 }` samples each pixel adaptively, in batches, until
 //! the relative standard error of its mean is below the target (see [`estimate`]); every render
 //! also estimates each pixel's standard error ([`render_with_error`]) for `--variance-out`.
+//!
+//! [`render_window`] renders only a rectangle of the image ([`window`]; `--tile K/N`), each of
+//! its pixels with exactly the bits of the full render.
 
 pub mod camera;
 pub mod estimate;
@@ -16,6 +19,7 @@ pub mod integrator;
 mod mis;
 pub mod pattern;
 pub mod rng;
+pub mod window;
 
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
@@ -27,6 +31,7 @@ use self::camera::PinholeCamera;
 use self::estimate::{Accumulator, NoiseStats, PixelEstimate};
 use self::integrator::{radiance_scaled, RayCounts};
 use self::rng::Sampler;
+pub use self::window::PixelWindow;
 use crate::film::Film;
 use crate::scene::Scene;
 use crate::shade::texture::footprint::footprint_scale;
@@ -123,6 +128,20 @@ pub fn render_with_error(
     progress: &(dyn Fn(f32) + Sync),
     cancel: &AtomicBool,
 ) -> Result<Rendered, Cancelled> {
+    let full = PixelWindow::full(scene.settings.width, scene.settings.height);
+    render_window(scene, options, full, progress, cancel)
+}
+
+/// [`render_with_error`] of the pixels in `window` only (clipped to the image): the films
+/// are the window's size, and each pixel has exactly the bits of the full render's
+/// (`scnc render --tile K/N`).
+pub fn render_window(
+    scene: &Scene,
+    options: &RenderOptions,
+    window: PixelWindow,
+    progress: &(dyn Fn(f32) + Sync),
+    cancel: &AtomicBool,
+) -> Result<Rendered, Cancelled> {
     let start = Instant::now();
     let settings = &scene.settings;
     let side = pattern::side_for(settings.samples_per_pixel);
@@ -142,13 +161,14 @@ pub fn render_with_error(
         offsets: &offsets,
         adaptive,
     };
-    let tiles = tiles(settings.width, settings.height);
+    let window = window.clip(settings.width, settings.height);
+    let tiles = tiles(window);
     let threads = options.threads.unwrap_or(0);
     let (results, used_threads) = job.run(&tiles, threads, progress, cancel);
     if cancel.load(Ordering::Relaxed) {
         return Err(Cancelled);
     }
-    let mut rendered = job.assemble(&tiles, results, side)?;
+    let mut rendered = job.assemble(window, &tiles, results, side)?;
     rendered.stats.wall = start.elapsed();
     rendered.stats.threads = used_threads;
     Ok(rendered)
@@ -157,15 +177,15 @@ pub fn render_with_error(
 /// One tile's pixels and ray counts; `None` when the render was cancelled before it.
 type TileResult = Option<(Vec<PixelEstimate>, RayCounts)>;
 
-fn tiles(width: u32, height: u32) -> Vec<Tile> {
+fn tiles(window: PixelWindow) -> Vec<Tile> {
     let mut out = Vec::new();
-    for y0 in (0..height).step_by(TILE_SIZE as usize) {
-        for x0 in (0..width).step_by(TILE_SIZE as usize) {
+    for y0 in (window.y0..window.y1).step_by(TILE_SIZE as usize) {
+        for x0 in (window.x0..window.x1).step_by(TILE_SIZE as usize) {
             out.push(Tile {
                 x0,
                 y0,
-                x1: (x0 + TILE_SIZE).min(width),
-                y1: (y0 + TILE_SIZE).min(height),
+                x1: (x0 + TILE_SIZE).min(window.x1),
+                y1: (y0 + TILE_SIZE).min(window.y1),
             });
         }
     }
@@ -219,15 +239,16 @@ impl Job<'_> {
         (results, used_threads)
     }
 
-    /// The tiles' pixels into the film, the error film and the statistics (all but the wall
-    /// time and thread count); `Cancelled` if a tile is missing.
+    /// The tiles' pixels into the window's film, the error film and the statistics (all but
+    /// the wall time and thread count); `Cancelled` if a tile is missing.
     fn assemble(
         &self,
+        window: PixelWindow,
         tiles: &[Tile],
         results: Vec<TileResult>,
         side: u32,
     ) -> Result<Rendered, Cancelled> {
-        let (width, height) = (self.scene.settings.width, self.scene.settings.height);
+        let (width, height) = (window.width(), window.height());
         let mut film = Film::new(width, height);
         let mut std_error = Film::new(width, height);
         let mut counts = RayCounts::default();
@@ -244,7 +265,8 @@ impl Job<'_> {
             counts.add(&c);
             let tw = (tile.x1 - tile.x0) as usize;
             for (k, p) in pixels.iter().enumerate() {
-                let (x, y) = (tile.x0 + (k % tw) as u32, tile.y0 + (k / tw) as u32);
+                let x = tile.x0 - window.x0 + (k % tw) as u32;
+                let y = tile.y0 - window.y0 + (k / tw) as u32;
                 film.set(x, y, p.mean);
                 std_error.set(x, y, p.std_error);
                 noise.add(p);
