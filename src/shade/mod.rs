@@ -16,8 +16,9 @@
 //! - [`surface`]: the hit point itself (position with its error bound, normals, UV) and how a
 //!   ray leaves it without hitting it again.
 //! - [`texture`]: `texture … = image | checker | constant` evaluated at a UV and a footprint
-//!   ([`texture::footprint`], the pixel's ray cone on the surface, picks the mip level);
-//!   [`texture::image`] holds decoded texels and their mip pyramid.
+//!   ([`texture::footprint`], the pixel's ray cone on the surface as an ellipse in UV space,
+//!   shrunk as the pixel's samples grow); [`texture::image`] holds decoded texels and their mip
+//!   pyramid, [`texture::anisotropic`] filters along the ellipse's major axis.
 //! - [`normal_map`]: `normal_map` in tangent space, and the bend that keeps it plausible.
 //! - [`brdf`]: the energy-normalised Phong BRDF: `eval`, `sample` and `pdf` side by side.
 //! - [`light`]: the closed set of lights, each with `sample` beside `pdf` (pbrt's `SampleLi`
