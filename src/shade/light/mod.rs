@@ -21,6 +21,7 @@ pub mod env_map;
 pub mod environment;
 pub mod point;
 pub mod spherical;
+pub mod spherical_rect;
 
 pub use area::{AreaLight, AreaSample, LightPoint};
 pub use env_map::{EnvMap, EnvSample};
