@@ -5,14 +5,15 @@
 //! is today sampled as two spherical triangles (`spherical`): a triangle pick, then Arvo's
 //! construction in f64. The spherical rectangle samples the whole rectangle at once, exactly
 //! uniform in solid angle (`pdf = 1 / Ω`), in f32, with one `acos` per corner at set-up and
-//! one `sincos` plus square roots per sample. Ω is a difference of angles near 2π, so in f32
-//! it keeps about 1% at Ω ≈ 3e-5 sr (far, grazing) and better than 1e-3 above
-//! [`spherical::MIN_SOLID_ANGLE`](super::spherical::MIN_SOLID_ANGLE), below which a caller
-//! samples by area (as `area` does for triangles). Not yet wired into [`AreaLight`](super::AreaLight)
+//! one `sincos` plus square roots per sample. Ω is a difference of angles near 2π: in f32 it
+//! would be off by ~1e-4 relative for a light of a few millisteradians (a bias
+//! `tests/render_light_sampling.rs` sees), so the set-up is f64 and only the per-sample
+//! mapping is f32. Below [`spherical::MIN_SOLID_ANGLE`](super::spherical::MIN_SOLID_ANGLE) a
+//! caller samples by area (as `area` does for triangles). Not yet wired into [`AreaLight`](super::AreaLight)
 //! (it needs the build to recognise a two-triangle rectangle and `sample`/`pdf` to agree on when
 //! it is used); this file holds the construction and its tests.
 
-use glam::{Vec2, Vec3};
+use glam::{DVec3, Vec2, Vec3};
 
 /// A rectangle as seen from a shading point, ready to be sampled: the local frame (x, y along
 /// the edges, z towards the point's side flipped away) and the spherical rectangle's angles.
@@ -54,18 +55,20 @@ impl SphericalRect {
         }
         let (x0, y0) = (d.dot(x), d.dot(y));
         let (x1, y1) = (x0 + exl, y0 + eyl);
-        let v00 = Vec3::new(x0, y0, z0);
-        let v01 = Vec3::new(x0, y1, z0);
-        let v10 = Vec3::new(x1, y0, z0);
-        let v11 = Vec3::new(x1, y1, z0);
+        // The set-up in f64: Ω is a small difference of angles near 2π, which f32 keeps only to
+        // about 1e-4 relative for a light of a few millisteradians (a bias of that size).
+        let v00 = DVec3::new(x0 as f64, y0 as f64, z0 as f64);
+        let v01 = DVec3::new(x0 as f64, y1 as f64, z0 as f64);
+        let v10 = DVec3::new(x1 as f64, y0 as f64, z0 as f64);
+        let v11 = DVec3::new(x1 as f64, y1 as f64, z0 as f64);
         let n0 = v00.cross(v10).normalize_or_zero();
         let n1 = v10.cross(v11).normalize_or_zero();
         let n2 = v11.cross(v01).normalize_or_zero();
         let n3 = v01.cross(v00).normalize_or_zero();
-        let angle = |a: Vec3, b: Vec3| (-a.dot(b)).clamp(-1.0, 1.0).acos();
+        let angle = |a: DVec3, b: DVec3| (-a.dot(b)).clamp(-1.0, 1.0).acos();
         let (g0, g1, g2, g3) = (angle(n0, n1), angle(n1, n2), angle(n2, n3), angle(n3, n0));
-        let k = 2.0 * std::f32::consts::PI - g2 - g3;
-        let solid_angle = g0 + g1 - k;
+        let k = 2.0 * std::f64::consts::PI - g2 - g3;
+        let solid_angle = (g0 + g1 - k) as f32;
         if solid_angle <= 0.0 || solid_angle.is_nan() {
             return None;
         }
@@ -79,9 +82,9 @@ impl SphericalRect {
             x1,
             y0,
             y1,
-            b0: n0.z,
-            b1: n2.z,
-            k,
+            b0: n0.z as f32,
+            b1: n2.z as f32,
+            k: k as f32,
             solid_angle,
         })
     }
@@ -161,9 +164,8 @@ mod tests {
             let rel = (r.solid_angle() / expected - 1.0).abs();
             assert!(rel < 1e-3, "from {p}: {} vs {expected}", r.solid_angle());
         }
-        // Far and grazing (Ω ≈ 3e-5 sr, under `spherical::MIN_SOLID_ANGLE`): Ω is a small
-        // difference of angles near 2π, and f32 keeps it to about 1% only. A caller must sample
-        // such a light by area, as `area` already does for triangles below that bound.
+        // Far and grazing (Ω ≈ 3e-5 sr, under `spherical::MIN_SOLID_ANGLE`, where a caller
+        // samples by area as `area` does for triangles): still close.
         let (p, c, ex, ey) = (
             Vec3::new(5.0, 0.98, 0.0),
             cases()[0].1,
