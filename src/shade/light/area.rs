@@ -1,8 +1,11 @@
 //! Area lights: `light panel = area { mesh panel  transform { ... }  radiance 5  two_sided false
 //! samples 4 }`, and the emitters of OBJ materials with `Ke`.
 //!
-//! The triangles are kept in world space with a CDF over their areas. [`AreaLight::sample`]
-//! picks a triangle by area, then a direction towards it: uniform over the spherical triangle
+//! The triangles are kept in world space with a CDF over their areas. A light that is one
+//! rectangle (two triangles, as `quad` meshes) is sampled whole, uniformly over the spherical
+//! rectangle it subtends (`pdf = 1 / Ω`, see `spherical_rect`), when solid-angle sampling is
+//! chosen and Ω is in the safe range (`AreaLight::rect_in_range`, shared by `sample` and
+//! `pdf`). Otherwise [`AreaLight::sample`] picks a triangle by area, then a direction towards it: uniform over the spherical triangle
 //! it subtends (`pdf = pmf / Ω`, see `spherical`) when [`LightSampling::SolidAngle`] is chosen
 //! and Ω is in the safe range, else a point uniform by area (`pdf = pmf · r² / (cos θ_l · a)`).
 //! [`AreaLight::pdf`], beside it, is the solid-angle density of that same procedure at a
@@ -14,6 +17,7 @@
 use glam::{Vec2, Vec3};
 
 use super::spherical;
+use super::spherical_rect::SphericalRect;
 use crate::geom::triangle::moller_trumbore;
 use crate::geom::Ray;
 use crate::scene::LightSampling;
@@ -36,6 +40,25 @@ pub struct AreaLight {
     /// Sum of the triangles' areas.
     pub total_area: f32,
     by_area: Distribution1D,
+    /// `Some((corner, ex, ey))` when the mesh is one rectangle (two triangles), which is then
+    /// sampled whole as a spherical rectangle (see `spherical_rect`).
+    rect: Option<(Vec3, Vec3, Vec3)>,
+}
+
+/// The rectangle two triangles form, as (corner, edge, edge): they share a diagonal, face the
+/// same way, and the corners opposite it make a right-angled parallelogram.
+fn rectangle(triangles: &[[Vec3; 3]], normals: &[Vec3]) -> Option<(Vec3, Vec3, Vec3)> {
+    let ([t0, t1], [n0, n1]) = (triangles, normals) else {
+        return None;
+    };
+    let q = *t1.iter().find(|v| !t0.contains(v))?;
+    let c = *t0.iter().find(|v| !t1.contains(v))?;
+    let mut shared = t0.iter().filter(|v| t1.contains(v));
+    let (a, b) = (*shared.next()?, *shared.next()?);
+    let (ex, ey) = (a - c, b - c);
+    let tolerance = 1e-5 * ex.length() * ey.length();
+    let parallelogram = (a + b - c - q).length() <= 1e-5 * (ex.length() + ey.length());
+    (n0.dot(*n1) > 0.9999 && parallelogram && ex.dot(ey).abs() <= tolerance).then_some((c, ex, ey))
 }
 
 /// A point on an emitter and its front normal.
@@ -96,11 +119,13 @@ impl AreaLight {
         let areas: Vec<f32> = crosses.iter().map(|c| c.length() / 2.0).collect();
         let by_area = Distribution1D::new(&areas)?;
         let total_area = areas.iter().filter(|a| a.is_finite()).sum();
+        let normals: Vec<Vec3> = crosses.iter().map(|c| c.normalize_or_zero()).collect();
         Some(AreaLight {
             radiance,
             two_sided,
             samples: samples.max(1),
-            normals: crosses.iter().map(|c| c.normalize_or_zero()).collect(),
+            rect: rectangle(&triangles, &normals),
+            normals,
             triangles,
             total_area,
             by_area,
@@ -119,6 +144,9 @@ impl AreaLight {
     /// (see the module doc). `None` when it sends nothing to `p` (`p` behind a one-sided
     /// emitter, a degenerate configuration): a zero sample, no shadow ray.
     pub fn sample(&self, p: Vec3, u: Vec2, mode: LightSampling) -> Option<AreaSample> {
+        if let Some(rect) = self.rect_in_range(p, mode) {
+            return self.sample_rect(p, &rect, u);
+        }
         let (t, pmf_triangle, u0) = self.pick(u.x);
         let u = Vec2::new(u0, u.y);
         let tri = &self.triangles[t];
@@ -172,12 +200,47 @@ impl AreaLight {
     ) -> Option<f32> {
         let tri = self.triangles.get(t)?;
         let cos_light = self.emitting_cosine(t, wi)?;
+        if let Some(rect) = self.rect_in_range(p, mode) {
+            return Some(1.0 / rect.solid_angle());
+        }
         let pmf_triangle = self.triangle_pmf(t);
         if let Some(omega) = solid_angle_in_range(p, tri, mode) {
             return Some(pmf_triangle / omega);
         }
         let dist2 = (p_light - p).length_squared();
         Some(dist2 / (cos_light * self.total_area))
+    }
+
+    /// The spherical rectangle this light subtends from `p` if, under `mode`, it is sampled
+    /// whole by solid angle (a rectangle, solid angle sampling, Ω in the range where f32 is
+    /// reliable). The one rule [`AreaLight::sample`] and [`AreaLight::pdf`] share.
+    fn rect_in_range(&self, p: Vec3, mode: LightSampling) -> Option<SphericalRect> {
+        let (corner, ex, ey) = self.rect.filter(|_| mode == LightSampling::SolidAngle)?;
+        let rect = SphericalRect::new(p, corner, ex, ey)?;
+        let range = spherical::MIN_SOLID_ANGLE..=spherical::MAX_SOLID_ANGLE;
+        range.contains(&rect.solid_angle()).then_some(rect)
+    }
+
+    /// A direction uniform over the spherical rectangle `rect` (`pdf = 1 / Ω`). `None` for
+    /// the back of a one-sided emitter, or a direction that rounds off both triangles.
+    fn sample_rect(&self, p: Vec3, rect: &SphericalRect, u: Vec2) -> Option<AreaSample> {
+        if !self.two_sided && self.normals[0].dot(p - self.triangles[0][0]) <= 0.0 {
+            return None;
+        }
+        let wi = (rect.sample(u) - p).normalize_or_zero();
+        let ray = Ray::new(p, wi);
+        let (t, b) = self
+            .triangles
+            .iter()
+            .enumerate()
+            .find_map(|(t, [a, b, c])| moller_trumbore(&ray, *a, *b, *c).map(|hit| (t, hit)))?;
+        Some(AreaSample {
+            wi,
+            point: self.at_barycentrics(t, b.u, b.v),
+            triangle: t,
+            radiance: self.radiance,
+            inv_pdf_solid_angle: rect.solid_angle(),
+        })
     }
 
     /// The radiance a point of this light with unit front normal `ng` emits in direction `w`:
@@ -310,5 +373,53 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A two-triangle rectangle is recognised and sampled whole: `pdf` is `1 / Ω` of the
+    /// rectangle and agrees with every sample, whichever triangle it lands on.
+    #[test]
+    fn rectangle_is_sampled_whole_and_pdf_agrees() {
+        let (c, ex, ey) = (
+            Vec3::new(-0.3, 1.0, -0.15),
+            Vec3::new(0.6, 0.0, 0.0),
+            Vec3::new(0.0, 0.0, 0.3),
+        );
+        let (a, b, q) = (c + ex, c + ey, c + ex + ey);
+        let light =
+            AreaLight::new(Vec3::ONE, true, 1, vec![[c, a, b], [b, a, q]]).expect("has area");
+        assert!(light.rect.is_some());
+        let p = Vec3::new(0.2, 0.0, 0.1);
+        let omega = SphericalRect::new(p, c, ex, ey)
+            .expect("visible")
+            .solid_angle();
+        let mut on = [0, 0];
+        for k in 0..64 {
+            let u = Vec2::new((k as f32 + 0.5) / 64.0, (k * 37 % 64) as f32 / 64.0);
+            let s = light
+                .sample(p, u, LightSampling::SolidAngle)
+                .expect("a direction");
+            on[s.triangle] += 1;
+            assert_eq!(s.inv_pdf_solid_angle, omega);
+            let pdf = light
+                .pdf(
+                    p,
+                    s.wi,
+                    s.triangle,
+                    s.point.position,
+                    LightSampling::SolidAngle,
+                )
+                .expect("emits");
+            assert!((pdf * s.inv_pdf_solid_angle - 1.0).abs() < 1e-6);
+        }
+        assert!(on[0] > 0 && on[1] > 0, "{on:?}");
+        // Not a rectangle: a parallelogram with a 60° corner.
+        let skew = vec![
+            [c, a, c + ey + 0.2 * ex],
+            [c + ey + 0.2 * ex, a, q + 0.2 * ex],
+        ];
+        assert!(AreaLight::new(Vec3::ONE, true, 1, skew)
+            .expect("has area")
+            .rect
+            .is_none());
     }
 }

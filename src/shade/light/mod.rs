@@ -7,7 +7,8 @@
 //!
 //! One file per light type, each keeping its `sample` beside its `pdf` (pbrt's `SampleLi`
 //! beside `PDF_Li`): `point` (a delta: sample only, pdf 0), `area` (triangles by area, then by
-//! solid angle or area; the spherical-triangle maths in `spherical`), `environment` (a constant
+//! solid angle or area; the spherical-triangle maths in `spherical`, a rectangle's in
+//! `spherical_rect`), `environment` (a constant
 //! and/or the map of `env_map`). The scene build creates them; the integrator picks one with
 //! [`Lights::pick`] and calls its `sample`; MIS calls the `pdf` of what a BRDF ray reached.
 //!
@@ -21,6 +22,7 @@ pub mod env_map;
 pub mod environment;
 pub mod point;
 pub mod spherical;
+pub mod spherical_rect;
 
 pub use area::{AreaLight, AreaSample, LightPoint};
 pub use env_map::{EnvMap, EnvSample};
