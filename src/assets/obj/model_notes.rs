@@ -75,18 +75,11 @@ impl Seen {
         ));
         }
         if let Some((_, _, first)) = self.unsupported.first() {
-            let list: Vec<String> = self
-                .unsupported
-                .iter()
-                .map(|(w, n, at)| match n {
-                    1 => format!("`{w}` (line {})", at.line),
-                    _ => format!("`{w}` ({n}×, first on line {})", at.line),
-                })
-                .collect();
+            let list = super::report::unsupported_list(&self.unsupported);
             m.warnings.push(
             Note::warning(
                 Code::ObjUnsupportedStatement,
-                format!("OBJ statements scnc does not read were ignored: {}", list.join(", ")),
+                format!("OBJ statements scnc does not read were ignored: {}", list),
                 *first,
             )
             .help("scnc reads polygonal faces (v, vt, vn, f) with their materials; curves and surfaces are not tessellated"),

@@ -175,18 +175,11 @@ impl MtlReader {
         }
         self.lib.warnings.extend(self.bad);
         if let Some((_, _, first)) = self.unsupported.first() {
-            let list: Vec<String> = self
-                .unsupported
-                .iter()
-                .map(|(w, n, at)| match n {
-                    1 => format!("`{w}` (line {})", at.line),
-                    _ => format!("`{w}` ({n}×, first on line {})", at.line),
-                })
-                .collect();
+            let list = super::report::unsupported_list(&self.unsupported);
             self.lib.warnings.push(
                 Note::warning(
                     Code::ObjUnsupportedMtl,
-                    format!("MTL statements scnc does not render were ignored: {}", list.join(", ")),
+                    format!("MTL statements scnc does not render were ignored: {}", list),
                     *first,
                 )
                 .help("scnc renders Kd, Ks, Ns, Ka, Ke and their maps; transparency, refraction and mirror reflection are not modelled"),

@@ -106,6 +106,19 @@ fn note_diagnostic(
     d
 }
 
+/// The statements an OBJ or MTL file used that scnc ignores, for one warning: each keyword
+/// with its count and first line, e.g. "`s` (12×, first on line 4), `mg` (line 9)".
+pub fn unsupported_list(unsupported: &[(String, usize, Place)]) -> String {
+    unsupported
+        .iter()
+        .map(|(w, n, at)| match n {
+            1 => format!("`{w}` (line {})", at.line),
+            _ => format!("`{w}` ({n}×, first on line {})", at.line),
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
