@@ -174,7 +174,7 @@ impl TwoLevel {
                 PrimRef::new(bounds, i as u32)
             })
             .collect();
-        let top = build(refs);
+        let top = build(refs, 1);
         TwoLevel {
             meshes: bvhs,
             merged_meshes: merged_instances
@@ -299,7 +299,7 @@ impl TwoLevel {
         for m in &self.meshes {
             s.nodes += m.tree.nodes.len();
             s.leaves += leaves(&m.tree);
-            s.triangles += m.tris.len();
+            s.triangles += m.triangle_count();
             s.bytes += m.bytes();
         }
         s
