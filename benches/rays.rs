@@ -75,8 +75,10 @@ fn rnd(ray: u64, dim: u64) -> f64 {
 /// CPU clock, as Embree's harness reads it (`/proc/thread-self/schedstat` advances in
 /// scheduler ticks on some kernels, 4 ms here: 6% of a pass).
 fn thread_cpu_s(wall_start: Instant) -> f64 {
-    cpu_time::ThreadTime::try_now()
-        .map_or_else(|_| wall_start.elapsed().as_secs_f64(), |t| t.as_duration().as_secs_f64())
+    cpu_time::ThreadTime::try_now().map_or_else(
+        |_| wall_start.elapsed().as_secs_f64(),
+        |t| t.as_duration().as_secs_f64(),
+    )
 }
 
 struct Scene {

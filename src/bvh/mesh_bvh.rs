@@ -8,7 +8,7 @@ use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
 
 use super::build::{build, Built, PrimBox, PrimRef};
-use super::wide::{collapse, traverse4, Wide, WideNode, WideRay, WIDTH};
+use super::wide::{collapse, traverse4, LeafVisitor, Wide, WideNode, WideRay, WIDTH};
 use super::MeshRef;
 use crate::geom::triangle::{moller_trumbore, TriangleHit, WatertightRay};
 use crate::geom::triangle4::{any4, closest4, Tri4, LANES};
@@ -254,16 +254,13 @@ impl MeshBvh {
     #[inline]
     pub fn closest<T: TriTest>(&self, ray: &Ray, t_max: &mut f32) -> Option<MeshHit> {
         let wr = WideRay::new(ray);
-        let pre = T::prepare(ray);
-        let mut best = None;
-        traverse4(&self.tree, &wr, t_max, |first, count, t_max| {
-            if let Some((k, h)) = T::closest(&pre, t_max, self.leaf_packets(first, count)) {
-                // The slot, not the id: `ids` is read once, for the final hit only.
-                best = Some((first as usize + k, h.u, h.v));
-            }
-            false
-        });
-        best.map(|(slot, u, v)| {
+        let mut leaf = ClosestInLeaf::<T> {
+            bvh: self,
+            pre: T::prepare(ray),
+            best: None,
+        };
+        traverse4(&self.tree, &wr, t_max, &mut leaf);
+        leaf.best.map(|(slot, u, v)| {
             let (part, prim) = self.locate(self.ids[slot]);
             MeshHit { part, prim, u, v }
         })
@@ -273,11 +270,12 @@ impl MeshBvh {
     #[inline]
     pub fn any<T: TriTest>(&self, ray: &Ray, t_max: f32) -> bool {
         let wr = WideRay::new(ray);
-        let pre = T::prepare(ray);
         let mut t = t_max;
-        traverse4(&self.tree, &wr, &mut t, |first, count, t_max| {
-            T::any(&pre, *t_max, self.leaf_packets(first, count))
-        })
+        let leaf = AnyInLeaf::<T> {
+            bvh: self,
+            pre: T::prepare(ray),
+        };
+        traverse4(&self.tree, &wr, &mut t, leaf)
     }
 
     /// The packets of the leaf whose slots are `first..first + count` (`first` a multiple of 4).
@@ -285,6 +283,37 @@ impl MeshBvh {
     fn leaf_packets(&self, first: u32, count: u32) -> &[Tri4] {
         let p = first as usize / LANES;
         &self.tris[p..p + (count as usize).div_ceil(LANES)]
+    }
+}
+
+/// The closest-hit leaf test: the nearest hit so far as (slot, u, v).
+struct ClosestInLeaf<'a, T: TriTest> {
+    bvh: &'a MeshBvh,
+    pre: T::Prepared,
+    best: Option<(usize, f32, f32)>,
+}
+
+impl<T: TriTest> LeafVisitor for &mut ClosestInLeaf<'_, T> {
+    #[inline(always)]
+    fn visit(&mut self, first: u32, count: u32, t_max: &mut f32) -> bool {
+        if let Some((k, h)) = T::closest(&self.pre, t_max, self.bvh.leaf_packets(first, count)) {
+            // The slot, not the id: `ids` is read once, for the final hit only.
+            self.best = Some((first as usize + k, h.u, h.v));
+        }
+        false
+    }
+}
+
+/// The any-hit leaf test.
+struct AnyInLeaf<'a, T: TriTest> {
+    bvh: &'a MeshBvh,
+    pre: T::Prepared,
+}
+
+impl<T: TriTest> LeafVisitor for AnyInLeaf<'_, T> {
+    #[inline(always)]
+    fn visit(&mut self, first: u32, count: u32, t_max: &mut f32) -> bool {
+        T::any(&self.pre, *t_max, self.bvh.leaf_packets(first, count))
     }
 }
 

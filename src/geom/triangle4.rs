@@ -205,7 +205,13 @@ pub fn closest4(r: &WatertightRay, t_max: &mut f32, tris: &[Tri4]) -> Option<(us
 /// Whether any triangle of the packets `tris` is hit within `(0, t_max)`.
 #[inline(always)]
 pub fn any4(r: &WatertightRay, t_max: f32, tris: &[Tri4]) -> bool {
-    tris.iter().any(|tri| watertight4(r, t_max, tri).is_some())
+    // A loop, not `iter().any(..)`: the closure was left as a call inside the traversal.
+    for tri in tris {
+        if watertight4(r, t_max, tri).is_some() {
+            return true;
+        }
+    }
+    false
 }
 
 #[cfg(test)]
