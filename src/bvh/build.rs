@@ -2,8 +2,10 @@
 //! instances), output as a flat depth-first [`Node`] array plus the primitive order of the leaves.
 //!
 //! Binning: 16–32 bins over the centroid bounds per axis; the split of least
-//! `area_left · n_left + area_right · n_right` wins; a node becomes a leaf when that costs more
-//! than intersecting its primitives (and it has at most [`MAX_LEAF`]). When SAH cannot split
+//! `area_left · blocks(n_left) + area_right · blocks(n_right)` wins, where `blocks(n)` counts the
+//! groups of `block` primitives a leaf tests at once (4 for triangles, which the leaves test four
+//! at a time; 1 for instances); a node becomes a leaf when that costs more than intersecting its
+//! primitives (and it has at most [`MAX_LEAF`]). When SAH cannot split
 //! (all centroids equal, non-finite areas, or below a depth bound) an object-median split on the
 //! widest centroid axis takes over, so construction always terminates with bounded depth.
 //!
@@ -84,7 +86,8 @@ const SAH_MAX_DEPTH: usize = MAX_DEPTH - 34;
 /// Cost of one traversal step relative to one primitive test.
 const TRAVERSAL_COST: f32 = 1.0;
 
-/// Builds a BVH over `refs`; the leaf order names their ids.
+/// Builds a BVH over `refs`; the leaf order names their ids. `block` is how many primitives a
+/// leaf test handles at once (its cost counts in blocks: 4 triangles cost what 1 does).
 ///
 /// The nodes go into one zero-initialised array with room for the largest possible tree
 /// (`2n − 1` nodes; fresh zero pages from the operating system, committed only when written).
@@ -93,12 +96,12 @@ const TRAVERSAL_COST: f32 = 1.0;
 /// layout whatever the number of threads. Unused slots (gaps after parallel subtrees that came
 /// out smaller than their bound) are never linked to and, being whole untouched pages mostly,
 /// cost address space rather than memory.
-pub fn build(mut refs: Vec<PrimRef>) -> Built {
+pub fn build(mut refs: Vec<PrimRef>, block: u32) -> Built {
     if refs.is_empty() {
         return Built::default();
     }
     let mut nodes: Vec<Node> = bytemuck::zeroed_vec(slots_for(refs.len()));
-    let used = build_node(&mut refs, 0, 0, &mut nodes, 0);
+    let used = build_node(&mut refs, 0, 0, &mut nodes, 0, block);
     nodes.truncate(used);
     Built {
         nodes,
@@ -166,7 +169,13 @@ fn bin_of(c: Vec3A, axis: usize, clo: Vec3A, scale: Vec3A, bins: usize) -> usize
     (((c[axis] - clo[axis]) * scale[axis]) as usize).min(bins - 1)
 }
 
-fn find_sah_split(refs: &[PrimRef], clo: Vec3A, chi: Vec3A) -> Option<Split> {
+/// Leaf-test cost of `n` primitives tested `block` at a time.
+#[inline]
+fn blocks(n: u32, block: u32) -> f32 {
+    n.div_ceil(block) as f32
+}
+
+fn find_sah_split(refs: &[PrimRef], clo: Vec3A, chi: Vec3A, block: u32) -> Option<Split> {
     let bins = if refs.len() < 256 { 16 } else { MAX_BINS };
     let extent = chi - clo;
     let scale = Vec3A::splat(bins as f32 * (1.0 - 1e-6)) / extent;
@@ -196,7 +205,7 @@ fn find_sah_split(refs: &[PrimRef], clo: Vec3A, chi: Vec3A) -> Option<Split> {
             right_cost[i] = if n == 0 {
                 f32::INFINITY
             } else {
-                half_area(lo, hi) * n as f32
+                half_area(lo, hi) * blocks(n, block)
             };
         }
         let (mut lo, mut hi, mut n) = (EMPTY_BIN.min, EMPTY_BIN.max, 0u32);
@@ -207,7 +216,7 @@ fn find_sah_split(refs: &[PrimRef], clo: Vec3A, chi: Vec3A) -> Option<Split> {
             if n == 0 {
                 continue;
             }
-            let cost = half_area(lo, hi) * n as f32 + right_cost[i];
+            let cost = half_area(lo, hi) * blocks(n, block) + right_cost[i];
             if cost < best.as_ref().map_or(f32::INFINITY, |s| s.cost) {
                 best = Some(Split { axis, bin: i, cost });
             }
@@ -246,7 +255,14 @@ fn partition(refs: &mut [PrimRef], mut goes_left: impl FnMut(&PrimRef) -> bool) 
 /// Builds the subtree over `refs` (which sit at `base` in the final order) into `out`, whose
 /// first slot is node `at` of the whole array and which has room for `slots_for(refs.len())`
 /// nodes. Returns how many slots from the start of `out` the subtree spans.
-fn build_node(refs: &mut [PrimRef], base: u32, depth: usize, out: &mut [Node], at: u32) -> usize {
+fn build_node(
+    refs: &mut [PrimRef],
+    base: u32,
+    depth: usize,
+    out: &mut [Node],
+    at: u32,
+    block: u32,
+) -> usize {
     let n = refs.len();
     let (lo, hi, clo, chi) = bounds_of(refs);
     let bounds = to_aabb(lo, hi);
@@ -255,11 +271,11 @@ fn build_node(refs: &mut [PrimRef], base: u32, depth: usize, out: &mut [Node], a
         return 1;
     }
     let sah = if depth < SAH_MAX_DEPTH {
-        find_sah_split(refs, clo, chi)
+        find_sah_split(refs, clo, chi, block)
     } else {
         None
     };
-    let leaf_cost = n as f32;
+    let leaf_cost = blocks(n as u32, block);
     let split_cost = sah
         .as_ref()
         .map(|s| TRAVERSAL_COST + s.cost / half_area(lo, hi));
@@ -294,7 +310,7 @@ fn build_node(refs: &mut [PrimRef], base: u32, depth: usize, out: &mut [Node], a
         let right_start = 1 + slots_for(mid);
         let (left_out, right_out) = rest.split_at_mut(right_start - 1);
         let (_, right_used) = rayon::join(
-            || build_node(left, base, depth + 1, left_out, at + 1),
+            || build_node(left, base, depth + 1, left_out, at + 1, block),
             || {
                 build_node(
                     right,
@@ -302,12 +318,13 @@ fn build_node(refs: &mut [PrimRef], base: u32, depth: usize, out: &mut [Node], a
                     depth + 1,
                     right_out,
                     at + right_start as u32,
+                    block,
                 )
             },
         );
         (right_start, right_used)
     } else {
-        let left_used = build_node(left, base, depth + 1, rest, at + 1);
+        let left_used = build_node(left, base, depth + 1, rest, at + 1, block);
         let right_start = 1 + left_used;
         let right_out = &mut rest[left_used..];
         let right_used = build_node(
@@ -316,6 +333,7 @@ fn build_node(refs: &mut [PrimRef], base: u32, depth: usize, out: &mut [Node], a
             depth + 1,
             right_out,
             at + right_start as u32,
+            block,
         );
         (right_start, right_used)
     };

@@ -13,26 +13,30 @@ use super::node::{MAX_DEPTH, MAX_LEAF};
 use super::two_level::TwoLevel;
 use super::wide::{Wide, STACK_MAX, WIDTH};
 use super::MeshRef;
+use crate::geom::triangle4::LANES;
 use crate::geom::Aabb;
 
 /// Checks one wide hierarchy whose leaves refer to `slots` primitive slots; `prim_bounds(k)`
-/// gives the bounds of the primitive in slot `k`.
+/// gives the bounds of the primitive in slot `k`, `None` for a padding slot, which no leaf may
+/// hold.
 fn check_nodes(
     what: &str,
     w: &Wide,
     slots: usize,
-    prim_bounds: impl Fn(usize) -> Aabb,
+    prim_bounds: impl Fn(usize) -> Option<Aabb>,
 ) -> Result<(), String> {
-    let mut slot_seen = vec![false; slots];
+    let mut slot_seen: Vec<bool> = (0..slots).map(|k| prim_bounds(k).is_none()).collect();
     let mut leaf = |first: usize, count: usize, b: &Aabb| -> Result<(), String> {
         if count == 0 || count > MAX_LEAF as usize || first + count > slots {
             return Err(format!("{what}: leaf holds {first}+{count} of {slots}"));
         }
         for (k, seen) in slot_seen.iter_mut().enumerate().skip(first).take(count) {
             if std::mem::replace(seen, true) {
-                return Err(format!("{what}: primitive slot {k} in two leaves"));
+                return Err(format!(
+                    "{what}: primitive slot {k} in two leaves, or a padding slot in one"
+                ));
             }
-            if !b.contains(&prim_bounds(k)) {
+            if !prim_bounds(k).is_some_and(|p| b.contains(&p)) {
                 return Err(format!("{what}: a leaf does not contain primitive {k}"));
             }
         }
@@ -101,8 +105,17 @@ fn check_permutation(what: &str, order: &[u32], n: usize) -> Result<(), String> 
 /// Checks a bottom-level BVH against the meshes (parts) it was built from.
 pub fn check_mesh(bvh: &MeshBvh, parts: &[MeshRef<'_>], what: &str) -> Result<(), String> {
     let total: usize = parts.iter().map(|m| m.triangles.len()).sum();
-    check_permutation(what, &bvh.ids, total)?;
-    if bvh.ids.len() != bvh.tris.len() || bvh.part_starts.len() != parts.len() {
+    let held: Vec<u32> = bvh
+        .ids
+        .iter()
+        .copied()
+        .filter(|&id| id != u32::MAX)
+        .collect();
+    check_permutation(what, &held, total)?;
+    if bvh.ids.len() != bvh.tris.len() * LANES
+        || held.len() != bvh.triangle_count()
+        || bvh.part_starts.len() != parts.len()
+    {
         return Err(format!("{what}: array lengths disagree"));
     }
     let mut valid = 0;
@@ -119,24 +132,29 @@ pub fn check_mesh(bvh: &MeshBvh, parts: &[MeshRef<'_>], what: &str) -> Result<()
             .count();
     }
     // Every triangle with valid vertices must be in the tree, and only those.
-    if valid != bvh.ids.len() {
-        return Err(format!(
-            "{what}: {} of {valid} valid triangles",
-            bvh.ids.len()
-        ));
+    if valid != held.len() {
+        return Err(format!("{what}: {} of {valid} valid triangles", held.len()));
     }
     for (k, &id) in bvh.ids.iter().enumerate() {
+        let stored = bvh.slot_triangle(k).map(|t| t.map(Vec3::from));
+        if id == u32::MAX {
+            if stored.is_some() {
+                return Err(format!("{what}: padding slot {k} holds a triangle"));
+            }
+            continue;
+        }
         let (part, prim) = bvh.locate(id);
         let mesh = &parts[part as usize];
         let t = &mesh.triangles[prim as usize];
-        if triangle_vertices(mesh, t) != Some(bvh.tris[k].map(Vec3::from)) {
+        if triangle_vertices(mesh, t) != stored {
             return Err(format!(
                 "{what}: slot {k} does not hold triangle {prim} of part {part}"
             ));
         }
     }
-    check_nodes(what, &bvh.tree, bvh.tris.len(), |k| {
-        Aabb::from_points(&bvh.tris[k].map(Vec3::from))
+    check_nodes(what, &bvh.tree, bvh.ids.len(), |k| {
+        bvh.slot_triangle(k)
+            .map(|t| Aabb::from_points(&t.map(Vec3::from)))
     })
 }
 
@@ -163,6 +181,6 @@ pub fn check_two_level(t: &TwoLevel, meshes: &[MeshRef<'_>]) -> Result<(), Strin
         return Err("top level: not every instance is in the tree".to_string());
     }
     check_nodes("top level", &t.top, t.top_order.len(), |k| {
-        t.placed[t.top_order[k] as usize].world_bounds
+        Some(t.placed[t.top_order[k] as usize].world_bounds)
     })
 }

@@ -1,15 +1,24 @@
 //! The bottom level: one BVH per mesh, in the mesh's object space, with the triangles' vertices
-//! copied in leaf order (48 bytes each, aligned, read sequentially by a leaf) beside their
-//! original indices. Triangles with a non-finite vertex or an out-of-range index are left out at build.
+//! copied in leaf order into packets of four (structure of arrays, 144 bytes per packet, read
+//! sequentially by a leaf and tested four at a time) beside their original indices. Each leaf
+//! starts a new packet; the build's cost model counts leaf tests in packets, so leaves fill them.
+//! Triangles with a non-finite vertex or an out-of-range index are left out at build.
 
 use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
 
 use super::build::{build, Built, PrimBox, PrimRef};
-use super::wide::{collapse, traverse4, Wide, WideNode, WideRay};
+use super::wide::{collapse, traverse4, LeafVisitor, Wide, WideNode, WideRay, WIDTH};
 use super::MeshRef;
-use crate::geom::triangle::{moller_trumbore, watertight_a, TriangleHit, WatertightRay};
+use crate::geom::triangle::{moller_trumbore, TriangleHit, WatertightRay};
+use crate::geom::triangle4::{any4, closest4, Tri4, LANES};
 use crate::geom::{Aabb, Ray};
+
+/// Triangles a leaf test handles at once (the packet width), for the build's cost model.
+const TRI_BLOCK: u32 = LANES as u32;
+
+/// A slot of the leaf order that holds no triangle (the padding of a leaf's last packet).
+const NO_TRIANGLE: u32 = u32::MAX;
 
 /// The two ray–triangle tests, chosen once per query so each traversal loop is monomorphic
 /// (a private trait for static dispatch; the public choice is the `TriangleTest` enum).
@@ -18,13 +27,21 @@ pub trait TriTest {
     type Prepared: Copy;
     /// Computes the per-ray constants of `ray`.
     fn prepare(ray: &Ray) -> Self::Prepared;
-    /// The hit on `tri` with `0 < t < t_max`, if any.
-    fn test(pre: &Self::Prepared, t_max: f32, tri: &Tri) -> Option<TriangleHit>;
+    /// The closest hit in the packets `tris` with `0 < t < *t_max`, as testing their triangles
+    /// one by one in order (a later hit kept only if strictly nearer); shrinks `*t_max`.
+    /// Returns the hit's slot within `tris` (packet · 4 + lane).
+    fn closest(
+        pre: &Self::Prepared,
+        t_max: &mut f32,
+        tris: &[Tri4],
+    ) -> Option<(usize, TriangleHit)>;
+    /// Whether any triangle of the packets `tris` is hit with `0 < t < t_max`.
+    fn any(pre: &Self::Prepared, t_max: f32, tris: &[Tri4]) -> bool;
 }
 
-/// [`TriTest`] running [`moller_trumbore`].
+/// [`TriTest`] running [`moller_trumbore`], one triangle at a time.
 pub struct MollerTrumbore;
-/// [`TriTest`] running the watertight test ([`watertight_a`]).
+/// [`TriTest`] running the watertight test, four triangles at a time ([`closest4`]).
 pub struct Watertight;
 
 impl TriTest for MollerTrumbore {
@@ -34,13 +51,35 @@ impl TriTest for MollerTrumbore {
         *ray
     }
     #[inline(always)]
-    fn test(ray: &Ray, t_max: f32, [p0, p1, p2]: &Tri) -> Option<TriangleHit> {
-        moller_trumbore(
-            &Ray { t_max, ..*ray },
-            (*p0).into(),
-            (*p1).into(),
-            (*p2).into(),
-        )
+    fn closest(ray: &Ray, t_max: &mut f32, tris: &[Tri4]) -> Option<(usize, TriangleHit)> {
+        let mut best = None;
+        for (p, packet) in tris.iter().enumerate() {
+            for lane in 0..LANES {
+                let Some([p0, p1, p2]) = packet.get(lane) else {
+                    continue;
+                };
+                let r = Ray {
+                    t_max: *t_max,
+                    ..*ray
+                };
+                if let Some(h) = moller_trumbore(&r, p0.into(), p1.into(), p2.into()) {
+                    *t_max = h.t;
+                    best = Some((p * LANES + lane, h));
+                }
+            }
+        }
+        best
+    }
+    #[inline(always)]
+    fn any(ray: &Ray, t_max: f32, tris: &[Tri4]) -> bool {
+        let r = Ray { t_max, ..*ray };
+        tris.iter().any(|packet| {
+            (0..LANES).any(|lane| {
+                packet.get(lane).is_some_and(|[p0, p1, p2]| {
+                    moller_trumbore(&r, p0.into(), p1.into(), p2.into()).is_some()
+                })
+            })
+        })
     }
 }
 
@@ -51,14 +90,16 @@ impl TriTest for Watertight {
         WatertightRay::new(ray)
     }
     #[inline(always)]
-    fn test(ray: &WatertightRay, t_max: f32, [p0, p1, p2]: &Tri) -> Option<TriangleHit> {
-        let mut r = *ray;
-        r.t_max = t_max;
-        watertight_a(&r, *p0, *p1, *p2)
+    fn closest(r: &WatertightRay, t_max: &mut f32, tris: &[Tri4]) -> Option<(usize, TriangleHit)> {
+        closest4(r, t_max, tris)
+    }
+    #[inline(always)]
+    fn any(r: &WatertightRay, t_max: f32, tris: &[Tri4]) -> bool {
+        any4(r, t_max, tris)
     }
 }
 
-/// A triangle's vertices as stored in leaf order: 16-byte aligned for single-load SIMD use.
+/// A triangle's vertices: 16-byte aligned for single-load SIMD use.
 pub type Tri = [Vec3A; 3];
 
 /// A closest hit inside one bottom-level BVH: triangle `prim` of its mesh number `part`.
@@ -77,13 +118,18 @@ pub struct MeshHit {
 /// A bottom-level BVH over the triangles of one or more meshes, in their object space.
 #[derive(Debug, Default)]
 pub struct MeshBvh {
+    /// The tree; a leaf's `child` is its first slot (a multiple of 4), its `count` the number
+    /// of triangles, which fill its packets from the first lane.
     pub(super) tree: Wide,
-    /// Vertices of the leaf-ordered triangles.
-    pub(super) tris: Vec<Tri>,
-    /// `ids[k]`: which triangle `tris[k]` is, numbered across the parts in order.
+    /// The leaf-ordered triangles, four per packet (slot `k` is lane `k % 4` of packet `k / 4`).
+    pub(super) tris: Vec<Tri4>,
+    /// `ids[k]`: which triangle slot `k` holds, numbered across the parts in order;
+    /// `NO_TRIANGLE` for the padding after a leaf's last triangle.
     pub(super) ids: Vec<u32>,
     /// Where each part's numbering starts (one entry per part, ascending).
     pub(super) part_starts: Vec<u32>,
+    /// Triangles held (slots that are not padding).
+    pub(super) triangle_count: usize,
 }
 
 /// The vertices of triangle `t`, or `None` if an index is out of range or a vertex not finite.
@@ -135,25 +181,46 @@ impl MeshBvh {
                 id += 1;
             }
         }
-        let Built { nodes, order } = build(refs);
-        let tree = collapse(&nodes);
+        let Built { nodes, order } = build(refs, TRI_BLOCK);
+        let mut tree = collapse(&nodes);
         drop(nodes);
+        let triangle_count = order.len();
+        let ids = pack_leaves(&mut tree, &order);
+        drop(order);
         let mut bvh = MeshBvh {
             tree,
             tris: Vec::new(),
-            ids: order,
+            ids,
             part_starts,
+            triangle_count,
         };
         bvh.tris = bvh
             .ids
-            .par_iter()
-            .map(|&id| {
-                let (part, prim) = bvh.locate(id);
-                let mesh = &parts[part as usize];
-                builder_vertices(mesh, &mesh.triangles[prim as usize]).map(Vec3A::from)
+            .par_chunks(LANES)
+            .map(|lanes| {
+                let mut packet = Tri4::EMPTY;
+                for (lane, &id) in lanes.iter().enumerate() {
+                    if id != NO_TRIANGLE {
+                        let (part, prim) = bvh.locate(id);
+                        let mesh = &parts[part as usize];
+                        let tri = builder_vertices(mesh, &mesh.triangles[prim as usize]);
+                        packet.set(lane, tri.map(Vec3A::from));
+                    }
+                }
+                packet
             })
             .collect();
         bvh
+    }
+
+    /// The triangle in slot `k`, `None` for padding.
+    pub(super) fn slot_triangle(&self, k: usize) -> Option<Tri> {
+        self.tris.get(k / LANES)?.get(k % LANES)
+    }
+
+    /// Triangles it holds.
+    pub fn triangle_count(&self) -> usize {
+        self.triangle_count
     }
 
     /// The part and the triangle within it of global id `id`.
@@ -167,7 +234,7 @@ impl MeshBvh {
 
     /// Whether it holds no triangle (there were none, or none was valid).
     pub fn is_empty(&self) -> bool {
-        self.tris.is_empty()
+        self.triangle_count == 0
     }
 
     /// Bounds of its triangles, object space; empty when it holds none.
@@ -178,7 +245,7 @@ impl MeshBvh {
     /// Memory it holds, in bytes, for `--stats`.
     pub fn bytes(&self) -> usize {
         self.tree.nodes.len() * std::mem::size_of::<WideNode>()
-            + self.tris.len() * std::mem::size_of::<Tri>()
+            + self.tris.len() * std::mem::size_of::<Tri4>()
             + self.ids.len() * 4
             + self.part_starts.len() * 4
     }
@@ -187,20 +254,13 @@ impl MeshBvh {
     #[inline]
     pub fn closest<T: TriTest>(&self, ray: &Ray, t_max: &mut f32) -> Option<MeshHit> {
         let wr = WideRay::new(ray);
-        let pre = T::prepare(ray);
-        let mut best = None;
-        traverse4(&self.tree, &wr, t_max, |first, count, t_max| {
-            let range = first as usize..(first + count) as usize;
-            for (k, tri) in self.tris[range.clone()].iter().enumerate() {
-                if let Some(h) = T::test(&pre, *t_max, tri) {
-                    *t_max = h.t;
-                    // The slot, not the id: `ids` is read once, for the final hit only.
-                    best = Some((range.start + k, h.u, h.v));
-                }
-            }
-            false
-        });
-        best.map(|(slot, u, v)| {
+        let mut leaf = ClosestInLeaf::<T> {
+            bvh: self,
+            pre: T::prepare(ray),
+            best: None,
+        };
+        traverse4(&self.tree, &wr, t_max, &mut leaf);
+        leaf.best.map(|(slot, u, v)| {
             let (part, prim) = self.locate(self.ids[slot]);
             MeshHit { part, prim, u, v }
         })
@@ -210,13 +270,80 @@ impl MeshBvh {
     #[inline]
     pub fn any<T: TriTest>(&self, ray: &Ray, t_max: f32) -> bool {
         let wr = WideRay::new(ray);
-        let pre = T::prepare(ray);
         let mut t = t_max;
-        traverse4(&self.tree, &wr, &mut t, |first, count, t_max| {
-            let range = first as usize..(first + count) as usize;
-            self.tris[range]
-                .iter()
-                .any(|tri| T::test(&pre, *t_max, tri).is_some())
-        })
+        let leaf = AnyInLeaf::<T> {
+            bvh: self,
+            pre: T::prepare(ray),
+        };
+        traverse4(&self.tree, &wr, &mut t, leaf)
     }
+
+    /// The packets of the leaf whose slots are `first..first + count` (`first` a multiple of 4).
+    #[inline(always)]
+    fn leaf_packets(&self, first: u32, count: u32) -> &[Tri4] {
+        let p = first as usize / LANES;
+        &self.tris[p..p + (count as usize).div_ceil(LANES)]
+    }
+}
+
+/// The closest-hit leaf test: the nearest hit so far as (slot, u, v).
+struct ClosestInLeaf<'a, T: TriTest> {
+    bvh: &'a MeshBvh,
+    pre: T::Prepared,
+    best: Option<(usize, f32, f32)>,
+}
+
+impl<T: TriTest> LeafVisitor for &mut ClosestInLeaf<'_, T> {
+    #[inline(always)]
+    fn visit(&mut self, first: u32, count: u32, t_max: &mut f32) -> bool {
+        if let Some((k, h)) = T::closest(&self.pre, t_max, self.bvh.leaf_packets(first, count)) {
+            // The slot, not the id: `ids` is read once, for the final hit only.
+            self.best = Some((first as usize + k, h.u, h.v));
+        }
+        false
+    }
+}
+
+/// The any-hit leaf test.
+struct AnyInLeaf<'a, T: TriTest> {
+    bvh: &'a MeshBvh,
+    pre: T::Prepared,
+}
+
+impl<T: TriTest> LeafVisitor for AnyInLeaf<'_, T> {
+    #[inline(always)]
+    fn visit(&mut self, first: u32, count: u32, t_max: &mut f32) -> bool {
+        T::any(&self.pre, *t_max, self.bvh.leaf_packets(first, count))
+    }
+}
+
+/// Gives every leaf of `tree` its own packets: the leaf's triangles (from the build's `order`)
+/// at the next multiple-of-four slot, padded with [`NO_TRIANGLE`] to the packet's end, and the
+/// leaf's `child` re-pointed there. Returns the ids of all slots.
+fn pack_leaves(tree: &mut Wide, order: &[u32]) -> Vec<u32> {
+    let mut ids = Vec::with_capacity(order.len() + order.len() / 2);
+    let mut place = |first: &mut u32, count: u32| {
+        let start = ids.len();
+        let range = *first as usize..(*first + count) as usize;
+        ids.extend_from_slice(&order[range]);
+        ids.resize(
+            start + (count as usize).div_ceil(LANES) * LANES,
+            NO_TRIANGLE,
+        );
+        *first = start as u32;
+    };
+    if tree.nodes.is_empty() {
+        if tree.root_count > 0 {
+            place(&mut tree.root_first, tree.root_count);
+        }
+    } else {
+        for node in &mut tree.nodes {
+            for k in 0..WIDTH {
+                if node.count[k] > 0 {
+                    place(&mut node.child[k], node.count[k]);
+                }
+            }
+        }
+    }
+    ids
 }

@@ -234,7 +234,7 @@ fn build_is_the_same_whatever_the_thread_count() {
                 Accel::Bvh(b) => {
                     // One identity instance: its mesh is the merged group, the last BVH.
                     let m = b.meshes.last().expect("the merged group always exists");
-                    assert_eq!(m.ids.len(), 40_000);
+                    assert_eq!(m.triangle_count(), 40_000);
                     (m.tree.nodes.clone(), m.ids.clone())
                 }
                 Accel::None(_) => unreachable!("asked for a BVH"),

@@ -174,7 +174,7 @@ impl TwoLevel {
                 PrimRef::new(bounds, i as u32)
             })
             .collect();
-        let top = build(refs);
+        let top = build(refs, 1);
         TwoLevel {
             meshes: bvhs,
             merged_meshes: merged_instances
@@ -228,14 +228,19 @@ impl TwoLevel {
         }
         let wr = WideRay::new(ray);
         let mut best = None;
-        traverse4(&self.top, &wr, &mut t_max, |first, count, t_max| {
-            for &k in &self.top_order[first as usize..(first + count) as usize] {
-                if let Some(h) = self.closest_in::<T>(&self.placed[k as usize], ray, t_max) {
-                    best = Some(h);
+        traverse4(
+            &self.top,
+            &wr,
+            &mut t_max,
+            |first: u32, count: u32, t_max: &mut f32| {
+                for &k in &self.top_order[first as usize..(first + count) as usize] {
+                    if let Some(h) = self.closest_in::<T>(&self.placed[k as usize], ray, t_max) {
+                        best = Some(h);
+                    }
                 }
-            }
-            false
-        });
+                false
+            },
+        );
         best
     }
 
@@ -248,11 +253,16 @@ impl TwoLevel {
         }
         let wr = WideRay::new(ray);
         let mut t_max = ray.t_max;
-        traverse4(&self.top, &wr, &mut t_max, |first, count, t_max| {
-            self.top_order[first as usize..(first + count) as usize]
-                .iter()
-                .any(|&k| any_in(&self.placed[k as usize], *t_max))
-        })
+        traverse4(
+            &self.top,
+            &wr,
+            &mut t_max,
+            |first: u32, count: u32, t_max: &mut f32| {
+                self.top_order[first as usize..(first + count) as usize]
+                    .iter()
+                    .any(|&k| any_in(&self.placed[k as usize], *t_max))
+            },
+        )
     }
 
     /// The nearest hit along `ray` before its `t_max` (none for a non-finite ray).
@@ -299,7 +309,7 @@ impl TwoLevel {
         for m in &self.meshes {
             s.nodes += m.tree.nodes.len();
             s.leaves += leaves(&m.tree);
-            s.triangles += m.tris.len();
+            s.triangles += m.triangle_count();
             s.bytes += m.bytes();
         }
         s

@@ -4,6 +4,7 @@
 mod aabb;
 mod ray;
 pub mod triangle;
+pub mod triangle4;
 
 pub use aabb::Aabb;
 pub use ray::Ray;

@@ -65,9 +65,14 @@ pub struct WatertightRay {
     /// The ray's `t_max`, in multiples of its `dir`.
     pub t_max: f32,
     shear: Mat3A,
+    /// `kx`, `ky`, `kz`: which axes become the sheared x, y and z (for the four-wide test,
+    /// which permutes rows instead of multiplying by `shear`).
+    pub(crate) axes: [usize; 3],
+    /// `Sx`, `Sy`, `Sz` of the paper (the entries of `shear` that are not 0 or 1).
+    pub(crate) shear_factors: [f32; 3],
     /// `|dir|`, exactly 1 for (nearly) unit directions: turns the sheared `z` (in units of
     /// `t`) back into a length for the error bound of the sheared `x` and `y`.
-    dir_length: f32,
+    pub(crate) dir_length: f32,
 }
 
 impl WatertightRay {
@@ -112,6 +117,8 @@ impl WatertightRay {
             origin: ray.origin.into(),
             t_max: ray.t_max,
             shear: Mat3A::from_cols(rows[0], rows[1], rows[2]).transpose(),
+            axes: [kx, ky, kz],
+            shear_factors: [sx, sy, sz],
             dir_length,
         }
     }
@@ -203,7 +210,7 @@ pub fn watertight_a(r: &WatertightRay, p0: Vec3A, p1: Vec3A, p2: Vec3A) -> Optio
 
 /// The bound `n·ε / (1 − n·ε)` on the relative error of `n` rounded float operations.
 #[inline(always)]
-fn gamma(n: u32) -> f32 {
+pub(crate) fn gamma(n: u32) -> f32 {
     let e = n as f32 * (f32::EPSILON * 0.5);
     e / (1.0 - e)
 }
