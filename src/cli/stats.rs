@@ -43,11 +43,14 @@ impl PhaseStats {
         );
         let _ = writeln!(
             s,
-            "rays           {} camera, {} shadow, {} total, {:.2} Mrays/s",
+            "rays           {} camera, {} shadow, {} BRDF, {} total, {:.2} Mrays/s; {} BRDF \
+             directions not traced (they miss every light)",
             render.camera_rays,
             render.shadow_rays,
+            render.brdf_rays,
             render.rays(),
-            render.mrays_per_sec()
+            render.mrays_per_sec(),
+            render.counts.brdf_skipped
         );
         let _ = writeln!(
             s,

@@ -55,6 +55,8 @@ pub struct RayCounts {
     pub shadow: u64,
     /// BRDF-sampled rays looking for emitters and the sky (closest-hit).
     pub brdf: u64,
+    /// BRDF-sampled directions not traced: no sky, and they miss every emitter's box.
+    pub brdf_skipped: u64,
     /// Shading points whose material looked up a texture.
     pub textured: u64,
     /// Shading points that evaluated a specular lobe.
@@ -74,6 +76,7 @@ impl RayCounts {
         self.camera += o.camera;
         self.shadow += o.shadow;
         self.brdf += o.brdf;
+        self.brdf_skipped += o.brdf_skipped;
         self.textured += o.textured;
         self.specular += o.specular;
         self.environment += o.environment;

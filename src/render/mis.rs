@@ -107,8 +107,13 @@ impl Shading<'_> {
             if pdf <= 0.0 {
                 continue;
             }
-            counts.brdf += 1;
             let origin = self.hit.ray_origin(self.ng, wi);
+            if env.is_none() && !lights.may_reach_emitter(origin, wi) {
+                // Nothing it could hit emits, and there is no sky: it adds exactly nothing.
+                counts.brdf_skipped += 1;
+                continue;
+            }
+            counts.brdf += 1;
             let ray = Ray::new(origin, wi);
             let hit = self.scene.accel.as_ref().and_then(|a| a.closest_hit(&ray));
             let (radiance, light_density) = match hit {

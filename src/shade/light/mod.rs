@@ -18,6 +18,7 @@
 //! `lights.len()`), with the power estimate of [`Environment::power`].
 
 pub mod area;
+pub mod emitter_bounds;
 pub mod env_map;
 pub mod environment;
 pub mod point;
@@ -25,9 +26,12 @@ pub mod spherical;
 pub mod spherical_rect;
 
 pub use area::{AreaLight, AreaSample, LightPoint};
+pub use emitter_bounds::EmitterBounds;
 pub use env_map::{EnvMap, EnvSample};
 pub use environment::Environment;
 pub use point::{PointLight, PointSample};
+
+use glam::Vec3;
 
 use crate::shade::distribution::Distribution1D;
 
@@ -54,6 +58,8 @@ pub struct Lights {
     environment_in_table: bool,
     /// Whether any light is an area light.
     has_emitters: bool,
+    /// The area lights' boxes, for skipping BRDF-sampled rays that cannot reach one.
+    emitter_bounds: EmitterBounds,
 }
 
 /// What [`Lights::pick`] chose.
@@ -84,6 +90,7 @@ impl Lights {
         Lights {
             by_power: Distribution1D::new(&powers),
             has_emitters: lights.iter().any(|l| matches!(l, Light::Area(_))),
+            emitter_bounds: EmitterBounds::new(&lights),
             lights,
             environment,
             environment_in_table: env_power.is_some(),
@@ -103,6 +110,12 @@ impl Lights {
     /// Whether any light is an area light (something a BRDF-sampled ray can hit).
     pub fn has_emitters(&self) -> bool {
         self.has_emitters
+    }
+
+    /// Whether a ray from `origin` along `dir` may hit an area light (`false` only when it
+    /// misses all their boxes; see [`EmitterBounds`]).
+    pub fn may_reach_emitter(&self, origin: Vec3, dir: Vec3) -> bool {
+        self.emitter_bounds.may_reach(origin, dir)
     }
 
     /// The probability that [`Lights::pick`] chooses `lights[i]`.
