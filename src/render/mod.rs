@@ -147,12 +147,14 @@ pub fn render_window(
     let side = pattern::side_for(settings.samples_per_pixel);
     let offsets = pattern::offsets(side, settings.pattern);
     let batch_offsets = pattern::offsets(estimate::BATCH_SIDE, settings.pattern);
+    let first_offsets = pattern::offsets(estimate::FIRST_BATCH_SIDE, settings.pattern);
     let max_samples = settings
         .max_samples
         .unwrap_or(crate::ir::DEFAULT_MAX_SAMPLES);
     let adaptive = settings.noise.map(|target| Adaptive {
         target: target as f64,
-        batches: estimate::batches_for(max_samples),
+        batch_sizes: estimate::batch_sizes(max_samples),
+        first_offsets: &first_offsets,
         offsets: &batch_offsets,
     });
     let job = Job {
@@ -195,8 +197,11 @@ fn tiles(window: PixelWindow) -> Vec<Tile> {
 /// Adaptive sampling's settings for the pixel loop.
 struct Adaptive<'a> {
     target: f64,
-    batches: u32,
-    /// One batch's sub-pixel positions (a 4×4 pattern).
+    /// Samples of each batch, in order (`estimate::batch_sizes`).
+    batch_sizes: Vec<u32>,
+    /// A first batch's sub-pixel positions (a 2×2 pattern).
+    first_offsets: &'a [Vec2],
+    /// A later batch's sub-pixel positions (a 4×4 pattern).
     offsets: &'a [Vec2],
 }
 
@@ -257,7 +262,7 @@ impl Job<'_> {
             max_samples: self
                 .adaptive
                 .as_ref()
-                .map_or(side * side, |a| a.batches * estimate::BATCH),
+                .map_or(side * side, |a| a.batch_sizes.iter().sum()),
             ..NoiseStats::default()
         };
         for (tile, result) in tiles.iter().zip(results) {
@@ -315,12 +320,15 @@ impl Job<'_> {
             return acc.finish(self.offsets.len() as u32, false);
         };
         let mut taken = 0;
-        for b in 0..a.batches {
+        for (b, &size) in a.batch_sizes.iter().enumerate() {
+            let full = size == estimate::BATCH;
+            let offsets = if full { a.offsets } else { a.first_offsets };
             // Textures are filtered for the samples the pixel will have by this batch's end.
-            let scale = footprint_scale(taken + a.offsets.len() as u32);
-            self.batch(x, y, b, (a.offsets, scale), &mut acc, counts);
-            taken += a.offsets.len() as u32;
-            if b + 1 >= estimate::MIN_BATCHES && acc.relative_error() <= a.target {
+            let scale = footprint_scale(taken + size);
+            self.batch(x, y, b as u32, (offsets, scale), &mut acc, counts);
+            acc.end_batch(size);
+            taken += size;
+            if b + 1 >= estimate::FIRST_BATCHES as usize && acc.relative_error() <= a.target {
                 return acc.finish(taken, false);
             }
         }
