@@ -1,7 +1,7 @@
 //! Front-end benchmark (a program, not a test): `cargo bench --bench frontend`.
 //!
-//! Generates in memory the statement-dense scene of issue 22 (~10 MB: 100,000 objects with a
-//! rotate and a translate, 20,000 materials, groups 4 deep, long transform chains;
+//! Generates in memory the statement-dense scene of issue 22 (~10 MB, 100,000 top-level
+//! statements: objects with a rotate and a translate, 20,000 materials, groups 4 deep, long transform chains;
 //! `BENCH_DENSE_ONLY=1` stops after it, `BENCH_WRITE_DENSE=PATH` only writes it out for
 //! `scnc check` runs), a scene with 50,000+ statements plus one inline mesh of 1,000,000
 //! vertices (a 1000 × 1000 grid, ~2M triangles), compiles it with `compile_source`, and reports
