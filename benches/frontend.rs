@@ -1,6 +1,9 @@
 //! Front-end benchmark (a program, not a test): `cargo bench --bench frontend`.
 //!
-//! Generates in memory a scene with 50,000+ statements plus one inline mesh of 1,000,000
+//! Generates in memory the statement-dense scene of issue 22 (~10 MB, 100,000 top-level
+//! statements: objects with a rotate and a translate, 20,000 materials, groups 4 deep, long transform chains;
+//! `BENCH_DENSE_ONLY=1` stops after it, `BENCH_WRITE_DENSE=PATH` only writes it out for
+//! `scnc check` runs), a scene with 50,000+ statements plus one inline mesh of 1,000,000
 //! vertices (a 1000 × 1000 grid, ~2M triangles), compiles it with `compile_source`, and reports
 //! throughput (MB of source per second) and peak heap use relative to the source size, measured
 //! by a counting global allocator. Figures go to docs/frontend-bench.md by hand.
@@ -80,6 +83,55 @@ fn statements_scene(n: usize) -> String {
     s
 }
 
+/// The generated scene of issue 22: statement-dense text as exporters write it, about 10 MB.
+/// Per unit of 10 statements: 2 materials, 6 objects of a few shared meshes (each with a rotate
+/// and a translate), one object with a long transform chain and one group nested 4 deep.
+fn dense_scene(units: usize) -> String {
+    let mut s = String::with_capacity(units * 1100);
+    s.push_str("scnc 1\ncamera main { eye (0, 50, -200)  target (0, 0, 0)  fov 40deg }\n");
+    s.push_str("mesh tree = icosphere { radius 1  subdivisions 1 }\n");
+    s.push_str("mesh rock = box { size (1, 0.5, 1) }\nmesh post = box { size (0.2, 2, 0.2) }\n");
+    let meshes = ["tree", "rock", "post"];
+    for u in 0..units {
+        let _ = writeln!(
+            s,
+            "material bark{u} = phong {{ diffuse rgb(0.{}, 0.3, 0.2)  specular 0.05 }}",
+            u % 10
+        );
+        let _ = writeln!(
+            s,
+            "material leaf{u} = phong {{ diffuse rgb(0.1, 0.{}, 0.1)  specular 0.2  shininess 20 }}",
+            u % 10
+        );
+        for k in 0..6 {
+            let i = u * 6 + k;
+            let _ = writeln!(
+                s,
+                "object {} {{ material leaf{u}  transform {{ rotate y {}deg  translate ({}.25, 0, {}.5) }} }}",
+                meshes[k % 3],
+                i % 360,
+                i % 1000,
+                i / 1000
+            );
+        }
+        let _ = writeln!(
+            s,
+            "object post {{ material bark{u}  transform {{ scale 0.5  rotate x 10deg  rotate y {}deg  \
+             rotate z 5deg  translate (1, 2, 3)  scale (1, 1.5, 1)  translate ({}, 0, -{}) }} }}",
+            u % 360,
+            u % 100,
+            u / 100
+        );
+        let _ = writeln!(
+            s,
+            "group block{u} {{\n  transform {{ translate ({u}, 0, 0) }}\n  group a{u} {{ group b{u} {{ group c{u} {{\n    \
+             object rock {{ material bark{u}  transform {{ rotate y 30deg  translate (0, 1, 0) }} }}\n  }} }} }}\n}}"
+        );
+    }
+    s.push_str("light sun = point { position (0, 100, 0)  intensity 1000 }\n");
+    s
+}
+
 fn mesh_scene() -> String {
     let mut s = String::with_capacity(80 * GRID * GRID);
     s.push_str("scnc 1\ncamera main { eye (0, 50, -200)  target (0, 0, 0)  fov 40deg }\n");
@@ -151,6 +203,21 @@ fn measure(label: &str, text: &str) {
 }
 
 fn main() {
+    let dense = dense_scene(10_000);
+    if let Some(path) = std::env::var_os("BENCH_WRITE_DENSE") {
+        // For `scnc check` / `scnc watch` timings and `/usr/bin/time -v` peaks on the same text.
+        std::fs::write(path, &dense).expect("write the dense scene");
+        return;
+    }
+    let statements_count = dense.matches('\n').count();
+    measure(
+        &format!("dense, {statements_count} lines (issue 22)"),
+        &dense,
+    );
+    if std::env::var_os("BENCH_DENSE_ONLY").is_some() {
+        return;
+    }
+    drop(dense);
     let statements = statements_scene(50_000);
     let lines = statements.lines().count();
     measure(&format!("{lines} statements"), &statements);

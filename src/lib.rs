@@ -28,6 +28,10 @@
 // its reason.
 #![deny(clippy::unwrap_used, clippy::expect_used)]
 
+// pest_derive without its `std` feature (see Cargo.toml: no native stack probe per rule call)
+// names `::alloc::boxed::Box` in the parser it generates.
+extern crate alloc;
+
 pub mod assets;
 pub mod bvh;
 pub mod check;

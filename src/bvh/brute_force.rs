@@ -69,11 +69,13 @@ impl BruteForce {
 
     /// Counts for `--stats`: no nodes, one entry per placed triangle.
     pub fn stats(&self) -> AccelStats {
+        let bytes = self.triangles.len() * (std::mem::size_of::<[Vec3; 3]>() + 8);
         AccelStats {
             nodes: 0,
             leaves: 0,
             triangles: self.triangles.len(),
-            bytes: self.triangles.len() * (std::mem::size_of::<[Vec3; 3]>() + 8),
+            bytes,
+            instance_bytes: bytes,
         }
     }
 }

@@ -103,6 +103,10 @@ pub struct AccelStats {
     pub triangles: usize,
     /// Memory the structure holds, in bytes.
     pub bytes: usize,
+    /// The part of `bytes` that grows with each placement: for the BVH its top level (placement
+    /// records, top-level nodes and leaf order), meshes counted once however often placed; for
+    /// brute force everything, as each placement is a world-space copy.
+    pub instance_bytes: usize,
 }
 
 /// The acceleration structure over a whole scene.

@@ -243,3 +243,46 @@ fn build_is_the_same_whatever_the_thread_count() {
     };
     assert_eq!(build(1), build(4));
 }
+
+#[test]
+fn instances_cost_records_not_copies() {
+    // One small mesh (a fan of 16 triangles) placed 2,000 and then 20,000 times.
+    let mut positions = vec![Vec3::ZERO];
+    let mut triangles = Vec::new();
+    for i in 0..17u32 {
+        let a = i as f32 * 0.3;
+        positions.push(Vec3::new(a.cos(), a.sin(), 0.1 * a));
+        if i > 0 {
+            triangles.push([0, i, i + 1]);
+        }
+    }
+    let meshes = [MeshRef {
+        positions: &positions,
+        triangles: &triangles,
+    }];
+    let placed = |n: usize| -> Vec<Instance> {
+        (0..n)
+            .map(|i| {
+                let at = Vec3::new((i % 150) as f32 * 3.0, 0.0, (i / 150) as f32 * 3.0);
+                Instance::new(0, Affine3A::from_translation(at))
+            })
+            .collect()
+    };
+    let few = Accel::build(&meshes, &placed(2_000), AccelKind::Bvh).stats();
+    let many = Accel::build(&meshes, &placed(20_000), AccelKind::Bvh).stats();
+    // The mesh is stored once however often it is placed.
+    assert_eq!(few.triangles, triangles.len());
+    assert_eq!(many.triangles, triangles.len());
+    // What grows is the top level only, and by a record's worth per placement.
+    assert_eq!(
+        many.bytes - many.instance_bytes,
+        few.bytes - few.instance_bytes
+    );
+    let per = (many.instance_bytes - few.instance_bytes) as f64 / 18_000.0;
+    assert!(per < 256.0, "{per} bytes per placement");
+    let per_many = many.instance_bytes as f64 / 20_000.0;
+    assert!(per_many < 256.0, "{per_many} bytes per placement");
+    // Brute force, by contrast, copies every triangle per placement.
+    let brute = Accel::build(&meshes, &placed(2_000), AccelKind::None).stats();
+    assert_eq!(brute.triangles, 2_000 * triangles.len());
+}

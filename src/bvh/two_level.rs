@@ -297,14 +297,16 @@ impl TwoLevel {
                 .sum();
             inner + usize::from(w.root_count > 0)
         };
+        let top_bytes = self.top.nodes.len() * std::mem::size_of::<WideNode>()
+            + self.top_order.len() * 4
+            + self.placed.len() * std::mem::size_of::<Placed>()
+            + self.merged_instances.len() * 8;
         let mut s = AccelStats {
             nodes: self.top.nodes.len(),
             leaves: leaves(&self.top),
             triangles: 0,
-            bytes: self.top.nodes.len() * std::mem::size_of::<WideNode>()
-                + self.top_order.len() * 4
-                + self.placed.len() * std::mem::size_of::<Placed>()
-                + self.merged_instances.len() * 8,
+            bytes: top_bytes,
+            instance_bytes: top_bytes,
         };
         for m in &self.meshes {
             s.nodes += m.tree.nodes.len();

@@ -60,6 +60,14 @@ impl PhaseStats {
             accel.leaves,
             accel.bytes as f64 / (1024.0 * 1024.0)
         );
+        if let Some(per) = scene.bytes_per_instance() {
+            let _ = writeln!(
+                s,
+                "instances      {} placements of {} meshes, {per:.0} bytes each (records + top-level bvh)",
+                scene.instances.len(),
+                scene.meshes.len(),
+            );
+        }
         let c = &render.counts;
         let _ = writeln!(
             s,

@@ -182,6 +182,15 @@ impl Scene {
         self.accel.as_ref().map(Accel::stats).unwrap_or_default()
     }
 
+    /// Memory per placement, for `--stats`: the scene's instance record plus what each
+    /// placement adds to the acceleration structure (meshes are shared, not copied, in the BVH);
+    /// `None` without instances.
+    pub fn bytes_per_instance(&self) -> Option<f64> {
+        let n = self.instances.len();
+        let records = n * std::mem::size_of::<SceneInstance>();
+        (n > 0).then(|| (records + self.accel_stats().instance_bytes) as f64 / n as f64)
+    }
+
     /// Triangles over all instances (what the accel holds).
     pub fn triangle_count(&self) -> usize {
         self.instances
