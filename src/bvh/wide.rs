@@ -7,6 +7,7 @@
 use glam::{Vec3, Vec4};
 
 use super::node::{Node, MAX_DEPTH};
+use super::tally;
 use crate::geom::{Aabb, Ray};
 
 /// Children per node.
@@ -217,26 +218,37 @@ pub const STACK_MAX: usize = 3 * MAX_DEPTH + 2;
 /// t_max)` tests a leaf's primitives, may shrink `t_max`, and returns `true` to stop. Returns
 /// whether a leaf stopped the traversal. No allocation: a fixed stack, the smallest of three
 /// sizes that fits the tree (zeroing a large stack per ray costs as much as a traversal).
+/// The nodes tested and primitives handed to `leaf` are added to `tally` once, at the end.
 #[inline(always)]
 pub fn traverse4<F>(w: &Wide, ray: &WideRay, t_max: &mut f32, leaf: F) -> bool
 where
     F: FnMut(u32, u32, &mut f32) -> bool,
 {
-    if w.stack_need <= 24 {
-        traverse_with::<24, F>(w, ray, t_max, leaf)
+    let mut visits = 0u32;
+    let stopped = if w.stack_need <= 24 {
+        traverse_with::<24, F>(w, ray, t_max, leaf, &mut visits)
     } else if w.stack_need <= 64 {
-        traverse_with::<64, F>(w, ray, t_max, leaf)
+        traverse_with::<64, F>(w, ray, t_max, leaf, &mut visits)
     } else {
-        traverse_with::<STACK_MAX, F>(w, ray, t_max, leaf)
-    }
+        traverse_with::<STACK_MAX, F>(w, ray, t_max, leaf, &mut visits)
+    };
+    tally::add(visits);
+    stopped
 }
 
 #[inline(always)]
-fn traverse_with<const N: usize, F>(w: &Wide, ray: &WideRay, t_max: &mut f32, mut leaf: F) -> bool
+fn traverse_with<const N: usize, F>(
+    w: &Wide,
+    ray: &WideRay,
+    t_max: &mut f32,
+    mut leaf: F,
+    visits: &mut u32,
+) -> bool
 where
     F: FnMut(u32, u32, &mut f32) -> bool,
 {
     if w.nodes.is_empty() {
+        *visits = visits.wrapping_add(w.root_count);
         return w.root_count > 0 && leaf(w.root_first, w.root_count, t_max);
     }
     debug_assert!(w.stack_need <= N);
@@ -245,11 +257,13 @@ where
     let (mut child, mut count) = (0u32, 0u32);
     loop {
         if count > 0 {
+            *visits = visits.wrapping_add(count);
             if leaf(child, count, t_max) {
                 return true;
             }
         } else {
             let node = &w.nodes[child as usize];
+            *visits = visits.wrapping_add(1);
             let (t, mask) = ray.hit4(node, *t_max);
             if mask != 0 {
                 let t = t.to_array();

@@ -292,6 +292,8 @@ fn render_and_write(
 ) -> Staged<Finished> {
     phases.asset_load = scene.timings.asset_load;
     phases.accel_build = scene.timings.accel_build;
+    // The bands are cut where the built scene's rows cost the same (`render::balance`).
+    let plan = plan.map(|p| p.balanced(&scene));
     let cancel = Arc::new(AtomicBool::new(false));
     {
         let cancel = cancel.clone();
