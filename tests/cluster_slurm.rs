@@ -6,6 +6,7 @@
 //! killed when the test ends (also on failure). Where Slurm cannot start (not installed, not
 //! root, a daemon fails) the test prints a loud `SKIPPED` to stderr and passes.
 
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
@@ -14,10 +15,12 @@ const SCNC: &str = env!("CARGO_BIN_EXE_scnc");
 const TILES: u32 = 4;
 const RENDER_ARGS: &str = "--resolution 64x48 --spp 4";
 
+/// Straight to stderr: the test harness captures `eprintln!` of passing tests.
 fn skip(reason: &str) {
-    eprintln!("\n**************************************************************");
-    eprintln!("*** cluster_slurm SKIPPED: {reason}");
-    eprintln!("**************************************************************\n");
+    let _ = writeln!(
+        std::io::stderr(),
+        "\n*** cluster_slurm SKIPPED: {reason} ***\n"
+    );
 }
 
 /// The daemons, killed and reaped on drop.
