@@ -166,3 +166,39 @@ fn define_replaces_a_let_of_the_same_type() {
     );
     assert_eq!(o.status.code(), Some(2), "NAME=VALUE is required");
 }
+
+/// `scnc ir` and `scnc check` take `--frame` and `--define` as `scnc render` does: the IR
+/// changes with them, and a bad define is the same diagnostic.
+#[test]
+fn ir_and_check_take_frame_and_define() {
+    let dir = workdir("ir-check");
+    let ir = |extra: &[&str]| -> String {
+        let mut args = vec!["ir", "turn.scn"];
+        args.extend_from_slice(extra);
+        let o = scnc(&args, &dir);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8_lossy(&o.stdout).into_owned()
+    };
+    let default = ir(&[]);
+    assert_eq!(ir(&["--frame", "0", "--define", "side=1"]), default);
+    assert_ne!(ir(&["--frame", "3"]), default, "frame moves the box");
+    assert_ne!(ir(&["--define", "side=2"]), default, "side resizes the box");
+    assert_eq!(ir(&["--frame", "3"]), ir(&["--frame", "3.0"]));
+    for command in ["ir", "check"] {
+        let o = scnc(&[command, "turn.scn", "--define", "side=2deg"], &dir);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{command}: {err}");
+        assert!(err.contains("scnc::cli::define_type"), "{command}: {err}");
+    }
+    let o = scnc(
+        &["check", "turn.scn", "--frame", "2", "--define", "side=3"],
+        &dir,
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = scnc(&["watch", "--help"], &dir);
+    let help = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        help.contains("--frame") && help.contains("--define"),
+        "{help}"
+    );
+}

@@ -236,3 +236,49 @@ fn tiles_from_different_working_directories_merge() {
     ok(&["merge", "t0.exr", "t1.exr", "-o", "merged.png"], &dir);
     assert!(bytes(dir.join("merged.png")) == bytes(dir.join("direct.png")));
 }
+
+/// `--stats` on a tile names its window and the whole image's size, and the windows the
+/// tiles report (cut by counted cost) cover the image's rows once, in order.
+#[test]
+fn stats_report_each_tiles_window_and_they_cover_the_image() {
+    let dir = workdir("stats");
+    let mut next_row = 0;
+    for k in 0..4 {
+        let tile = format!("{k}/4");
+        let out = scnc(
+            &[
+                "render",
+                "scene.scn",
+                "--tile",
+                &tile,
+                "--stats",
+                "-o",
+                "p.exr",
+            ],
+            &dir,
+        );
+        let err = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert!(out.status.success(), "{err}");
+        let line = err
+            .lines()
+            .find(|l| l.starts_with("tile "))
+            .unwrap_or_else(|| panic!("no tile line in --stats:\n{err}"));
+        let rows = line
+            .split("rows ")
+            .nth(1)
+            .and_then(|r| r.split(' ').next())
+            .and_then(|r| r.split_once(".."))
+            .and_then(|(a, b)| Some((a.parse::<u32>().ok()?, b.parse::<u32>().ok()?)))
+            .unwrap_or_else(|| panic!("rows in {line:?}"));
+        assert!(
+            line.contains(&format!("tile           {tile}: columns 0..23")),
+            "{line}"
+        );
+        assert!(line.contains("of the 23x19 image"), "{line}");
+        assert_eq!(rows.0, next_row, "{line}");
+        assert!(rows.1 > rows.0, "{line}");
+        next_row = rows.1;
+    }
+    assert_eq!(next_row, 19, "the tiles end at the last row");
+    let _ = std::fs::remove_dir_all(&dir);
+}

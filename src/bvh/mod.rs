@@ -13,6 +13,7 @@ mod build;
 mod check;
 mod mesh_bvh;
 mod node;
+pub mod tally;
 mod two_level;
 mod wide;
 

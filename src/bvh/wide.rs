@@ -8,6 +8,7 @@
 use glam::{Vec3, Vec4};
 
 use super::node::{Node, MAX_DEPTH};
+use super::tally;
 use crate::geom::{Aabb, Ray};
 
 /// Children per node.
@@ -243,15 +244,19 @@ pub const STACK_MAX: usize = (WIDTH - 1) * MAX_DEPTH + 2;
 /// t_max)` tests a leaf's primitives, may shrink `t_max`, and returns `true` to stop. Returns
 /// whether a leaf stopped the traversal. No allocation: a fixed stack, the smallest of three
 /// sizes that fits the tree (zeroing a large stack per ray costs as much as a traversal).
+/// The nodes tested and primitives handed to `leaf` are added to `tally` once, at the end.
 #[inline(always)]
 pub fn traverse4<F: LeafVisitor>(w: &Wide, ray: &WideRay, t_max: &mut f32, leaf: F) -> bool {
-    if w.stack_need <= 32 {
-        traverse_with::<32, F>(w, ray, t_max, leaf)
+    let mut visits = 0u32;
+    let stopped = if w.stack_need <= 32 {
+        traverse_with::<32, F>(w, ray, t_max, leaf, &mut visits)
     } else if w.stack_need <= 96 {
-        traverse_with::<96, F>(w, ray, t_max, leaf)
+        traverse_with::<96, F>(w, ray, t_max, leaf, &mut visits)
     } else {
-        traverse_with::<STACK_MAX, F>(w, ray, t_max, leaf)
-    }
+        traverse_with::<STACK_MAX, F>(w, ray, t_max, leaf, &mut visits)
+    };
+    tally::add(visits);
+    stopped
 }
 
 #[inline(always)]
@@ -260,8 +265,10 @@ fn traverse_with<const N: usize, F: LeafVisitor>(
     ray: &WideRay,
     t_max: &mut f32,
     mut leaf: F,
+    visits: &mut u32,
 ) -> bool {
     if w.nodes.is_empty() {
+        *visits = visits.wrapping_add(w.root_count);
         return w.root_count > 0 && leaf.visit(w.root_first, w.root_count, t_max);
     }
     debug_assert!(w.stack_need <= N);
@@ -270,11 +277,13 @@ fn traverse_with<const N: usize, F: LeafVisitor>(
     let (mut child, mut count) = (0u32, 0u32);
     loop {
         if count > 0 {
+            *visits = visits.wrapping_add(count);
             if leaf.visit(child, count, t_max) {
                 return true;
             }
         } else {
             let node = &w.nodes[child as usize];
+            *visits = visits.wrapping_add(1);
             let (t, mask) = ray.hit(node, *t_max);
             if mask != 0 {
                 // Entered children, sorted far to near, so the nearest is visited next and

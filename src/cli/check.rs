@@ -9,10 +9,11 @@ use std::process::ExitCode;
 
 use clap::Args;
 
+use super::overrides::OverrideArgs;
 use super::report::{report, strict, DiagArgs, DiagnosticFormat, JsonTo, SceneArg};
 use crate::assets::FsLoader;
 use crate::bvh::AccelKind;
-use crate::compile::compile;
+use crate::compile::compile_with;
 use crate::diag::{render_json, Staged};
 use crate::scene::{self, BuildOptions};
 use crate::source::SourceMap;
@@ -26,6 +27,9 @@ pub struct CheckArgs {
     /// Compile only: skip reading and validating meshes, maps and textures.
     #[arg(long)]
     pub compile_only: bool,
+    /// `--frame F`, `--define NAME=VALUE`.
+    #[command(flatten)]
+    pub overrides: OverrideArgs,
     /// Diagnostic format and `--strict`.
     #[command(flatten)]
     pub diag: DiagArgs,
@@ -39,12 +43,14 @@ pub fn run(args: &CheckArgs) -> ExitCode {
         accel: AccelKind::None,
         camera: None,
     };
-    let checked = compile(&args.scene.file, &loader, &mut sources).and_then(|desc| {
-        if args.compile_only {
-            return Staged::ok(());
-        }
-        scene::build(&desc, &loader, &options).map(|_| ())
-    });
+    let overrides = args.overrides.overrides();
+    let checked =
+        compile_with(&args.scene.file, &loader, &mut sources, &overrides).and_then(|desc| {
+            if args.compile_only {
+                return Staged::ok(());
+            }
+            scene::build(&desc, &loader, &options).map(|_| ())
+        });
     let checked = strict(checked, &args.diag);
     match args.diag.diagnostic_format {
         // The JSON document is the command's output: printed even when it lists nothing.

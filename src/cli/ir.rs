@@ -5,9 +5,10 @@ use std::process::ExitCode;
 
 use clap::Args;
 
+use super::overrides::OverrideArgs;
 use super::report::{report, strict, DiagArgs, JsonTo, SceneArg};
 use crate::assets::FsLoader;
-use crate::compile::compile;
+use crate::compile::compile_with;
 use crate::source::SourceMap;
 
 /// `scnc ir`'s arguments.
@@ -16,6 +17,9 @@ pub struct IrArgs {
     /// The scene file.
     #[command(flatten)]
     pub scene: SceneArg,
+    /// `--frame F`, `--define NAME=VALUE`.
+    #[command(flatten)]
+    pub overrides: OverrideArgs,
     /// Diagnostic format and `--strict`.
     #[command(flatten)]
     pub diag: DiagArgs,
@@ -25,7 +29,12 @@ pub struct IrArgs {
 pub fn run(args: &IrArgs) -> ExitCode {
     let mut sources = SourceMap::new();
     let compiled = strict(
-        compile(&args.scene.file, &FsLoader::new(), &mut sources),
+        compile_with(
+            &args.scene.file,
+            &FsLoader::new(),
+            &mut sources,
+            &args.overrides.overrides(),
+        ),
         &args.diag,
     );
     report(&compiled, &sources, &args.diag, JsonTo::Stderr);

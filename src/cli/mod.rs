@@ -11,6 +11,7 @@ mod frames;
 mod inspect;
 mod ir;
 mod merge;
+pub mod overrides;
 mod parse;
 mod render;
 pub mod report;

@@ -292,6 +292,13 @@ fn render_and_write(
 ) -> Staged<Finished> {
     phases.asset_load = scene.timings.asset_load;
     phases.accel_build = scene.timings.accel_build;
+    // The bands are cut where the built scene's rows cost the same (`render::balance`).
+    let split_start = Instant::now();
+    let plan = plan.map(|p| p.balanced(&scene));
+    phases.tile = plan.map(|p| {
+        let h = p.header;
+        (h.index, h.count, p.window, split_start.elapsed())
+    });
     let cancel = Arc::new(AtomicBool::new(false));
     {
         let cancel = cancel.clone();

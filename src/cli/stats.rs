@@ -6,7 +6,7 @@
 use std::fmt::Write;
 use std::time::Duration;
 
-use crate::render::RenderStats;
+use crate::render::{PixelWindow, RenderStats};
 use crate::scene::Scene;
 
 /// Wall time of each pipeline phase of one `scnc render`.
@@ -18,6 +18,8 @@ pub struct PhaseStats {
     pub accel_build: Duration,
     pub render: Duration,
     pub write: Duration,
+    /// `--tile K/N`: `(K, N)`, the tile's window, and the time of the pre-pass that cut it.
+    pub tile: Option<(u32, u32, PixelWindow, Duration)>,
 }
 
 impl PhaseStats {
@@ -41,6 +43,22 @@ impl PhaseStats {
             "image          {}x{}, {} spp, {} threads",
             scene.settings.width, scene.settings.height, render.samples_per_pixel, render.threads
         );
+        if let Some((k, n, w, split)) = self.tile {
+            let _ = writeln!(
+                s,
+                "tile           {k}/{n}: columns {}..{}, rows {}..{} ({}x{} of the {}x{} image); \
+                 cost pre-pass {:.2} ms",
+                w.x0,
+                w.x1,
+                w.y0,
+                w.y1,
+                w.width(),
+                w.height(),
+                scene.settings.width,
+                scene.settings.height,
+                ms(split)
+            );
+        }
         let _ = writeln!(
             s,
             "rays           {} camera, {} shadow, {} BRDF, {} total, {:.2} Mrays/s; {} BRDF \

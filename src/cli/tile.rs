@@ -3,8 +3,9 @@
 //!
 //! Before anything is built, [`plan`] checks that every output is an `.exr` file and that
 //! the image has a row for each tile, and stamps the tile's header with the scene identity
-//! (`ir::identity`) of the resolved settings; after the render, the window is written with
-//! `film::tile::write_tile`, atomically.
+//! (`ir::identity`) of the resolved settings. Once the scene is built, [`TilePlan::balanced`]
+//! moves the band to where the rows' costs (`render::balance`) split evenly; after the
+//! render, the window is written with `film::tile::write_tile`, atomically.
 
 use std::path::PathBuf;
 
@@ -12,7 +13,9 @@ use crate::diag::{Code, Diagnostic};
 use crate::film::tile::TileHeader;
 use crate::film::{self, WriteSettings};
 use crate::ir::{identity::identity, OutputFormat, SceneDesc};
-use crate::render::window::{split, PixelWindow};
+use crate::render::balance::row_costs;
+use crate::render::window::{split, split_by_cost, PixelWindow};
+use crate::scene::Scene;
 use crate::source::Span;
 
 /// What one tile render needs beyond the scene: its window and its file header.
@@ -22,6 +25,20 @@ pub struct TilePlan {
     pub window: PixelWindow,
     /// What the file will say about itself.
     pub header: TileHeader,
+}
+
+impl TilePlan {
+    /// The plan with its window cut at equal cumulative cost of the built scene's rows
+    /// instead of equal height (the same on every machine: the costs are counted work).
+    pub fn balanced(self, scene: &Scene) -> TilePlan {
+        let (k, n) = (self.header.index, self.header.count);
+        let costs = row_costs(scene);
+        match split_by_cost(k, n, self.header.width, &costs) {
+            Some(window) => TilePlan { window, ..self },
+            // Only when the built image's size differs from the plan's, which it cannot.
+            None => self,
+        }
+    }
 }
 
 /// `--tile K/N`: `K` in `0..N`, `N` at least 1.

@@ -13,6 +13,7 @@
 //! [`render_window`] renders only a rectangle of the image ([`window`]; `--tile K/N`), each of
 //! its pixels with exactly the bits of the full render.
 
+pub mod balance;
 pub mod camera;
 pub mod estimate;
 pub mod integrator;

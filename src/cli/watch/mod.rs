@@ -42,6 +42,9 @@ pub struct WatchArgs {
     /// The scene file.
     #[command(flatten)]
     pub scene: SceneArg,
+    /// `--frame F`, `--define NAME=VALUE`.
+    #[command(flatten)]
+    pub overrides: super::overrides::OverrideArgs,
     /// Output image (written after every pass); default: the scene's outputs, or the scene
     /// file's name with `.png` in the current directory.
     #[arg(short, long, value_name = "FILE")]
@@ -103,6 +106,7 @@ pub fn run(args: &WatchArgs) -> ExitCode {
         output: args.output.clone(),
         camera: args.camera.clone(),
         cache: BuildCache::new(),
+        overrides: args.overrides.overrides(),
     };
     let mut job: Option<RenderJob> = None;
     let mut changed = Vec::new();

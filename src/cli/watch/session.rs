@@ -13,7 +13,7 @@ use super::watcher::{absolute, FileSet};
 use crate::assets::Loader;
 use crate::bvh::AccelKind;
 use crate::cli::targets::{camera_index, output_targets};
-use crate::compile::compile;
+use crate::compile::{compile_with, Overrides};
 use crate::diag::Staged;
 use crate::film::WriteSettings;
 use crate::ir::SceneDesc;
@@ -83,6 +83,8 @@ pub struct Session {
     pub camera: Option<String>,
     /// What earlier builds made, for reuse.
     pub cache: BuildCache,
+    /// `--frame F`, `--define NAME=VALUE`.
+    pub overrides: Overrides,
 }
 
 impl Session {
@@ -91,7 +93,7 @@ impl Session {
         let loader = RecordingLoader::default();
         let mut sources = SourceMap::new();
         let t = Instant::now();
-        let compiled = compile(&self.file, &loader, &mut sources);
+        let compiled = compile_with(&self.file, &loader, &mut sources, &self.overrides);
         let mut figures = CompileFigures {
             compile_ms: t.elapsed().as_secs_f64() * 1e3,
             ..CompileFigures::default()
