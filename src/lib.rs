@@ -35,6 +35,7 @@ pub mod cli;
 pub mod compile;
 pub mod diag;
 pub mod film;
+pub mod fmt;
 pub mod geom;
 pub mod ir;
 pub mod render;
