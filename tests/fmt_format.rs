@@ -205,3 +205,65 @@ fn a_file_with_syntax_errors_is_left_untouched_with_its_diagnostics() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A small xorshift generator: the edits are the same on every run.
+struct Rng(u64);
+
+impl Rng {
+    fn below(&mut self, n: usize) -> usize {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 % n as u64) as usize
+    }
+}
+
+/// Seeded random whitespace edits of the examples (spaces, tabs and line breaks inserted next to
+/// whitespace or punctuation, whitespace deleted): whenever the edited text parses, formatting it is idempotent
+/// and keeps its meaning.
+#[test]
+fn random_whitespace_edits_format_to_the_same_meaning() {
+    let mut rng = Rng(0x5eed_f00d_1234_5678);
+    let mut checked = 0;
+    for path in scenes("examples") {
+        let text = std::fs::read_to_string(&path).expect("examples are text");
+        for _ in 0..12 {
+            let mut edited: Vec<char> = text.chars().collect();
+            for _ in 0..8 {
+                let at = rng.below(edited.len());
+                // Next to whitespace or punctuation, so that names and numbers stay whole.
+                let boundary = |c: char| c.is_whitespace() || "{}(),=".contains(c);
+                let after_boundary = at > 0 && boundary(edited[at - 1]);
+                if !boundary(edited[at]) && !after_boundary {
+                    continue;
+                }
+                match rng.below(4) {
+                    0 => edited.insert(at, ' '),
+                    1 => edited.insert(at, '\n'),
+                    2 => edited.insert(at, '\t'),
+                    _ => {
+                        if edited[at].is_whitespace() {
+                            edited.remove(at);
+                        }
+                    }
+                }
+            }
+            let edited: String = edited.into_iter().collect();
+            let Some(once) = format(FileId(0), &edited).value else {
+                continue;
+            };
+            checked += 1;
+            let twice = format(FileId(0), &once)
+                .value
+                .expect("formatted text parses");
+            assert_eq!(once, twice, "not idempotent on:\n{edited}");
+            assert_eq!(
+                meaning(&path, &edited),
+                meaning(&path, &once),
+                "meaning changed on:\n{edited}"
+            );
+        }
+    }
+    eprintln!("{checked} edited scenes parsed and were formatted");
+    assert!(checked >= 20, "only {checked} edited scenes parsed");
+}
