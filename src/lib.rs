@@ -38,6 +38,7 @@ pub mod film;
 pub mod fmt;
 pub mod geom;
 pub mod ir;
+pub mod lsp;
 pub mod render;
 pub mod scene;
 pub mod shade;

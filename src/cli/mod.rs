@@ -11,6 +11,7 @@ mod fmt;
 mod frames;
 mod inspect;
 mod ir;
+mod lsp;
 mod merge;
 mod parse;
 mod render;
@@ -30,6 +31,7 @@ pub use explain::ExplainArgs;
 pub use fmt::FmtArgs;
 pub use inspect::InspectArgs;
 pub use ir::IrArgs;
+pub use lsp::LspArgs;
 pub use merge::MergeArgs;
 pub use render::{AccelArg, RenderArgs};
 pub use report::{DiagArgs, DiagnosticFormat, JsonTo, SceneArg};
@@ -79,6 +81,9 @@ pub enum Command {
     /// Only whitespace changes and every comment stays; a file with syntax errors is left
     /// untouched and its diagnostics printed. No files: standard input to standard output.
     Fmt(FmtArgs),
+    /// The language server, on stdin/stdout: diagnostics as you type and formatting, for
+    /// editors (see editors/README.md).
+    Lsp(LspArgs),
     /// Explain a diagnostic code with an example of the mistake and the fix.
     ///
     /// `scnc explain scnc::check::unknown_material` (or `unknown_mesh`, a unique last
@@ -103,5 +108,6 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Bench(args) => bench::run(&args),
         Command::Explain(args) => explain::run(&args),
         Command::Fmt(args) => fmt::run(&args),
+        Command::Lsp(args) => lsp::run(&args),
     }
 }
