@@ -17,6 +17,8 @@ pub struct Document {
     pub path: PathBuf,
     /// The editor's text.
     pub text: String,
+    /// The editor's version number of that text.
+    pub version: i32,
 }
 
 /// Every open document by URI.
@@ -27,9 +29,16 @@ pub struct Documents {
 
 impl Documents {
     /// Opens or replaces a document; `None` when the URI is not a file path.
-    pub fn set(&mut self, uri: Url, text: String) -> Option<()> {
+    pub fn set(&mut self, uri: Url, text: String, version: i32) -> Option<()> {
         let path = uri.to_file_path().ok()?;
-        self.open.insert(uri, Document { path, text });
+        self.open.insert(
+            uri,
+            Document {
+                path,
+                text,
+                version,
+            },
+        );
         Some(())
     }
 

@@ -136,8 +136,8 @@ impl Server<'_> {
                 if let Ok(p) =
                     n.extract::<lsp_types::DidOpenTextDocumentParams>(DidOpenTextDocument::METHOD)
                 {
-                    self.documents
-                        .set(p.text_document.uri, p.text_document.text);
+                    let d = p.text_document;
+                    self.documents.set(d.uri, d.text, d.version);
                     self.changed();
                 }
             }
@@ -147,7 +147,11 @@ impl Server<'_> {
                 ) {
                     // Full sync: the last change holds the whole text.
                     if let Some(change) = p.content_changes.into_iter().last() {
-                        self.documents.set(p.text_document.uri, change.text);
+                        self.documents.set(
+                            p.text_document.uri,
+                            change.text,
+                            p.text_document.version,
+                        );
                         self.changed();
                     }
                 }
@@ -157,7 +161,7 @@ impl Server<'_> {
                     n.extract::<lsp_types::DidCloseTextDocumentParams>(DidCloseTextDocument::METHOD)
                 {
                     self.documents.close(&p.text_document.uri);
-                    self.publish(p.text_document.uri, Vec::new())?;
+                    self.publish(p.text_document.uri, Vec::new(), None)?;
                     self.changed();
                 }
             }
@@ -181,20 +185,22 @@ impl Server<'_> {
         for (uri, document) in self.documents.iter() {
             let (found, sources) = diagnostics::check(&document.path, &loader);
             let lsp = diagnostics::to_lsp(&document.path, &found, &sources);
-            published.push((uri.clone(), lsp));
+            published.push((uri.clone(), lsp, document.version));
         }
-        for (uri, lsp) in published {
-            self.publish(uri, lsp)?;
+        for (uri, lsp, version) in published {
+            self.publish(uri, lsp, Some(version))?;
         }
         Ok(())
     }
 
+    /// Publishes `diagnostics` for `uri` (at the document's `version`).
     fn publish(
         &self,
         uri: lsp_types::Url,
         diagnostics: Vec<lsp_types::Diagnostic>,
+        version: Option<i32>,
     ) -> Result<(), LspError> {
-        let params = PublishDiagnosticsParams::new(uri, diagnostics, None);
+        let params = PublishDiagnosticsParams::new(uri, diagnostics, version);
         self.send(Message::Notification(Notification::new(
             PublishDiagnostics::METHOD.into(),
             params,
