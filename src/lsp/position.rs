@@ -69,8 +69,9 @@ mod tests {
         let text = "ab\n// é𝛼 x\n";
         let index = LineIndex::new(text);
         let x = text.find('x').unwrap_or(0);
-        assert_eq!(index.position(x), Position::new(1, 6));
-        assert_eq!(index.offset(Position::new(1, 6)), x);
+        // `// ` 3 units, `é` 1, `𝛼` 2, ` ` 1.
+        assert_eq!(index.position(x), Position::new(1, 7));
+        assert_eq!(index.offset(Position::new(1, 7)), x);
         assert_eq!(index.position(text.len()), Position::new(2, 0));
         assert_eq!(index.offset(Position::new(9, 0)), text.len());
     }
