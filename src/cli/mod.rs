@@ -7,9 +7,11 @@
 mod bench;
 mod check;
 mod explain;
+mod fmt;
 mod frames;
 mod inspect;
 mod ir;
+mod lsp;
 mod merge;
 pub mod overrides;
 mod parse;
@@ -27,8 +29,10 @@ use clap::{Parser, Subcommand};
 pub use bench::BenchArgs;
 pub use check::CheckArgs;
 pub use explain::ExplainArgs;
+pub use fmt::FmtArgs;
 pub use inspect::InspectArgs;
 pub use ir::IrArgs;
+pub use lsp::LspArgs;
 pub use merge::MergeArgs;
 pub use render::{AccelArg, RenderArgs};
 pub use report::{DiagArgs, DiagnosticFormat, JsonTo, SceneArg};
@@ -73,6 +77,14 @@ pub enum Command {
     Inspect(InspectArgs),
     /// Measure the speed/accuracy curve: `scnc bench quality scene.scn [--out DIR]`.
     Bench(BenchArgs),
+    /// Format .scn files in place (`--check`: print a diff and exit 1 if any would change).
+    ///
+    /// Only whitespace changes and every comment stays; a file with syntax errors is left
+    /// untouched and its diagnostics printed. No files: standard input to standard output.
+    Fmt(FmtArgs),
+    /// The language server, on stdin/stdout: diagnostics as you type and formatting, for
+    /// editors (see editors/README.md).
+    Lsp(LspArgs),
     /// Explain a diagnostic code with an example of the mistake and the fix.
     ///
     /// `scnc explain scnc::check::unknown_material` (or `unknown_mesh`, a unique last
@@ -96,5 +108,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Inspect(args) => inspect::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::Explain(args) => explain::run(&args),
+        Command::Fmt(args) => fmt::run(&args),
+        Command::Lsp(args) => lsp::run(&args),
     }
 }

@@ -1,0 +1,99 @@
+//! Language server: the diagnostics of one open document, exactly those of `scnc check` on its
+//! text (compile, then build: a missing OBJ or texture is reported too), as LSP diagnostics with
+//! the same codes, UTF-16 ranges, secondary labels as related information and the help text.
+
+use std::path::Path;
+
+use lsp_types::{DiagnosticRelatedInformation, DiagnosticSeverity, Location, NumberOrString, Url};
+
+use super::position::LineIndex;
+use crate::assets::Loader;
+use crate::bvh::AccelKind;
+use crate::compile::compile;
+use crate::diag::{Diagnostic, Severity, Staged};
+use crate::scene::{self, BuildOptions};
+use crate::source::{SourceMap, Span};
+
+/// Every diagnostic `scnc check PATH` reports, reading files through `loader`, with the sources
+/// their spans point into.
+pub fn check(path: &Path, loader: &dyn Loader) -> (Vec<Diagnostic>, SourceMap) {
+    let mut sources = SourceMap::new();
+    let options = BuildOptions {
+        accel: AccelKind::None,
+        camera: None,
+    };
+    let checked: Staged<()> = compile(path, loader, &mut sources)
+        .and_then(|desc| scene::build(&desc, loader, &options).map(|_| ()));
+    (checked.diagnostics, sources)
+}
+
+/// The LSP form of the diagnostics that belong in the checked document at `path`: those whose
+/// primary label lies in it, and those with no label at all (shown at its start).
+pub fn to_lsp(
+    path: &Path,
+    diagnostics: &[Diagnostic],
+    sources: &SourceMap,
+) -> Vec<lsp_types::Diagnostic> {
+    // The root is file 0; its path in the map is the normalised one.
+    let root = sources
+        .find(path)
+        .or_else(|| sources.files().next().map(|(id, _)| id));
+    let Some(file) = root else {
+        return diagnostics
+            .iter()
+            .filter(|d| d.primary.is_none())
+            .map(|d| convert(d, lsp_types::Range::default(), sources))
+            .collect();
+    };
+    let text = &sources.get(file).text;
+    let index = LineIndex::new(text);
+    diagnostics
+        .iter()
+        .filter_map(|d| match &d.primary {
+            Some(label) if label.span.file == file => {
+                Some(convert(d, span_range(&index, label.span), sources))
+            }
+            Some(_) => None,
+            None => Some(convert(d, lsp_types::Range::default(), sources)),
+        })
+        .collect()
+}
+
+fn span_range(index: &LineIndex<'_>, span: Span) -> lsp_types::Range {
+    index.range(span.start as usize, span.end as usize)
+}
+
+fn convert(d: &Diagnostic, range: lsp_types::Range, sources: &SourceMap) -> lsp_types::Diagnostic {
+    let mut message = d.message.clone();
+    if let Some(label) = d.primary.as_ref().filter(|l| !l.message.is_empty()) {
+        message = format!("{message}: {}", label.message);
+    }
+    if let Some(help) = &d.help {
+        message = format!("{message}\nhelp: {help}");
+    }
+    let related: Vec<DiagnosticRelatedInformation> = d
+        .secondary
+        .iter()
+        .filter_map(|label| {
+            let file = sources.get(label.span.file);
+            let uri = Url::from_file_path(&file.path).ok()?;
+            let index = LineIndex::new(&file.text);
+            Some(DiagnosticRelatedInformation {
+                location: Location::new(uri, span_range(&index, label.span)),
+                message: label.message.clone(),
+            })
+        })
+        .collect();
+    lsp_types::Diagnostic {
+        range,
+        severity: Some(match d.severity {
+            Severity::Error => DiagnosticSeverity::ERROR,
+            Severity::Warning => DiagnosticSeverity::WARNING,
+        }),
+        code: Some(NumberOrString::String(d.code.as_str().to_string())),
+        source: Some("scnc".into()),
+        message,
+        related_information: (!related.is_empty()).then_some(related),
+        ..lsp_types::Diagnostic::default()
+    }
+}
