@@ -35,6 +35,7 @@
 
 use glam::Vec3;
 
+use super::mis::strategy_at;
 use super::rng::Sampler;
 use crate::geom::Ray;
 use crate::scene::{DirectStrategy, Scene, Surface};
@@ -198,6 +199,7 @@ fn shade(
         ng,
         ns,
         wo,
+        strategy: strategy_at(scene, &phong),
         phong,
     };
     mat.ambient + at.lights(sampler, counts) + at.brdf_rays(sampler, counts)
@@ -211,6 +213,9 @@ pub(super) struct Shading<'a> {
     pub(super) ns: Vec3,
     pub(super) wo: Vec3,
     pub(super) phong: Phong,
+    /// The scene's strategy, or light sampling alone where BRDF rays cannot help
+    /// ([`strategy_at`]).
+    pub(super) strategy: DirectStrategy,
 }
 
 impl Shading<'_> {
@@ -224,7 +229,7 @@ impl Shading<'_> {
         if lights.by_power.is_none() {
             return Vec3::ZERO;
         }
-        let brdf_only = self.scene.strategy == DirectStrategy::BrdfOnly;
+        let brdf_only = self.strategy == DirectStrategy::BrdfOnly;
         let picks = self.picks();
         let (s, count) = sampler.index();
         let mut sum = Vec3::ZERO;

@@ -43,6 +43,59 @@ pub struct AreaLight {
     /// `Some((corner, ex, ey))` when the mesh is one rectangle (two triangles), which is then
     /// sampled whole as a spherical rectangle (see `spherical_rect`).
     rect: Option<(Vec3, Vec3, Vec3)>,
+    /// For a rectangle: per triangle, the affine map from the rectangle's parameters (s, t) to
+    /// the triangle's barycentrics (b₁, b₂), so a sampled point is rebuilt on its triangle
+    /// without a ray–triangle test.
+    rect_barycentrics: [RectToBarycentric; 2],
+}
+
+/// `(b₁, b₂) = m · ((s, t) − origin)`: a triangle of the rectangle in its (s, t) parameters.
+#[derive(Debug, Clone, Copy, Default)]
+struct RectToBarycentric {
+    origin: Vec2,
+    m: glam::Mat2,
+}
+
+impl RectToBarycentric {
+    /// The map for a triangle whose vertices sit at rectangle parameters `st[0..3]`.
+    fn new(st: [Vec2; 3]) -> RectToBarycentric {
+        let m = glam::Mat2::from_cols(st[1] - st[0], st[2] - st[0]);
+        RectToBarycentric {
+            origin: st[0],
+            m: if m.determinant() != 0.0 {
+                m.inverse()
+            } else {
+                glam::Mat2::ZERO
+            },
+        }
+    }
+
+    fn barycentrics(&self, st: Vec2) -> (f32, f32) {
+        let b = (self.m * (st - self.origin)).clamp(Vec2::ZERO, Vec2::ONE);
+        // Keep b₀ = 1 − b₁ − b₂ non-negative where the point rounds onto the diagonal.
+        let excess = (b.x + b.y - 1.0).max(0.0) * 0.5;
+        (b.x - excess, b.y - excess)
+    }
+}
+
+/// The rectangle parameters (s, t) of each vertex of the two triangles: the corner is (0, 0),
+/// `corner + ex` is (1, 0), `corner + ey` is (0, 1), the opposite vertex (1, 1).
+fn rect_barycentric_maps(
+    triangles: &[[Vec3; 3]],
+    rect: Option<(Vec3, Vec3, Vec3)>,
+) -> [RectToBarycentric; 2] {
+    let (Some((c, ex, ey)), [t0, t1]) = (rect, triangles) else {
+        return [RectToBarycentric::default(); 2];
+    };
+    let (inv_x, inv_y) = (1.0 / ex.length_squared(), 1.0 / ey.length_squared());
+    let st = |v: Vec3| {
+        let q = v - c;
+        Vec2::new((q.dot(ex) * inv_x).round(), (q.dot(ey) * inv_y).round())
+    };
+    [
+        RectToBarycentric::new(t0.map(st)),
+        RectToBarycentric::new(t1.map(st)),
+    ]
 }
 
 /// The rectangle two triangles form, as (corner, edge, edge): they share a diagonal, face the
@@ -120,11 +173,13 @@ impl AreaLight {
         let by_area = Distribution1D::new(&areas)?;
         let total_area = areas.iter().filter(|a| a.is_finite()).sum();
         let normals: Vec<Vec3> = crosses.iter().map(|c| c.normalize_or_zero()).collect();
+        let rect = rectangle(&triangles, &normals);
         Some(AreaLight {
             radiance,
             two_sided,
             samples: samples.max(1),
-            rect: rectangle(&triangles, &normals),
+            rect,
+            rect_barycentrics: rect_barycentric_maps(&triangles, rect),
             normals,
             triangles,
             total_area,
@@ -227,16 +282,17 @@ impl AreaLight {
         if !self.two_sided && self.normals[0].dot(p - self.triangles[0][0]) <= 0.0 {
             return None;
         }
-        let wi = (rect.sample(u) - p).normalize_or_zero();
-        let ray = Ray::new(p, wi);
-        let (t, b) = self
-            .triangles
-            .iter()
-            .enumerate()
-            .find_map(|(t, [a, b, c])| moller_trumbore(&ray, *a, *b, *c).map(|hit| (t, hit)))?;
+        let sample = rect.sample(u);
+        let wi = sample.offset.normalize_or_zero();
+        if wi == Vec3::ZERO {
+            return None;
+        }
+        // The corner's triangle holds s + t ≤ 1 (see `rectangle`), the other one the rest.
+        let t = usize::from(sample.s + sample.t > 1.0);
+        let (b1, b2) = self.rect_barycentrics[t].barycentrics(Vec2::new(sample.s, sample.t));
         Some(AreaSample {
             wi,
-            point: self.at_barycentrics(t, b.u, b.v),
+            point: self.at_barycentrics(t, b1, b2),
             triangle: t,
             radiance: self.radiance,
             inv_pdf_solid_angle: rect.solid_angle(),
@@ -400,6 +456,15 @@ mod tests {
                 .expect("a direction");
             on[s.triangle] += 1;
             assert_eq!(s.inv_pdf_solid_angle, omega);
+            // The point is rebuilt on the triangle the direction meets (what a ray–triangle
+            // test would find), and lies along `wi`.
+            let tri = light.triangles[s.triangle];
+            let hit = moller_trumbore(&Ray::new(p, s.wi), tri[0], tri[1], tri[2]);
+            let expected = hit.map(|h| light.at_barycentrics(s.triangle, h.u, h.v).position);
+            let expected = expected.expect("the direction meets the point's triangle");
+            assert!((expected - s.point.position).length() < 1e-5, "{k}");
+            let along = (s.point.position - p).normalize();
+            assert!(along.dot(s.wi) > 1.0 - 1e-6, "{k}");
             let pdf = light
                 .pdf(
                     p,

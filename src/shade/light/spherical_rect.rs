@@ -2,24 +2,27 @@
 //! 2013, "An Area-Preserving Parametrization for Spherical Rectangles").
 //!
 //! A quad light (`light panel = area { mesh panel … }` with `panel = quad { … }`, as cornell's)
-//! is today sampled as two spherical triangles (`spherical`): a triangle pick, then Arvo's
-//! construction in f64. The spherical rectangle samples the whole rectangle at once, exactly
-//! uniform in solid angle (`pdf = 1 / Ω`), in f32, with one `acos` per corner at set-up and
-//! one `sincos` plus square roots per sample. Ω is a difference of angles near 2π: in f32 it
-//! would be off by ~1e-4 relative for a light of a few millisteradians (a bias
-//! `tests/render_light_sampling.rs` sees), so the set-up is f64 and only the per-sample
-//! mapping is f32. Below [`spherical::MIN_SOLID_ANGLE`](super::spherical::MIN_SOLID_ANGLE) a
-//! caller samples by area (as `area` does for triangles). Not yet wired into [`AreaLight`](super::AreaLight)
-//! (it needs the build to recognise a two-triangle rectangle and `sample`/`pdf` to agree on when
-//! it is used); this file holds the construction and its tests.
+//! is sampled as a whole (`area::AreaLight` recognises a two-triangle rectangle): exactly
+//! uniform in solid angle (`pdf = 1 / Ω`). In the rectangle's own frame (x, y along its edges,
+//! z across) the four great-circle normals of the spherical rectangle have closed forms
+//! (`n₀ ∝ (0, z₀, −y₀)` and so on, the paper's eq. 5), so each corner angle's cosine and
+//! sine are ratios of square roots. Ω, the corner angles' sum less 2π, is a small difference
+//! of angles near 2π: rather than four `acos` and a subtraction that loses it (in f32 it would
+//! be off by ~1e-4 relative for a light of a few millisteradians, a bias
+//! `tests/render_light_sampling.rs` sees), the set-up multiplies the corners' unit complex
+//! numbers `cos gᵢ + i·sin gᵢ` in f64 and takes one `atan2` of the product, whose argument
+//! *is* Ω; the per-sample mapping's offset angle `k = 2π − g₂ − g₃` is kept the same way, as
+//! its cosine and sine, so a sample needs one f32 `sincos` of `u·Ω` (small, so exact to f32's
+//! relative precision) and square roots. Below
+//! [`spherical::MIN_SOLID_ANGLE`](super::spherical::MIN_SOLID_ANGLE) a caller samples by area
+//! (as `area` does for triangles).
 
-use glam::{DVec3, Vec2, Vec3};
+use glam::{DVec2, Vec2, Vec3};
 
 /// A rectangle as seen from a shading point, ready to be sampled: the local frame (x, y along
 /// the edges, z towards the point's side flipped away) and the spherical rectangle's angles.
 #[derive(Debug, Clone, Copy)]
 pub struct SphericalRect {
-    origin: Vec3,
     x: Vec3,
     y: Vec3,
     z: Vec3,
@@ -28,10 +31,40 @@ pub struct SphericalRect {
     x1: f32,
     y0: f32,
     y1: f32,
+    inv_width: f32,
+    inv_height: f32,
     b0: f32,
     b1: f32,
-    k: f32,
+    cos_k: f32,
+    sin_k: f32,
     solid_angle: f32,
+}
+
+/// A point of the rectangle drawn by [`SphericalRect::sample`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RectSample {
+    /// From the shading point to the sampled point (world space, not normalised): computed in
+    /// the rectangle's frame relative to the shading point, so no large coordinates cancel.
+    pub offset: Vec3,
+    /// The point's parameter along `ex`, in [0, 1]: the point is `corner + s·ex + t·ey`.
+    pub s: f32,
+    /// The point's parameter along `ey`, in [0, 1].
+    pub t: f32,
+}
+
+/// `cos g + i·sin g` of the angle at a corner of the spherical rectangle: the angle between the
+/// great circles through the corner's two edges, given by the (unnormalised) closed-form
+/// normals' lengths `la`, `lb`, the numerator of the cosine and the corner's distance.
+#[inline]
+fn corner_turn(cos_numerator: f64, z0: f64, corner_length: f64, la: f64, lb: f64) -> DVec2 {
+    let inv = 1.0 / (la * lb);
+    DVec2::new(cos_numerator * inv, z0.abs() * corner_length * inv)
+}
+
+/// The complex product `a · b`.
+#[inline]
+fn turn(a: DVec2, b: DVec2) -> DVec2 {
+    DVec2::new(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x)
 }
 
 impl SphericalRect {
@@ -55,25 +88,38 @@ impl SphericalRect {
         }
         let (x0, y0) = (d.dot(x), d.dot(y));
         let (x1, y1) = (x0 + exl, y0 + eyl);
-        // The set-up in f64: Ω is a small difference of angles near 2π, which f32 keeps only to
-        // about 1e-4 relative for a light of a few millisteradians (a bias of that size).
-        let v00 = DVec3::new(x0 as f64, y0 as f64, z0 as f64);
-        let v01 = DVec3::new(x0 as f64, y1 as f64, z0 as f64);
-        let v10 = DVec3::new(x1 as f64, y0 as f64, z0 as f64);
-        let v11 = DVec3::new(x1 as f64, y1 as f64, z0 as f64);
-        let n0 = v00.cross(v10).normalize_or_zero();
-        let n1 = v10.cross(v11).normalize_or_zero();
-        let n2 = v11.cross(v01).normalize_or_zero();
-        let n3 = v01.cross(v00).normalize_or_zero();
-        let angle = |a: DVec3, b: DVec3| (-a.dot(b)).clamp(-1.0, 1.0).acos();
-        let (g0, g1, g2, g3) = (angle(n0, n1), angle(n1, n2), angle(n2, n3), angle(n3, n0));
-        let k = 2.0 * std::f64::consts::PI - g2 - g3;
-        let solid_angle = (g0 + g1 - k) as f32;
+        // The set-up in f64 (see the module doc): the closed-form normals n₀ ∝ (0, z₀, −y₀),
+        // n₁ ∝ (−z₀, 0, x₁), n₂ ∝ (0, −z₀, y₁), n₃ ∝ (z₀, 0, −x₀) have these lengths…
+        let (dx0, dx1, dy0, dy1, dz0) = (x0 as f64, x1 as f64, y0 as f64, y1 as f64, z0 as f64);
+        let zz = dz0 * dz0;
+        let (l0, l1) = ((zz + dy0 * dy0).sqrt(), (zz + dx1 * dx1).sqrt());
+        let (l2, l3) = ((zz + dy1 * dy1).sqrt(), (zz + dx0 * dx0).sqrt());
+        let corner_len = |a: f64, b: f64| (a * a + b * b + zz).sqrt();
+        // …and the angle gᵢ = acos(−nᵢ·nᵢ₊₁) at each corner, as cos + i·sin (sin = |nᵢ × nᵢ₊₁|).
+        let g0 = corner_turn(dy0 * dx1, dz0, corner_len(dx1, dy0), l0, l1);
+        let g1 = corner_turn(-dx1 * dy1, dz0, corner_len(dx1, dy1), l1, l2);
+        let g2 = corner_turn(dx0 * dy1, dz0, corner_len(dx0, dy1), l2, l3);
+        let g3 = corner_turn(-dx0 * dy0, dz0, corner_len(dx0, dy0), l3, l0);
+        let (g01, g23) = (turn(g0, g1), turn(g2, g3));
+        let all = turn(g01, g23);
+        // arg(e^{i(2π + Ω)}) = Ω, in (−π, π]; a light filling more than half the hemisphere
+        // (Ω > π) comes out negative. A negative figure is told apart from a rounding of a
+        // vanishing Ω by the plain angle sum, which only this rare case pays for.
+        let mut omega = all.y.atan2(all.x);
+        if omega <= 0.0 {
+            let angle = |g: DVec2| g.y.atan2(g.x);
+            let sum = angle(g0) + angle(g1) + angle(g2) + angle(g3) - 2.0 * std::f64::consts::PI;
+            if sum <= std::f64::consts::PI {
+                return None;
+            }
+            omega += 2.0 * std::f64::consts::PI;
+        }
+        let solid_angle = omega as f32;
         if solid_angle <= 0.0 || solid_angle.is_nan() {
             return None;
         }
+        // k = 2π − g₂ − g₃: e^{ik} is the conjugate of e^{i(g₂ + g₃)}.
         Some(SphericalRect {
-            origin: p,
             x,
             y,
             z,
@@ -82,9 +128,12 @@ impl SphericalRect {
             x1,
             y0,
             y1,
-            b0: n0.z as f32,
-            b1: n2.z as f32,
-            k: k as f32,
+            inv_width: 1.0 / exl,
+            inv_height: 1.0 / eyl,
+            b0: (-dy0 / l0) as f32,
+            b1: (dy1 / l2) as f32,
+            cos_k: g23.x as f32,
+            sin_k: -g23.y as f32,
             solid_angle,
         })
     }
@@ -96,10 +145,11 @@ impl SphericalRect {
 
     /// The point of the rectangle for `u` ∈ [0, 1)²; its direction from the shading point is
     /// uniform over the spherical rectangle.
-    pub fn sample(&self, u: Vec2) -> Vec3 {
-        // The column: the sub-rectangle [x0, xu] subtends u.x · Ω.
-        let au = u.x * self.solid_angle + self.k;
-        let (sin_au, cos_au) = au.sin_cos();
+    pub fn sample(&self, u: Vec2) -> RectSample {
+        // The column: the sub-rectangle [x0, xu] subtends u.x · Ω; au = u.x · Ω + k.
+        let (sin_u, cos_u) = (u.x * self.solid_angle).sin_cos();
+        let sin_au = sin_u * self.cos_k + cos_u * self.sin_k;
+        let cos_au = cos_u * self.cos_k - sin_u * self.sin_k;
         let fu = (cos_au * self.b0 - self.b1) / sin_au;
         let cu = ((fu * fu + self.b0 * self.b0).sqrt().recip())
             .copysign(fu)
@@ -117,7 +167,11 @@ impl SphericalRect {
         } else {
             self.y1
         };
-        self.origin + xu * self.x + yv * self.y + self.z0 * self.z
+        RectSample {
+            offset: xu * self.x + yv * self.y + self.z0 * self.z,
+            s: ((xu - self.x0) * self.inv_width).clamp(0.0, 1.0),
+            t: ((yv - self.y0) * self.inv_height).clamp(0.0, 1.0),
+        }
     }
 }
 
@@ -198,7 +252,7 @@ mod tests {
             for i in 0..n {
                 for j in 0..n {
                     let u = Vec2::new((i as f32 + 0.5) / n as f32, (j as f32 + 0.5) / n as f32);
-                    let q = r.sample(u) - c;
+                    let q = p + r.sample(u).offset - c;
                     let (s, t) = (
                         q.dot(ex) / ex.length_squared(),
                         q.dot(ey) / ey.length_squared(),
