@@ -31,7 +31,6 @@ use rayon::prelude::*;
 use self::camera::PinholeCamera;
 use self::estimate::{Accumulator, NoiseStats, PixelEstimate};
 use self::integrator::{radiance_scaled, RayCounts};
-use self::rng::Sampler;
 pub use self::window::PixelWindow;
 use crate::film::Film;
 use crate::scene::Scene;
@@ -357,17 +356,18 @@ impl Job<'_> {
         // sample the same positions again and again.
         // A single sample stays at the pixel centre: a 1-spp render is a point-sampled image
         // (sharp, and what closed-form tests of one pixel expect).
+        let samplers = rng::PixelBatch::new(seed, x, y, batch, count);
         let shift = if count > 1 {
-            let bits = Sampler::for_batch_sample(seed, x, y, batch, 0, count)
-                .pixel_bits(rng::STREAM_SUBPIXEL);
+            let bits = samplers.sampler(0).pixel_bits(rng::STREAM_SUBPIXEL);
             Vec2::new(rng::unit(bits), rng::unit(bits << 24))
         } else {
             Vec2::ZERO
         };
         for (s, offset) in offsets.iter().enumerate() {
-            let o = (*offset + shift).fract();
+            let o = *offset + shift;
+            let o = Vec2::new(rng::wrap_unit(o.x), rng::wrap_unit(o.y));
             let ray = self.camera.ray(Vec2::new(x as f32, y as f32) + o);
-            let mut sampler = Sampler::for_batch_sample(seed, x, y, batch, s as u32, count);
+            let mut sampler = samplers.sampler(s as u32);
             let l = radiance_scaled(self.scene, &ray, footprint_scale, &mut sampler, counts);
             // A non-finite sample (a degenerate configuration the guards missed) must not
             // poison the pixel; it is counted for `--stats` instead (and as black in the mean).

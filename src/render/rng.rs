@@ -14,6 +14,42 @@
 
 use glam::Vec2;
 
+/// The samplers of one batch of one pixel: what their keys share is hashed once per pixel, not
+/// once per sample (the same values as [`Sampler::for_batch_sample`], bit for bit).
+#[derive(Debug, Clone, Copy)]
+pub struct PixelBatch {
+    pixel_hash: u64,
+    pixel_key: u64,
+    batch: u32,
+    count: u32,
+}
+
+impl PixelBatch {
+    /// Batch `batch` of `count` samples of pixel (`px`, `py`).
+    pub fn new(seed: u64, px: u32, py: u32, batch: u32, count: u32) -> PixelBatch {
+        let pixel_hash = pixel_hash(seed, px, py);
+        PixelBatch {
+            pixel_hash,
+            pixel_key: mix64(key_of(pixel_hash, u32::MAX - batch) ^ 0x5851_f42d_4c95_7f2d),
+            batch,
+            count: count.max(1),
+        }
+    }
+
+    /// The sampler of sample `index` of the batch.
+    #[inline]
+    pub fn sampler(&self, index: u32) -> Sampler {
+        let global = self.batch.wrapping_mul(self.count).wrapping_add(index);
+        Sampler {
+            key: key_of(self.pixel_hash, global),
+            dim: 0,
+            pixel_key: self.pixel_key,
+            index: index.min(self.count - 1),
+            count: self.count,
+        }
+    }
+}
+
 /// murmur3's 64-bit finaliser: a bijective avalanche mix.
 #[inline]
 fn mix64(mut x: u64) -> u64 {
@@ -65,15 +101,7 @@ impl Sampler {
         index: u32,
         count: u32,
     ) -> Sampler {
-        let count = count.max(1);
-        let global = batch.wrapping_mul(count).wrapping_add(index);
-        Sampler {
-            key: sample_key(seed, px, py, global),
-            dim: 0,
-            pixel_key: mix64(sample_key(seed, px, py, u32::MAX - batch) ^ 0x5851_f42d_4c95_7f2d),
-            index: index.min(count - 1),
-            count,
-        }
+        PixelBatch::new(seed, px, py, batch, count).sampler(index)
     }
 
     /// A value in [0, 1) (24 random bits, so exactly representable).
@@ -104,7 +132,7 @@ impl Sampler {
     pub fn stratified_2d(&self, stream: u64, j: u32, n: u32) -> Vec2 {
         let bits = self.pixel_bits(stream);
         let shift = to_unit(bits);
-        let x = ((j as f32 + 0.5) / n as f32 + shift).fract();
+        let x = wrap_unit((j as f32 + 0.5) / n as f32 + shift);
         // The shift uses the top 24 bits, the scramble the low 32: independent.
         let y = ((j.reverse_bits() ^ bits as u32) >> 8) as f32 * (1.0 / (1u32 << 24) as f32);
         Vec2::new(x, y)
@@ -153,8 +181,30 @@ fn owen_scramble(v: u32, seed: u32) -> u32 {
 }
 
 fn sample_key(seed: u64, px: u32, py: u32, sample: u32) -> u64 {
+    key_of(pixel_hash(seed, px, py), sample)
+}
+
+/// The part of a sample's key that only depends on the seed and the pixel.
+#[inline]
+fn pixel_hash(seed: u64, px: u32, py: u32) -> u64 {
     let pixel = ((py as u64) << 32) | px as u64;
-    mix64(mix64(mix64(seed) ^ pixel) ^ (sample as u64).wrapping_add(0x9e37_79b9))
+    mix64(mix64(seed) ^ pixel)
+}
+
+#[inline]
+fn key_of(pixel_hash: u64, sample: u32) -> u64 {
+    mix64(pixel_hash ^ (sample as u64).wrapping_add(0x9e37_79b9))
+}
+
+/// `x mod 1` for `x` in [0, 2): a sum of two values in [0, 1) wrapped back, without the libm
+/// call `fract` is on a baseline x86-64 build (no SSE4.1 `roundss`); the same bits.
+#[inline]
+pub fn wrap_unit(x: f32) -> f32 {
+    if x >= 1.0 {
+        x - 1.0
+    } else {
+        x
+    }
 }
 
 /// The per-pixel stream of adaptive batches' sub-pixel shifts (far from the integrator's).

@@ -156,17 +156,42 @@ pub fn offset_origin(p: Vec3, p_error: Vec3, n: Vec3, w: Vec3) -> Vec3 {
     // axis-aligned plane) but that an accel transforming rays could still see a rounding off.
     let d = (2.0 * n.abs().dot(p_error)).max(gamma(3) * p.abs().max_element());
     let offset = if w.dot(n) < 0.0 { -d * n } else { d * n };
-    let mut po = p + offset;
-    for k in 0..3 {
-        if offset[k] > 0.0 {
-            po[k] = next_up(po[k]);
-        } else if offset[k] < 0.0 {
-            po[k] = next_down(po[k]);
-        }
-    }
-    po
+    let po = p + offset;
+    Vec3::new(
+        one_ulp_towards(po.x, offset.x),
+        one_ulp_towards(po.y, offset.y),
+        one_ulp_towards(po.z, offset.z),
+    )
 }
 
+/// `x` moved one ulp in the direction of `towards`'s sign: [`next_up`] for a positive
+/// `towards`, [`next_down`] for a negative one, `x` itself for zero (the same values),
+/// computed on the bits without branches the sign of a normal's component would mispredict.
+#[inline]
+fn one_ulp_towards(x: f32, towards: f32) -> f32 {
+    let bits = x.to_bits();
+    let magnitude = bits & 0x7fff_ffff;
+    let x_negative = bits >> 31;
+    let down = u32::from(towards < 0.0);
+    // Away from zero (the magnitude grows) when x's sign is the direction's; from ±0 the
+    // smallest subnormal of the direction's sign.
+    let grows = x_negative == down;
+    let stepped = if magnitude == 0 {
+        (down << 31) | 1
+    } else if grows {
+        bits.wrapping_add(1)
+    } else {
+        bits - 1
+    };
+    // Unchanged: no direction, NaN, or an infinity that cannot grow.
+    let keep = towards == 0.0
+        || towards.is_nan()
+        || magnitude > 0x7f80_0000
+        || (magnitude == 0x7f80_0000 && grows);
+    f32::from_bits(if keep { bits } else { stepped })
+}
+
+#[cfg(test)]
 fn next_up(x: f32) -> f32 {
     if x.is_infinite() && x > 0.0 || x.is_nan() {
         return x;
@@ -176,6 +201,7 @@ fn next_up(x: f32) -> f32 {
     f32::from_bits(if x >= 0.0 { bits + 1 } else { bits - 1 })
 }
 
+#[cfg(test)]
 fn next_down(x: f32) -> f32 {
     -next_up(-x)
 }
@@ -183,6 +209,39 @@ fn next_down(x: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn one_ulp_towards_is_next_up_and_next_down() {
+        let values = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            1e-40,
+            -1e-40,
+            f32::MIN_POSITIVE,
+            f32::MAX,
+            -f32::MAX,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            3.5e7,
+            -2.25e-3,
+        ];
+        for x in values {
+            assert_eq!(
+                one_ulp_towards(x, 1e-3).to_bits(),
+                next_up(x).to_bits(),
+                "{x}"
+            );
+            assert_eq!(
+                one_ulp_towards(x, -2.0).to_bits(),
+                next_down(x).to_bits(),
+                "{x}"
+            );
+            assert_eq!(one_ulp_towards(x, 0.0).to_bits(), x.to_bits(), "{x}");
+        }
+        assert!(one_ulp_towards(f32::NAN, 1.0).is_nan());
+    }
 
     #[test]
     fn next_float_steps_one_ulp() {

@@ -35,6 +35,8 @@ pub struct SphericalRect {
     inv_height: f32,
     b0: f32,
     b1: f32,
+    /// 1 − b0² = z0² / (z0² + y0²), from f64 (no cancellation).
+    one_minus_b0_sq: f32,
     cos_k: f32,
     sin_k: f32,
     solid_angle: f32,
@@ -105,7 +107,9 @@ impl SphericalRect {
         // arg(e^{i(2π + Ω)}) = Ω, in (−π, π]; a light filling more than half the hemisphere
         // (Ω > π) comes out negative. A negative figure is told apart from a rounding of a
         // vanishing Ω by the plain angle sum, which only this rare case pays for.
-        let mut omega = all.y.atan2(all.x);
+        // The product is exact to f64; its argument to f32 needs only f32's `atan2` (each part
+        // rounded to f32 moves Ω by ~1e-7 relative, whatever Ω's size).
+        let mut omega = f64::from((all.y as f32).atan2(all.x as f32));
         if omega <= 0.0 {
             let angle = |g: DVec2| g.y.atan2(g.x);
             let sum = angle(g0) + angle(g1) + angle(g2) + angle(g3) - 2.0 * std::f64::consts::PI;
@@ -132,6 +136,7 @@ impl SphericalRect {
             inv_height: 1.0 / eyl,
             b0: (-dy0 / l0) as f32,
             b1: (dy1 / l2) as f32,
+            one_minus_b0_sq: (zz / (l0 * l0)) as f32,
             cos_k: g23.x as f32,
             sin_k: -g23.y as f32,
             solid_angle,
@@ -150,20 +155,23 @@ impl SphericalRect {
         let (sin_u, cos_u) = (u.x * self.solid_angle).sin_cos();
         let sin_au = sin_u * self.cos_k + cos_u * self.sin_k;
         let cos_au = cos_u * self.cos_k - sin_u * self.sin_k;
-        let fu = (cos_au * self.b0 - self.b1) / sin_au;
-        let cu = ((fu * fu + self.b0 * self.b0).sqrt().recip())
-            .copysign(fu)
-            .clamp(-1.0, 1.0);
-        let xu = -(cu * self.z0) / (1.0 - cu * cu).max(0.0).sqrt();
+        // The paper's fu = (cos_au·b0 − b1) / sin_au, cu = sign(fu) / √(fu² + b0²) and
+        // xu = −cu·z0 / √(1 − cu²), folded into one square root and one division (a short
+        // chain: each sample waits on it):
+        // xu = −z0 · sign(num) · sin_au / √(num² − (1 − b0²)·sin_au²), num = cos_au·b0 − b1.
+        let num = cos_au * self.b0 - self.b1;
+        let den2 = num * num - self.one_minus_b0_sq * sin_au * sin_au;
+        let xu = -self.z0 * 1f32.copysign(num) * sin_au / den2.max(0.0).sqrt();
         let xu = if xu.is_nan() { self.x0 } else { xu }.clamp(self.x0, self.x1);
-        // The row: uniform in the sine of the elevation along that column.
-        let d = (xu * xu + self.z0 * self.z0).sqrt();
-        let h0 = self.y0 / (d * d + self.y0 * self.y0).sqrt();
-        let h1 = self.y1 / (d * d + self.y1 * self.y1).sqrt();
+        // The row: uniform in the sine of the elevation along that column; d² = xu² + z0² and
+        // yv = hv·d / √(1 − hv²) = hv·√(d² / (1 − hv²)).
+        let d2 = xu * xu + self.z0 * self.z0;
+        let h0 = self.y0 / (d2 + self.y0 * self.y0).sqrt();
+        let h1 = self.y1 / (d2 + self.y1 * self.y1).sqrt();
         let hv = h0 + u.y * (h1 - h0);
         let hv2 = hv * hv;
         let yv = if hv2 < 1.0 - 1e-6 {
-            (hv * d / (1.0 - hv2).sqrt()).clamp(self.y0, self.y1)
+            (hv * (d2 / (1.0 - hv2)).sqrt()).clamp(self.y0, self.y1)
         } else {
             self.y1
         };
