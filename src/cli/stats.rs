@@ -43,6 +43,12 @@ impl PhaseStats {
             "image          {}x{}, {} spp, {} threads",
             scene.settings.width, scene.settings.height, render.samples_per_pixel, render.threads
         );
+        if let (boosted @ 1.., spp) = render.emitter_pixels {
+            let _ = writeln!(
+                s,
+                "light pixels   {boosted} pixels that may see an area light took {spp} spp"
+            );
+        }
         if let Some((k, n, w, split)) = self.tile {
             let _ = writeln!(
                 s,

@@ -46,6 +46,22 @@ impl PinholeCamera {
         let dir = self.forward + x * self.half_width + y * self.half_height;
         Ray::new(self.eye, dir.normalize())
     }
+
+    /// Where `point` appears on the film (pixels from the top-left corner, possibly off the
+    /// image): the inverse of [`PinholeCamera::ray`]. `None` for a point not in front of the
+    /// camera.
+    pub fn project(&self, point: Vec3) -> Option<Vec2> {
+        let v = point - self.eye;
+        let depth = v.dot(self.forward);
+        if !(depth > 0.0) || !depth.is_finite() {
+            return None;
+        }
+        // `forward`, `half_width` and `half_height` are orthogonal (the checker's frame).
+        let x = v.dot(self.half_width) / (depth * self.half_width.length_squared());
+        let y = v.dot(self.half_height) / (depth * self.half_height.length_squared());
+        let film = Vec2::new((x + 1.0) * 0.5 * self.size_px.x, (1.0 - y) * 0.5 * self.size_px.y);
+        film.is_finite().then_some(film)
+    }
 }
 
 #[cfg(test)]
@@ -62,6 +78,17 @@ mod tests {
             fov_y_rad: fov_y_deg.to_radians(),
             span: crate::source::Span::new(crate::source::FileId(0), 0, 0),
         }
+    }
+
+    #[test]
+    fn project_inverts_ray() {
+        let c = PinholeCamera::new(&camera(50.0), 64, 32);
+        for p in [Vec2::new(32.0, 16.0), Vec2::new(3.5, 30.25), Vec2::new(63.0, 0.5)] {
+            let r = c.ray(p);
+            let back = c.project(r.origin + 7.0 * r.dir).expect("in front");
+            assert!((back - p).length() < 1e-3, "{p} -> {back}");
+        }
+        assert_eq!(c.project(Vec3::new(1.0, 2.0, 3.0) - Vec3::Z), None);
     }
 
     #[test]

@@ -15,6 +15,7 @@
 
 pub mod balance;
 pub mod camera;
+pub mod emitter_pixels;
 pub mod estimate;
 pub mod integrator;
 mod mis;
@@ -29,6 +30,7 @@ use glam::Vec2;
 use rayon::prelude::*;
 
 use self::camera::PinholeCamera;
+use self::emitter_pixels::EmitterPixels;
 use self::estimate::{Accumulator, NoiseStats, PixelEstimate};
 use self::integrator::{radiance_scaled, RayCounts};
 pub use self::window::PixelWindow;
@@ -67,6 +69,9 @@ pub struct RenderStats {
     pub threads: usize,
     /// Samples per pixel: the fixed count, or the mean of an adaptive render.
     pub samples_per_pixel: u32,
+    /// Pixels of a fixed-count render that may see an area light, and the samples each of
+    /// them took ([`emitter_pixels`]); (0, 0) when none was boosted.
+    pub emitter_pixels: (u64, u32),
     /// Rays by kind, optional feature paths taken, and samples dropped as NaN or infinite.
     pub counts: RayCounts,
     /// Estimated error of the image, and how adaptive sampling went.
@@ -157,10 +162,22 @@ pub fn render_window(
         first_offsets: &first_offsets,
         offsets: &batch_offsets,
     });
+    let camera = PinholeCamera::new(&scene.camera, settings.width, settings.height);
+    // Pixels that may see an area light take more samples (fixed-count renders only).
+    let emitter_pixels = match adaptive {
+        None => EmitterPixels::find(scene, &camera, side),
+        Some(_) => EmitterPixels::none(),
+    };
+    let boosted_offsets = match emitter_pixels.factor() {
+        1 => Vec::new(),
+        f => pattern::offsets(side * f, settings.pattern),
+    };
     let job = Job {
         scene,
-        camera: PinholeCamera::new(&scene.camera, settings.width, settings.height),
+        camera,
         offsets: &offsets,
+        emitter_pixels: &emitter_pixels,
+        boosted_offsets: &boosted_offsets,
         adaptive,
     };
     let window = window.clip(settings.width, settings.height);
@@ -209,6 +226,10 @@ struct Job<'a> {
     scene: &'a Scene,
     camera: PinholeCamera,
     offsets: &'a [Vec2],
+    /// Pixels of a fixed-count render that may see an area light ([`emitter_pixels`]).
+    emitter_pixels: &'a EmitterPixels,
+    /// Their sub-pixel positions (a finer grid of the same pattern).
+    boosted_offsets: &'a [Vec2],
     adaptive: Option<Adaptive<'a>>,
 }
 
@@ -289,6 +310,10 @@ impl Job<'_> {
             wall: Duration::ZERO,
             threads: 0,
             samples_per_pixel,
+            emitter_pixels: match self.emitter_pixels.boosted() {
+                0 => (0, 0),
+                n => (n, self.boosted_offsets.len() as u32),
+            },
             counts,
             noise,
         };
@@ -315,9 +340,13 @@ impl Job<'_> {
     fn pixel(&self, x: u32, y: u32, counts: &mut RayCounts) -> PixelEstimate {
         let mut acc = Accumulator::default();
         let Some(a) = &self.adaptive else {
-            let scale = footprint_scale(self.offsets.len() as u32);
-            self.batch(x, y, 0, (self.offsets, scale), &mut acc, counts);
-            return acc.finish(self.offsets.len() as u32, false);
+            let offsets = match self.emitter_pixels.factor_at(x, y) {
+                1 => self.offsets,
+                _ => self.boosted_offsets,
+            };
+            let scale = footprint_scale(offsets.len() as u32);
+            self.batch(x, y, 0, (offsets, scale), &mut acc, counts);
+            return acc.finish(offsets.len() as u32, false);
         };
         let mut taken = 0;
         for (b, &size) in a.batch_sizes.iter().enumerate() {
