@@ -176,3 +176,45 @@ fn cornell_box_looks_like_the_cornell_box() {
         .count();
     assert!(lit > 32 * 32 * 6 / 10, "{lit} lit pixels");
 }
+
+/// Pixels whose footprint may see the area light take 16× the samples of a fixed-count render
+/// (`render::emitter_pixels`): every pixel that shows the light is among them, pixels far from
+/// it are not, they are a small share of the image, and the camera rays count them.
+#[test]
+fn pixels_that_may_see_the_light_take_more_samples() {
+    use scnc::render::camera::PinholeCamera;
+    use scnc::render::emitter_pixels::{EmitterPixels, SIDE_FACTOR};
+    let size = 48;
+    let scene = build(&cornell(size, 4), AccelKind::Bvh);
+    let camera = PinholeCamera::new(&scene.camera, size, size);
+    let marked = EmitterPixels::find(&scene, &camera, 2);
+    assert_eq!(marked.factor(), SIDE_FACTOR);
+    let boosted = marked.boosted();
+    assert!(
+        boosted > 0 && boosted < u64::from(size * size) / 20,
+        "{boosted}"
+    );
+    let (film, stats) = render_with(&scene, 2);
+    let per_boosted = 4 * SIDE_FACTOR * SIDE_FACTOR;
+    assert_eq!(stats.emitter_pixels, (boosted, per_boosted));
+    let extra = boosted * u64::from(per_boosted - 4);
+    assert_eq!(stats.camera_rays, u64::from(size * size * 4) + extra);
+    for y in 0..size {
+        for x in 0..size {
+            // The light (radiance 17, 12, 4) is the only thing this bright.
+            if film.get(x, y).x > 1.0 {
+                assert_eq!(
+                    marked.factor_at(x, y),
+                    SIDE_FACTOR,
+                    "({x}, {y}) shows the light"
+                );
+            }
+        }
+    }
+    // The floor at the bottom and the walls at mid height are far from the light.
+    for (x, y) in [(24, 46), (2, 24), (45, 24)] {
+        assert_eq!(marked.factor_at(x, y), 1, "({x}, {y})");
+    }
+    // One sample per pixel stays point-sampled, whatever the scene.
+    assert_eq!(EmitterPixels::find(&scene, &camera, 1).boosted(), 0);
+}

@@ -53,13 +53,16 @@ impl PinholeCamera {
     pub fn project(&self, point: Vec3) -> Option<Vec2> {
         let v = point - self.eye;
         let depth = v.dot(self.forward);
-        if !(depth > 0.0) || !depth.is_finite() {
+        if depth.is_nan() || depth <= 0.0 || !depth.is_finite() {
             return None;
         }
         // `forward`, `half_width` and `half_height` are orthogonal (the checker's frame).
         let x = v.dot(self.half_width) / (depth * self.half_width.length_squared());
         let y = v.dot(self.half_height) / (depth * self.half_height.length_squared());
-        let film = Vec2::new((x + 1.0) * 0.5 * self.size_px.x, (1.0 - y) * 0.5 * self.size_px.y);
+        let film = Vec2::new(
+            (x + 1.0) * 0.5 * self.size_px.x,
+            (1.0 - y) * 0.5 * self.size_px.y,
+        );
         film.is_finite().then_some(film)
     }
 }
@@ -83,7 +86,11 @@ mod tests {
     #[test]
     fn project_inverts_ray() {
         let c = PinholeCamera::new(&camera(50.0), 64, 32);
-        for p in [Vec2::new(32.0, 16.0), Vec2::new(3.5, 30.25), Vec2::new(63.0, 0.5)] {
+        for p in [
+            Vec2::new(32.0, 16.0),
+            Vec2::new(3.5, 30.25),
+            Vec2::new(63.0, 0.5),
+        ] {
             let r = c.ray(p);
             let back = c.project(r.origin + 7.0 * r.dir).expect("in front");
             assert!((back - p).length() < 1e-3, "{p} -> {back}");

@@ -56,7 +56,11 @@ impl EmitterPixels {
     /// through, for a render of `side`² samples per pixel.
     pub fn find(scene: &Scene, camera: &PinholeCamera, side: u32) -> EmitterPixels {
         let (width, height) = (scene.settings.width, scene.settings.height);
-        let has_area_light = scene.lights.lights.iter().any(|l| matches!(l, Light::Area(_)));
+        let has_area_light = scene
+            .lights
+            .lights
+            .iter()
+            .any(|l| matches!(l, Light::Area(_)));
         if side < 2 || !has_area_light || width == 0 || height == 0 {
             return EmitterPixels::none();
         }
