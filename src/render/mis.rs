@@ -92,6 +92,11 @@ impl Shading<'_> {
         s.radiance * f * (cos * w / s.pdf_solid_angle)
     }
 
+    /// Whether anything lies along `ray` (any-hit).
+    fn blocked_ray(&self, ray: &Ray) -> bool {
+        self.scene.accel.as_ref().is_some_and(|a| a.any_hit(ray))
+    }
+
     /// Whether anything lies in direction `wi` (unit) from the shading point.
     fn blocked(&self, wi: Vec3, counts: &mut RayCounts) -> bool {
         counts.shadow += 1;
@@ -138,7 +143,17 @@ impl Shading<'_> {
             }
             counts.brdf += 1;
             let ray = Ray::new(origin, wi);
-            let hit = self.scene.accel.as_ref().and_then(|a| a.closest_hit(&ray));
+            // Only the sky can be reached: whether anything is in the way is all that matters,
+            // and an any-hit query stops at the first thing it finds.
+            let sky_only = !lights.has_emitters();
+            let hit = if sky_only {
+                if self.blocked_ray(&ray) {
+                    continue;
+                }
+                None
+            } else {
+                self.scene.accel.as_ref().and_then(|a| a.closest_hit(&ray))
+            };
             let (radiance, light_density) = match hit {
                 None => match env {
                     Some(e) => {
