@@ -77,7 +77,7 @@ impl Shading<'_> {
         counts: &mut RayCounts,
     ) -> Vec3 {
         let u = sampler.stratified_2d(STREAM_ENVIRONMENT, pick, picks);
-        let Some(s) = env.sample(u) else {
+        let Some(s) = env.sample_facing(u, Some(self.ns)) else {
             return Vec3::ZERO;
         };
         let cos = self.ns.dot(s.wi);
@@ -158,7 +158,10 @@ impl Shading<'_> {
                 None => match env {
                     Some(e) => {
                         counts.environment += 1;
-                        (e.radiance(wi), lights.pmf_environment() * e.pdf(wi))
+                        (
+                            e.radiance(wi),
+                            lights.pmf_environment() * e.pdf_facing(wi, Some(self.ns)),
+                        )
                     }
                     None => continue,
                 },

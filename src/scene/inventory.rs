@@ -213,7 +213,12 @@ impl Scene {
         if map.has_distribution() {
             out.push(Built {
                 what: "environment table",
-                detail: format!("{w}x{h} luminance x sin(theta) distribution"),
+                detail: format!(
+                    "{w}x{h} luminance x sin(theta), in {}x{} cells, weighted for {} normal bins",
+                    crate::shade::light::env_sampler::CELLS_X.min(w),
+                    crate::shade::light::env_sampler::CELLS_Y.min(h),
+                    crate::shade::light::env_sampler::NORMAL_BINS.pow(2)
+                ),
                 bytes: table,
             });
         }

@@ -7,7 +7,13 @@ pub struct Distribution1D {
     /// `cdf[i]` = Σ_{k<i} w_k / total; `cdf[0] = 0`, `cdf[n] = 1`.
     cdf: Vec<f32>,
     pmf: Vec<f32>,
+    /// For tables of at least [`GUIDED_LEN`] entries, `len / 4` guides: entry `k` is the first
+    /// index whose bucket ends past `k / guides` (a search then spans a few buckets).
+    guide: Vec<u32>,
 }
+
+/// Tables this long get a guide.
+const GUIDED_LEN: usize = 64;
 
 impl Distribution1D {
     /// `None` when there is nothing to pick: no weights, or none positive and finite.
@@ -34,12 +40,24 @@ impl Distribution1D {
             *last = 1.0;
         }
         let pmf = weights.iter().map(|&w| (clean(w) / total) as f32).collect();
-        Some(Distribution1D { cdf, pmf })
+        let n = weights.len();
+        let guide = if n >= GUIDED_LEN {
+            let g = n / 4;
+            (0..=g)
+                .map(|k| {
+                    let threshold = k as f32 / g as f32;
+                    cdf[1..].partition_point(|&c| c <= threshold).min(n - 1) as u32
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+        Some(Distribution1D { cdf, pmf, guide })
     }
 
     /// Heap memory of the tables.
     pub fn bytes(&self) -> usize {
-        (self.cdf.len() + self.pmf.len()) * std::mem::size_of::<f32>()
+        (self.cdf.len() + self.pmf.len() + self.guide.len()) * std::mem::size_of::<f32>()
     }
 
     /// How many indices it picks from (zero-weight ones included).
@@ -52,6 +70,18 @@ impl Distribution1D {
         self.pmf.is_empty()
     }
 
+    /// The first index whose bucket ends past `u`, searched between the guides of `u`'s
+    /// bracket; `None` without guides, or when rounding put `u` outside its bracket (the caller
+    /// then searches the whole table: the same answer either way).
+    fn guided_search(&self, u: f32) -> Option<usize> {
+        let g = self.guide.len().checked_sub(1).filter(|&g| g > 0)?;
+        let k = ((u * g as f32) as usize).min(g - 1);
+        let (lo, hi) = (self.guide[k] as usize, self.guide[k + 1] as usize);
+        // The answer i satisfies cdf[i] <= u < cdf[i + 1]; check the bracket holds it.
+        let inside = self.cdf[lo] <= u && u < self.cdf[(hi + 1).min(self.cdf.len() - 1)];
+        inside.then(|| lo + self.cdf[lo + 1..=hi + 1].partition_point(|&c| c <= u))
+    }
+
     /// The probability of picking `i` (0 outside the table).
     pub fn pmf(&self, i: usize) -> f32 {
         self.pmf.get(i).copied().unwrap_or(0.0)
@@ -62,7 +92,10 @@ impl Distribution1D {
     pub fn sample(&self, u: f32) -> (usize, f32, f32) {
         // First i with cdf[i+1] > u, skipping zero-weight buckets.
         let n = self.pmf.len();
-        let i = self.cdf[1..].partition_point(|&c| c <= u).min(n - 1);
+        let i = self
+            .guided_search(u)
+            .unwrap_or_else(|| self.cdf[1..].partition_point(|&c| c <= u))
+            .min(n - 1);
         let (lo, hi) = (self.cdf[i], self.cdf[i + 1]);
         let remapped = if hi > lo {
             ((u - lo) / (hi - lo)).clamp(0.0, 1.0 - f32::EPSILON / 2.0)
@@ -76,6 +109,28 @@ impl Distribution1D {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn guided_search_is_the_plain_search() {
+        // Zero runs, a spike and smooth weights: every u picks what a whole search picks.
+        let weights: Vec<f32> = (0..1000)
+            .map(|i| match i % 97 {
+                0..=9 => 0.0,
+                50 => 400.0,
+                k => 1.0 + (k as f32 * 0.37).sin().abs(),
+            })
+            .collect();
+        let d = Distribution1D::new(&weights).expect("weights");
+        assert!(!d.guide.is_empty());
+        for k in 0..=100_000 {
+            let u = (k as f32 / 100_000.0).min(1.0 - f32::EPSILON / 2.0);
+            let plain = d.cdf[1..]
+                .partition_point(|&c| c <= u)
+                .min(weights.len() - 1);
+            assert_eq!(d.sample(u).0, plain, "u = {u}");
+            assert!(weights[plain] > 0.0, "u = {u} picked a zero weight");
+        }
+    }
 
     #[test]
     fn empty_or_zero_weights_give_none() {

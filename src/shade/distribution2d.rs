@@ -18,8 +18,11 @@ use rayon::prelude::*;
 
 use super::distribution::Distribution1D;
 
-/// Guide entries per row.
+/// Guide entries per row, for rows of at least [`GUIDED_WIDTH`] cells.
 pub const GUIDES: usize = 128;
+
+/// Rows narrower than this are searched whole (a few steps), without guides.
+pub const GUIDED_WIDTH: usize = 256;
 
 /// Picks a cell of a `width × height` grid with probability proportional to its weight, and a
 /// point uniform inside it.
@@ -29,8 +32,10 @@ pub struct Distribution2D {
     height: usize,
     /// Per row, `width + 1` CDF values `0 … 1` (a zero row keeps an all-zero CDF: never picked).
     cdf: Vec<f32>,
-    /// Per row, `GUIDES + 1` cells: entry `k` is the first cell `c` with `cdf[c + 1] > k/GUIDES`.
+    /// Per row, `guides + 1` cells: entry `k` is the first cell `c` with `cdf[c + 1] > k/guides`.
     guide: Vec<u32>,
+    /// Guide entries per row: [`GUIDES`], or 0 for rows narrower than [`GUIDED_WIDTH`].
+    guides: usize,
     marginal: Distribution1D,
 }
 
@@ -60,12 +65,12 @@ impl Distribution2D {
             }
         }
         let mut cdf = vec![0.0f32; (width + 1) * height];
-        let mut guide = vec![0u32; (GUIDES + 1) * height];
+        let guides = if width >= GUIDED_WIDTH { GUIDES } else { 0 };
+        let mut guide = vec![0u32; if guides > 0 { (guides + 1) * height } else { 0 }];
         let row_sums: Vec<f32> = weights
             .par_chunks(width)
             .zip(cdf.par_chunks_mut(width + 1))
-            .zip(guide.par_chunks_mut(GUIDES + 1))
-            .map(|((row, cdf), guide)| {
+            .map(|(row, cdf)| {
                 let mut acc = 0.0f64;
                 cdf[0] = 0.0;
                 for (c, &w) in row.iter().enumerate() {
@@ -79,20 +84,28 @@ impl Distribution2D {
                     }
                     cdf[width] = 1.0;
                 }
-                for (k, g) in guide.iter_mut().enumerate() {
-                    let threshold = k as f32 / GUIDES as f32;
-                    let first = cdf[1..].partition_point(|&c| c <= threshold);
-                    *g = first.min(width - 1) as u32;
-                }
                 acc as f32
             })
             .collect();
+        if guides > 0 {
+            guide
+                .par_chunks_mut(guides + 1)
+                .zip(cdf.par_chunks(width + 1))
+                .for_each(|(guide, cdf)| {
+                    for (k, g) in guide.iter_mut().enumerate() {
+                        let threshold = k as f32 / guides as f32;
+                        let first = cdf[1..].partition_point(|&c| c <= threshold);
+                        *g = first.min(width - 1) as u32;
+                    }
+                });
+        }
         let marginal = Distribution1D::new(&row_sums)?;
         Some(Distribution2D {
             width,
             height,
             cdf,
             guide,
+            guides,
             marginal,
         })
     }
@@ -119,11 +132,17 @@ impl Distribution2D {
     pub fn sample(&self, u: Vec2) -> Sample2D {
         let (row, pmf_row, v_in) = self.marginal.sample(u.y);
         let cdf = &self.cdf[row * (self.width + 1)..(row + 1) * (self.width + 1)];
-        // The answer lies between the guides of u's bracket (`u < (k + 1)/GUIDES`).
-        let k = ((u.x * GUIDES as f32) as usize).min(GUIDES - 1);
-        let guide = &self.guide[row * (GUIDES + 1)..(row + 1) * (GUIDES + 1)];
-        let (lo, hi) = (guide[k] as usize, guide[k + 1] as usize);
-        let col = (lo + cdf[lo + 1..=hi + 1].partition_point(|&c| c <= u.x)).min(self.width - 1);
+        let col = if self.guides > 0 {
+            // The answer lies between the guides of u's bracket (`u < (k + 1)/guides`).
+            let g = self.guides;
+            let k = ((u.x * g as f32) as usize).min(g - 1);
+            let guide = &self.guide[row * (g + 1)..(row + 1) * (g + 1)];
+            let (lo, hi) = (guide[k] as usize, guide[k + 1] as usize);
+            lo + cdf[lo + 1..=hi + 1].partition_point(|&c| c <= u.x)
+        } else {
+            cdf[1..].partition_point(|&c| c <= u.x)
+        }
+        .min(self.width - 1);
         let (lo, hi) = (cdf[col], cdf[col + 1]);
         let u_in = if hi > lo {
             ((u.x - lo) / (hi - lo)).clamp(0.0, 1.0 - f32::EPSILON / 2.0)

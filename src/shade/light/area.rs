@@ -46,7 +46,7 @@ pub struct AreaLight {
     /// For a rectangle: per triangle, the affine map from the rectangle's parameters (s, t) to
     /// the triangle's barycentrics (b₁, b₂), so a sampled point is rebuilt on its triangle
     /// without a ray–triangle test.
-    rect_barycentrics: [RectToBarycentric; 2],
+    rect_barycentrics: Box<[RectToBarycentric; 2]>,
 }
 
 /// `(b₁, b₂) = m · ((s, t) − origin)`: a triangle of the rectangle in its (s, t) parameters.
@@ -179,7 +179,7 @@ impl AreaLight {
             two_sided,
             samples: samples.max(1),
             rect,
-            rect_barycentrics: rect_barycentric_maps(&triangles, rect),
+            rect_barycentrics: Box::new(rect_barycentric_maps(&triangles, rect)),
             normals,
             triangles,
             total_area,

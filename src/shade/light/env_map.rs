@@ -13,16 +13,18 @@
 //! **Lookup: nearest texel**, no filtering, so the piecewise-constant sampling distribution
 //! matches the radiance exactly (a sampled direction's radiance is its texel's value).
 //!
-//! **Sampling**: texel weights are luminance × sin θ (row centre), a [`Distribution2D`] over them
-//! gives `pdf_uv`, and `pdf_solid_angle = pdf_uv / (2π² sin θ)` (the Jacobian of
-//! `(u, v) → ω`). [`EnvMap::sample`] and [`EnvMap::pdf`] sit side by side. Tables are built
+//! **Sampling**: texel weights are luminance × sin θ (row centre); `env_sampler` turns them into
+//! tables (cells of texels, and per normal bin the cells weighted towards that hemisphere) that
+//! give `pdf_uv`, and `pdf_solid_angle = pdf_uv / (2π² sin θ)` (the Jacobian of
+//! `(u, v) → ω`). [`EnvMap::sample_facing`] and [`EnvMap::pdf_facing`] sit side by side (their
+//! `None`-normal forms, [`EnvMap::sample`] and [`EnvMap::pdf`], sample by radiance alone). Tables are built
 //! only when the scene has geometry to shade (`Environment::prepare_sampling`).
 
 use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
-use crate::shade::distribution2d::Distribution2D;
+use super::env_sampler::EnvSampler;
 
 /// Rec. 709 luminance of linear RGB.
 pub fn luminance(c: Vec3) -> f32 {
@@ -39,7 +41,7 @@ pub struct EnvMap {
     sin_rot: f32,
     /// Solid-angle-weighted mean radiance.
     average: Vec3,
-    distribution: Option<Distribution2D>,
+    distribution: Option<EnvSampler>,
 }
 
 /// A direction sampled from the environment.
@@ -106,7 +108,24 @@ impl EnvMap {
                 line.iter().map(move |&t| luminance(t) * s)
             })
             .collect();
-        self.distribution = Distribution2D::new(self.width, self.height, weights);
+        let (cos_rot, sin_rot) = (self.cos_rot, self.sin_rot);
+        let to_world = |m: Vec3| {
+            Vec3::new(
+                cos_rot * m.x + sin_rot * m.z,
+                m.y,
+                -sin_rot * m.x + cos_rot * m.z,
+            )
+        };
+        let direction = |u: f32, v: f32| {
+            let (sin_theta, cos_theta) = (PI * v).sin_cos();
+            let (sin_phi, cos_phi) = (2.0 * PI * u).sin_cos();
+            to_world(Vec3::new(
+                sin_theta * cos_phi,
+                cos_theta,
+                sin_theta * sin_phi,
+            ))
+        };
+        self.distribution = EnvSampler::new(self.width, self.height, &weights, direction);
         self.distribution.is_some()
     }
 
@@ -119,7 +138,7 @@ impl EnvMap {
     pub fn bytes(&self) -> (usize, usize) {
         (
             self.texels.len() * std::mem::size_of::<Vec3>(),
-            self.distribution.as_ref().map_or(0, Distribution2D::bytes),
+            self.distribution.as_ref().map_or(0, EnvSampler::bytes),
         )
     }
 
@@ -165,7 +184,13 @@ impl EnvMap {
     /// A direction by the table (`None` without one, or at a pole where the density is
     /// singular): world direction, its texel's radiance and `pdf_solid_angle` of the map alone.
     pub fn sample(&self, u: Vec2) -> Option<EnvSample> {
-        let s = self.distribution.as_ref()?.sample(u);
+        self.sample_facing(u, None)
+    }
+
+    /// [`EnvMap::sample`] for a surface facing unit `normal` (`None`: by radiance alone): the
+    /// map's cells weighted towards its hemisphere (see `env_sampler`).
+    pub fn sample_facing(&self, u: Vec2, normal: Option<Vec3>) -> Option<EnvSample> {
+        let s = self.distribution.as_ref()?.sample(u, normal)?;
         let theta = PI * s.uv.y;
         let phi = 2.0 * PI * s.uv.x;
         let (sin_theta, cos_theta) = theta.sin_cos();
@@ -174,15 +199,29 @@ impl EnvMap {
         }
         let (sin_phi, cos_phi) = phi.sin_cos();
         let m = Vec3::new(sin_theta * cos_phi, cos_theta, sin_theta * sin_phi);
+        let wi = self.to_world(m).normalize();
+        // The Jacobian's sin θ as `pdf_facing` computes it from the direction (`texel_of`), so
+        // that both strategies of multiple importance sampling read one density function (near
+        // the poles, f32's sin θ from θ and from cos θ differ by up to a percent).
+        let cos_back = self.to_map(wi).y.clamp(-1.0, 1.0);
+        let sin_back = (1.0 - cos_back * cos_back).max(0.0).sqrt();
+        if sin_back <= 0.0 {
+            return None;
+        }
         Some(EnvSample {
-            wi: self.to_world(m).normalize(),
+            wi,
             radiance: self.texels[s.row * self.width + s.col],
-            pdf_solid_angle: s.pdf_uv / (2.0 * PI * PI * sin_theta),
+            pdf_solid_angle: s.pdf_uv / (2.0 * PI * PI * sin_back),
         })
     }
 
-    /// The density over solid angle that [`EnvMap::sample`] has at world direction `d` (unit).
+    /// The solid-angle density with which [`EnvMap::sample`] produces direction `d` (unit).
     pub fn pdf(&self, d: Vec3) -> f32 {
+        self.pdf_facing(d, None)
+    }
+
+    /// The density of [`EnvMap::sample_facing`] for the same `normal`.
+    pub fn pdf_facing(&self, d: Vec3, normal: Option<Vec3>) -> f32 {
         let Some(dist) = &self.distribution else {
             return 0.0;
         };
@@ -190,7 +229,7 @@ impl EnvMap {
         if sin_theta <= 0.0 {
             return 0.0;
         }
-        dist.pdf_uv(col, row) / (2.0 * PI * PI * sin_theta)
+        dist.pdf_uv(col, row, normal) / (2.0 * PI * PI * sin_theta)
     }
 }
 

@@ -95,11 +95,17 @@ impl Environment {
     /// A direction with density `pdf_solid_angle` (the map by its table with probability
     /// `map_fraction`, otherwise uniform over the sphere).
     pub fn sample(&self, u: Vec2) -> Option<EnvSample> {
+        self.sample_facing(u, None)
+    }
+
+    /// [`Environment::sample`] for a surface facing unit `normal`: the map part favours the
+    /// directions above that surface's horizon (`env_sampler`); `None` samples by radiance.
+    pub fn sample_facing(&self, u: Vec2, normal: Option<Vec3>) -> Option<EnvSample> {
         let f = self.map_fraction;
         if u.x < f {
             let map = self.map.as_ref()?;
             let u_map = Vec2::new((u.x / f).min(1.0 - f32::EPSILON / 2.0), u.y);
-            let s = map.sample(u_map)?;
+            let s = map.sample_facing(u_map, normal)?;
             return Some(EnvSample {
                 wi: s.wi,
                 radiance: self.constant + s.radiance,
@@ -111,15 +117,21 @@ impl Environment {
         Some(EnvSample {
             wi,
             radiance: self.radiance(wi),
-            pdf_solid_angle: self.pdf(wi),
+            pdf_solid_angle: self.pdf_facing(wi, normal),
         })
     }
 
     /// The density of [`Environment::sample`] at world direction `d` (unit).
     #[inline]
     pub fn pdf(&self, d: Vec3) -> f32 {
+        self.pdf_facing(d, None)
+    }
+
+    /// The density of [`Environment::sample_facing`] for the same `normal`.
+    #[inline]
+    pub fn pdf_facing(&self, d: Vec3, normal: Option<Vec3>) -> f32 {
         let f = self.map_fraction;
-        let map = self.map.as_ref().map_or(0.0, |m| m.pdf(d));
+        let map = self.map.as_ref().map_or(0.0, |m| m.pdf_facing(d, normal));
         f * map + (1.0 - f) / (4.0 * PI)
     }
 }

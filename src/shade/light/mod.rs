@@ -20,6 +20,7 @@
 pub mod area;
 pub mod emitter_bounds;
 pub mod env_map;
+pub mod env_sampler;
 pub mod environment;
 pub mod point;
 pub mod spherical;
