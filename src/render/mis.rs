@@ -158,10 +158,8 @@ impl Shading<'_> {
                 None => match env {
                     Some(e) => {
                         counts.environment += 1;
-                        (
-                            e.radiance(wi),
-                            lights.pmf_environment() * e.pdf_facing(wi, Some(self.ns)),
-                        )
+                        let (radiance, pdf) = e.radiance_and_pdf_facing(wi, Some(self.ns));
+                        (radiance, lights.pmf_environment() * pdf)
                     }
                     None => continue,
                 },

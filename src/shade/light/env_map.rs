@@ -222,14 +222,20 @@ impl EnvMap {
 
     /// The density of [`EnvMap::sample_facing`] for the same `normal`.
     pub fn pdf_facing(&self, d: Vec3, normal: Option<Vec3>) -> f32 {
-        let Some(dist) = &self.distribution else {
-            return 0.0;
-        };
+        self.radiance_and_pdf_facing(d, normal).1
+    }
+
+    /// [`EnvMap::radiance`] and [`EnvMap::pdf_facing`] of one direction, finding its texel once.
+    pub fn radiance_and_pdf_facing(&self, d: Vec3, normal: Option<Vec3>) -> (Vec3, f32) {
         let (col, row, sin_theta) = self.texel_of(d);
-        if sin_theta <= 0.0 {
-            return 0.0;
-        }
-        dist.pdf_uv(col, row, normal) / (2.0 * PI * PI * sin_theta)
+        let radiance = self.texels[row * self.width + col];
+        let pdf = match &self.distribution {
+            Some(dist) if sin_theta > 0.0 => {
+                dist.pdf_uv(col, row, normal) / (2.0 * PI * PI * sin_theta)
+            }
+            _ => 0.0,
+        };
+        (radiance, pdf)
     }
 }
 

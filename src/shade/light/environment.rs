@@ -127,6 +127,20 @@ impl Environment {
         self.pdf_facing(d, None)
     }
 
+    /// [`Environment::radiance`] and [`Environment::pdf_facing`] of one direction (the map's
+    /// texel found once).
+    pub fn radiance_and_pdf_facing(&self, d: Vec3, normal: Option<Vec3>) -> (Vec3, f32) {
+        let f = self.map_fraction;
+        let (map_radiance, map_pdf) = self
+            .map
+            .as_ref()
+            .map_or((Vec3::ZERO, 0.0), |m| m.radiance_and_pdf_facing(d, normal));
+        (
+            self.constant + map_radiance,
+            f * map_pdf + (1.0 - f) / (4.0 * PI),
+        )
+    }
+
     /// The density of [`Environment::sample_facing`] for the same `normal`.
     #[inline]
     pub fn pdf_facing(&self, d: Vec3, normal: Option<Vec3>) -> f32 {
