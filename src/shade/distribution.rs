@@ -92,10 +92,15 @@ impl Distribution1D {
     pub fn sample(&self, u: f32) -> (usize, f32, f32) {
         // First i with cdf[i+1] > u, skipping zero-weight buckets.
         let n = self.pmf.len();
-        let i = self
-            .guided_search(u)
-            .unwrap_or_else(|| self.cdf[1..].partition_point(|&c| c <= u))
-            .min(n - 1);
+        let i = if n < GUIDED_LEN {
+            // A short table: count the buckets that end at or before `u` (the same index as a
+            // binary search of the monotone CDF, without its unpredictable branches).
+            self.cdf[1..].iter().filter(|&&c| c <= u).count()
+        } else {
+            self.guided_search(u)
+                .unwrap_or_else(|| self.cdf[1..].partition_point(|&c| c <= u))
+        }
+        .min(n - 1);
         let (lo, hi) = (self.cdf[i], self.cdf[i + 1]);
         let remapped = if hi > lo {
             ((u - lo) / (hi - lo)).clamp(0.0, 1.0 - f32::EPSILON / 2.0)

@@ -139,6 +139,10 @@ impl Distribution2D {
             let guide = &self.guide[row * (g + 1)..(row + 1) * (g + 1)];
             let (lo, hi) = (guide[k] as usize, guide[k + 1] as usize);
             lo + cdf[lo + 1..=hi + 1].partition_point(|&c| c <= u.x)
+        } else if self.width <= 64 {
+            // A short row: count the cells that end at or before `u.x` (the binary search's
+            // answer, without its unpredictable branches).
+            cdf[1..].iter().filter(|&&c| c <= u.x).count()
         } else {
             cdf[1..].partition_point(|&c| c <= u.x)
         }
