@@ -116,6 +116,17 @@ mod tests {
     use super::*;
 
     #[test]
+    fn short_tables_count_to_the_plain_search() {
+        let weights: Vec<f32> = (0..40).map(|i| [0.0, 1.0, 3.5, 0.25][i % 4]).collect();
+        let d = Distribution1D::new(&weights).expect("weights");
+        for k in 0..=10_000 {
+            let u = (k as f32 / 10_000.0).min(1.0 - f32::EPSILON / 2.0);
+            let plain = d.cdf[1..].partition_point(|&c| c <= u).min(weights.len() - 1);
+            assert_eq!(d.sample(u).0, plain, "u = {u}");
+        }
+    }
+
+    #[test]
     fn guided_search_is_the_plain_search() {
         // Zero runs, a spike and smooth weights: every u picks what a whole search picks.
         let weights: Vec<f32> = (0..1000)
