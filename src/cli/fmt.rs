@@ -94,25 +94,13 @@ fn format_path(path: &Path, check: bool) -> Outcome {
                     format!("{} is not a text file: {e}", path.display()),
                 )
                 .help("scene files are UTF-8 text; check that you named the .scn file");
-                print_diagnostic_list(
-                    &[d],
-                    &SourceMap::new(),
-                    DiagnosticFormat::Human,
-                    JsonTo::Stderr,
-                );
-                return Outcome::Failed;
+                return unreadable(d);
             }
         },
         Err(e) => {
             let d = Diagnostic::error(Code::IoRead, format!("cannot read {}: {e}", path.display()))
                 .help("check the path");
-            print_diagnostic_list(
-                &[d],
-                &SourceMap::new(),
-                DiagnosticFormat::Human,
-                JsonTo::Stderr,
-            );
-            return Outcome::Failed;
+            return unreadable(d);
         }
     };
     let Some((old, new)) = format_text(path, text) else {
@@ -161,4 +149,15 @@ fn unified_diff(path: &Path, old: &str, new: &str) -> String {
         .context_radius(3)
         .header(&name, &format!("{name} (formatted)"))
         .to_string()
+}
+
+/// Reports why a file could not be read (no source to point into) and fails it.
+fn unreadable(d: Diagnostic) -> Outcome {
+    print_diagnostic_list(
+        &[d],
+        &SourceMap::new(),
+        DiagnosticFormat::Human,
+        JsonTo::Stderr,
+    );
+    Outcome::Failed
 }

@@ -121,7 +121,9 @@ mod tests {
         let d = Distribution1D::new(&weights).expect("weights");
         for k in 0..=10_000 {
             let u = (k as f32 / 10_000.0).min(1.0 - f32::EPSILON / 2.0);
-            let plain = d.cdf[1..].partition_point(|&c| c <= u).min(weights.len() - 1);
+            let plain = d.cdf[1..]
+                .partition_point(|&c| c <= u)
+                .min(weights.len() - 1);
             assert_eq!(d.sample(u).0, plain, "u = {u}");
         }
     }
