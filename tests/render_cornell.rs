@@ -218,3 +218,31 @@ fn pixels_that_may_see_the_light_take_more_samples() {
     // One sample per pixel stays point-sampled, whatever the scene.
     assert_eq!(EmitterPixels::find(&scene, &camera, 1).boosted(), 0);
 }
+
+/// The cost pre-pass of `--tile K/N` counts the light pixels' extra samples: rows that cross
+/// them cost more than the same rows of a one-sample render (whose pixels are not boosted);
+/// the other rows cost the same.
+#[test]
+fn tile_costs_count_the_light_pixels() {
+    use scnc::render::balance::row_costs;
+    use scnc::render::camera::PinholeCamera;
+    use scnc::render::emitter_pixels::EmitterPixels;
+    let size = 48;
+    let boosted = build(&cornell(size, 4), AccelKind::Bvh);
+    let plain = build(&cornell(size, 1), AccelKind::Bvh);
+    let (with, without) = (row_costs(&boosted), row_costs(&plain));
+    let camera = PinholeCamera::new(&boosted.camera, size, size);
+    let marked = EmitterPixels::find(&boosted, &camera, 2);
+    let mut heavier = 0;
+    for y in 0..size {
+        let crosses = (0..size).any(|x| marked.factor_at(x, y) > 1);
+        let (a, b) = (with[y as usize], without[y as usize]);
+        if crosses {
+            assert!(a > b, "row {y}: {a} vs {b}");
+            heavier += 1;
+        } else {
+            assert_eq!(a, b, "row {y}");
+        }
+    }
+    assert!(heavier > 0);
+}

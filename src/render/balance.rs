@@ -7,12 +7,16 @@
 //! per ray traced. Counts, not times: every machine computes the same costs for the same
 //! scene and settings (the paths are the render's own, seeded per pixel), so every tile
 //! process cuts the same bands without talking to the others. The pre-pass runs on the
-//! calling thread, so the thread-local count holds this pass's work alone.
+//! calling thread, so the thread-local count holds this pass's work alone. Rows crossing the
+//! pixels that may see an area light (which a fixed-count render samples more,
+//! `emitter_pixels`) add those pixels' extra samples at the row's average path cost.
 
 use glam::Vec2;
 
 use super::camera::PinholeCamera;
+use super::emitter_pixels::EmitterPixels;
 use super::integrator::{radiance, RayCounts};
+use super::pattern;
 use super::rng::Sampler;
 use crate::bvh::tally;
 use crate::scene::Scene;
@@ -35,6 +39,17 @@ pub fn row_costs(scene: &Scene) -> Vec<u64> {
     let stride = stride_for(width, height);
     let camera = PinholeCamera::new(&scene.camera, width, height);
     let seed = scene.settings.seed;
+    // Pixels that may see an area light take more samples in a fixed-count render
+    // (`emitter_pixels`): their rows cost that much more.
+    let light_pixels = match scene.settings.noise {
+        None => EmitterPixels::find(
+            scene,
+            &camera,
+            pattern::side_for(scene.settings.samples_per_pixel),
+        ),
+        Some(_) => EmitterPixels::none(),
+    };
+    let extra_per_boosted = u64::from(light_pixels.factor().pow(2) - 1);
     let mut costs = Vec::with_capacity(height as usize);
     for block in (0..height).step_by(stride as usize) {
         let rows = stride.min(height - block);
@@ -51,7 +66,19 @@ pub fn row_costs(scene: &Scene) -> Vec<u64> {
             let rays = counts.camera + counts.shadow + counts.brdf;
             cost = cost.saturating_add(visits.saturating_add(rays * RAY_COST));
         }
-        costs.extend(std::iter::repeat(cost).take(rows as usize));
+        // `cost` sums the traced pixels of the row, about width / stride of them: a boosted
+        // pixel adds (factor² − 1) of an average pixel, cost · stride / width each.
+        for row in block..block + rows {
+            let boosted = if extra_per_boosted == 0 {
+                0
+            } else {
+                (0..width)
+                    .filter(|&x| light_pixels.factor_at(x, row) > 1)
+                    .count() as u64
+            };
+            let extra = boosted * extra_per_boosted * cost * u64::from(stride) / u64::from(width);
+            costs.push(cost.saturating_add(extra));
+        }
     }
     costs
 }
