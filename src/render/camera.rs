@@ -53,7 +53,7 @@ impl PinholeCamera {
     pub fn project(&self, point: Vec3) -> Option<Vec2> {
         let v = point - self.eye;
         let depth = v.dot(self.forward);
-        if depth.is_nan() || depth <= 0.0 || !depth.is_finite() {
+        if !depth.is_finite() || depth <= 0.0 {
             return None;
         }
         // `forward`, `half_width` and `half_height` are orthogonal (the checker's frame).

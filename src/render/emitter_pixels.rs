@@ -72,15 +72,22 @@ impl EmitterPixels {
             factor: 1,
         };
         let full = PixelWindow::full(width, height);
-        for light in &scene.lights.lights {
-            let Light::Area(area) = light else { continue };
-            for triangle in &area.triangles {
-                if let Some(rect) = projected_rect(camera, triangle, full) {
-                    out.mark(rect);
+        let pixels = u64::from(width) * u64::from(height);
+        // Once no factor fits the budget, marking more (a large emissive mesh in view) is
+        // wasted work: stop.
+        let triangles = scene.lights.lights.iter().flat_map(|l| match l {
+            Light::Area(area) => area.triangles.as_slice(),
+            Light::Point(_) => &[],
+        });
+        for triangle in triangles {
+            if let Some(rect) = projected_rect(camera, triangle, full) {
+                out.mark(rect);
+                if affordable_factor(out.marked, pixels) == 1 {
+                    return EmitterPixels::none();
                 }
             }
         }
-        out.factor = affordable_factor(out.marked, u64::from(width) * u64::from(height));
+        out.factor = affordable_factor(out.marked, pixels);
         if out.factor == 1 {
             return EmitterPixels::none();
         }
