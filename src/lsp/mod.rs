@@ -12,9 +12,12 @@
 //! re-checks the files that include it. An open document's text is read instead of the disk
 //! ([`documents::OverlayLoader`]), for the document itself and for includes.
 
+pub mod blocks;
 pub mod diagnostics;
 pub mod documents;
 pub mod position;
+mod resolve;
+pub mod symbols;
 
 use std::time::{Duration, Instant};
 
