@@ -15,9 +15,14 @@
 pub mod blocks;
 pub mod diagnostics;
 pub mod documents;
+pub mod navigation;
+pub mod outline;
 pub mod position;
+mod requests;
 mod resolve;
+pub mod semantic;
 pub mod symbols;
+pub mod workspace;
 
 use std::time::{Duration, Instant};
 
@@ -59,11 +64,13 @@ pub enum LspError {
 
 /// What the server can do, announced at `initialize`.
 pub fn capabilities() -> ServerCapabilities {
-    ServerCapabilities {
+    let mut capabilities = ServerCapabilities {
         text_document_sync: Some(TextDocumentSyncCapability::Kind(TextDocumentSyncKind::FULL)),
         document_formatting_provider: Some(lsp_types::OneOf::Left(true)),
         ..ServerCapabilities::default()
-    }
+    };
+    requests::announce(&mut capabilities);
+    capabilities
 }
 
 /// Runs the server on `connection` until the client says `exit` (or disconnects).
@@ -211,6 +218,10 @@ impl Server<'_> {
     }
 
     fn respond(&self, request: Request) -> Response {
+        let request = match requests::respond(&self.documents, request) {
+            Ok(response) => return response,
+            Err(other) => other,
+        };
         let id = request.id.clone();
         match request.method.as_str() {
             Formatting::METHOD => match request
