@@ -2,8 +2,10 @@
 //!
 //! Open `.scn` documents → what an editor shows: the diagnostics of `scnc check` on the editor's
 //! text ([`diagnostics`]: compile and build stages, same codes, UTF-16 ranges, related
-//! locations, help), and formatting by [`crate::fmt`]. The protocol is `lsp-server` (the
-//! transport rust-analyzer and ruff use) with `lsp-types`.
+//! locations, help), and formatting by [`crate::fmt`]; go to definition, references, rename,
+//! outline, folding and semantic tokens from the [`symbols`] index (`requests.rs` dispatches
+//! them). The protocol is `lsp-server` (the transport rust-analyzer and ruff use) with
+//! `lsp-types`.
 //!
 //! Checks are debounced: a change marks the documents dirty, and they are checked once no new
 //! message has arrived for [`DEBOUNCE`] (or [`DEBOUNCE_CAP`] after the first unchecked change,
