@@ -101,6 +101,32 @@ fn definition_and_references_within_a_file_and_across_an_include() {
 }
 
 #[test]
+fn references_from_a_library_find_its_includer_on_disk_in_the_directory_above() {
+    let dir = temp_dir("library");
+    std::fs::create_dir_all(dir.join("lib")).expect("lib/");
+    let main_text = MAIN.replace("\"lib.scn\"", "\"lib/lib.scn\"");
+    std::fs::write(dir.join("main.scn"), &main_text).expect("write");
+    let (main, lib) = (
+        uri(&dir.join("main.scn")),
+        uri(&dir.join("lib").join("lib.scn")),
+    );
+    let mut client = Client::start();
+    // Only the library is open; its includer is found on disk.
+    client.open(&lib, LIB);
+    let mut p = at(&lib, 3, 10);
+    p["context"] = json!({ "includeDeclaration": false });
+    assert_eq!(
+        locations(&client.request("textDocument/references", p)),
+        [
+            (main.clone(), (5, 23, 5, 28)),
+            (main.clone(), (7, 25, 7, 30))
+        ]
+    );
+    client.shutdown();
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
 fn rename_reaches_every_file_and_refuses_taken_names() {
     let (mut client, dir, main, lib) = scene("rename");
     let prepared = client.request("textDocument/prepareRename", at(&main, 5, 24));

@@ -1,9 +1,10 @@
 //! Language server: the scenes a file belongs to, for navigation across includes. A name
 //! declared in an included file is used by the files that include it, so the reach of a
 //! document is every [`SymbolIndex`] that contains it: the one rooted at the document itself,
-//! and those rooted at each open document and each `.scn` file beside it that includes it
-//! (directly or not). A symbol is the same across them when its declaration is (same file,
-//! same place), and its occurrences are the union, each place once.
+//! and those rooted at each open document and at each `.scn` file beside it or in the
+//! directory above that includes it (directly or not). A symbol is the same across them when
+//! its declaration is (same file, same place), and its occurrences are the union, each place
+//! once.
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -15,10 +16,23 @@ use super::blocks::BlockKind;
 use super::documents::Documents;
 use super::position::LineIndex;
 use super::symbols::{Occurrence, SymbolId, SymbolIndex, SymbolKind};
+use crate::assets::Loader;
 use crate::source::Span;
 
-/// Most `.scn` files beside a document that are indexed to find its includers.
+/// Most `.scn` files beside a document that are looked at to find its includers.
 const MAX_SIBLINGS: usize = 64;
+/// Largest file looked at as a possible includer (a generated mesh scene is no includer, and
+/// parsing it on every request would be slow).
+const MAX_INCLUDER_BYTES: usize = 1 << 20;
+
+/// Whether the file at `root` can include anything: small enough, and it says `include`.
+fn may_include(loader: &dyn Loader, root: &Path) -> bool {
+    let small = std::fs::metadata(root).map_or(true, |m| m.len() <= MAX_INCLUDER_BYTES as u64);
+    small
+        && loader.read(root).is_ok_and(|bytes| {
+            bytes.len() <= MAX_INCLUDER_BYTES && bytes.windows(7).any(|w| w == b"include")
+        })
+}
 
 /// A symbol the same in every index: its kind and where it is declared.
 #[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -70,15 +84,17 @@ impl Workspace {
     /// The indices containing the document at `path` (open or on disk).
     pub fn around(documents: &Documents, path: &Path) -> Workspace {
         let loader = documents.loader();
-        let mut roots: Vec<PathBuf> = vec![path.to_path_buf()];
-        roots.extend(documents.iter().map(|(_, d)| d.path.clone()));
+        let mut roots: Vec<PathBuf> = documents.iter().map(|(_, d)| d.path.clone()).collect();
         roots.extend(siblings(path));
-        let mut seen = BTreeSet::new();
-        let indices = roots
+        let mut seen = BTreeSet::from([path.to_path_buf()]);
+        let includers = roots
             .into_iter()
-            .filter(|root| seen.insert(root.clone()))
+            .filter(|root| seen.insert(root.clone()) && may_include(&loader, root))
             .map(|root| SymbolIndex::build(&root, &loader))
+            .filter(|index| index.file(path).is_some());
+        let indices = std::iter::once(SymbolIndex::build(path, &loader))
             .filter(|index| index.file(path).is_some())
+            .chain(includers)
             .collect();
         Workspace {
             path: path.to_path_buf(),
@@ -148,16 +164,15 @@ impl Workspace {
     }
 }
 
-/// The `.scn` files beside `path` (not itself), sorted, at most [`MAX_SIBLINGS`].
+/// The `.scn` files beside `path` and in the directory above (where the includers of a
+/// library in a subdirectory are), not `path` itself, sorted, at most [`MAX_SIBLINGS`].
 fn siblings(path: &Path) -> Vec<PathBuf> {
-    let Some(dir) = path.parent() else {
-        return Vec::new();
-    };
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return Vec::new();
-    };
-    let mut found: Vec<PathBuf> = entries
-        .filter_map(|e| e.ok().map(|e| e.path()))
+    let dir = path.parent();
+    let mut found: Vec<PathBuf> = dir
+        .into_iter()
+        .chain(dir.and_then(Path::parent))
+        .filter_map(|d| std::fs::read_dir(d).ok())
+        .flat_map(|entries| entries.filter_map(|e| e.ok().map(|e| e.path())))
         .filter(|p| p.extension().is_some_and(|x| x == "scn") && p != path)
         .collect();
     found.sort();
