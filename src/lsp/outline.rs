@@ -216,15 +216,20 @@ impl Folds<'_> {
     fn bracketed(&mut self, span: Span, kind: Option<FoldingRangeKind>) {
         let open = self.index.position(span.start as usize).line;
         let close = self.index.position(span.end as usize).line;
+        // The closer's line holds nothing before it (`get` is `None` off a char boundary, as
+        // at the end of an unclosed comment).
         let last = (span.end as usize).saturating_sub(1);
-        let line_start = self.text[..last.min(self.text.len())]
-            .rfind('\n')
-            .map_or(0, |n| n + 1);
-        let closer_alone = self
+        let line_start = self
             .text
-            .get(line_start..last)
-            .is_some_and(|before| before.trim().is_empty());
-        let end = if closer_alone && kind.is_none() {
+            .get(..last)
+            .and_then(|before| before.rfind('\n'))
+            .map_or(0, |n| n + 1);
+        let closer_alone = kind.is_none()
+            && self
+                .text
+                .get(line_start..last)
+                .is_some_and(|before| before.trim().is_empty());
+        let end = if closer_alone {
             close.saturating_sub(1)
         } else {
             close
@@ -277,5 +282,28 @@ fn fold(start_line: u32, end_line: u32, kind: Option<FoldingRangeKind>) -> Foldi
         end_character: None,
         kind,
         collapsed_text: None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_unclosed_comment_ending_in_non_ascii_folds_to_the_end() {
+        let folds = folding_ranges("scnc 1\n/* a\n é");
+        let found: Vec<_> = folds.iter().map(|f| (f.start_line, f.end_line)).collect();
+        assert_eq!(found, [(1, 2)]);
+    }
+
+    #[test]
+    fn every_prefix_of_an_example_is_outlined_and_folded() {
+        let text = include_str!("../../examples/showcase.scn");
+        let mut outlined = 0;
+        for (end, _) in text.char_indices().step_by(13) {
+            outlined += symbols(&text[..end]).len();
+            folding_ranges(&text[..end]);
+        }
+        assert!(outlined > 0);
     }
 }

@@ -162,9 +162,9 @@ impl Encoder {
             return;
         }
         let at = lines.position(start);
-        let delta_line = at.line - self.line;
+        let delta_line = at.line.saturating_sub(self.line);
         let delta_start = if delta_line == 0 {
-            at.character - self.column
+            at.character.saturating_sub(self.column)
         } else {
             at.character
         };
@@ -176,5 +176,46 @@ impl Encoder {
             token_modifiers_bitset: modifiers,
         });
         (self.line, self.column) = (at.line, at.character);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn decoded(text: &str) -> Vec<(u32, u32, u32, u32)> {
+        let mut documents = Documents::default();
+        let path = std::env::temp_dir().join("scnc-semantic-unit.scn");
+        let uri = lsp_types::Url::from_file_path(&path).expect("an absolute path");
+        documents.set(uri, text.to_string(), 1);
+        let (mut line, mut column) = (0, 0);
+        tokens(&documents, &path)
+            .data
+            .iter()
+            .map(|t| {
+                line += t.delta_line;
+                column = if t.delta_line == 0 {
+                    column + t.delta_start
+                } else {
+                    t.delta_start
+                };
+                (line, column, t.length, t.token_type)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn block_comments_are_one_token_per_line_in_utf16() {
+        let comment = type_index(&Type::COMMENT);
+        assert_eq!(
+            decoded("/* é𝛼\n b */ let"),
+            [
+                (0, 0, 6, comment),
+                (1, 0, 5, comment),
+                (1, 6, 3, type_index(&Type::KEYWORD))
+            ]
+        );
+        // Unclosed, ending inside a multi-byte character's line.
+        assert_eq!(decoded("/* é").len(), 1);
     }
 }
