@@ -2,8 +2,10 @@
 //!
 //! Open `.scn` documents → what an editor shows: the diagnostics of `scnc check` on the editor's
 //! text ([`diagnostics`]: compile and build stages, same codes, UTF-16 ranges, related
-//! locations, help), and formatting by [`crate::fmt`]. The protocol is `lsp-server` (the
-//! transport rust-analyzer and ruff use) with `lsp-types`.
+//! locations, help), and formatting by [`crate::fmt`]; go to definition, references, rename,
+//! outline, folding and semantic tokens from the [`symbols`] index (`requests.rs` dispatches
+//! them). The protocol is `lsp-server` (the transport rust-analyzer and ruff use) with
+//! `lsp-types`.
 //!
 //! Checks are debounced: a change marks the documents dirty, and they are checked once no new
 //! message has arrived for [`DEBOUNCE`] (or [`DEBOUNCE_CAP`] after the first unchecked change,
@@ -15,9 +17,14 @@
 pub mod blocks;
 pub mod diagnostics;
 pub mod documents;
+pub mod navigation;
+pub mod outline;
 pub mod position;
+mod requests;
 mod resolve;
+pub mod semantic;
 pub mod symbols;
+pub mod workspace;
 
 use std::time::{Duration, Instant};
 
@@ -59,11 +66,13 @@ pub enum LspError {
 
 /// What the server can do, announced at `initialize`.
 pub fn capabilities() -> ServerCapabilities {
-    ServerCapabilities {
+    let mut capabilities = ServerCapabilities {
         text_document_sync: Some(TextDocumentSyncCapability::Kind(TextDocumentSyncKind::FULL)),
         document_formatting_provider: Some(lsp_types::OneOf::Left(true)),
         ..ServerCapabilities::default()
-    }
+    };
+    requests::announce(&mut capabilities);
+    capabilities
 }
 
 /// Runs the server on `connection` until the client says `exit` (or disconnects).
@@ -211,6 +220,10 @@ impl Server<'_> {
     }
 
     fn respond(&self, request: Request) -> Response {
+        let request = match requests::respond(&self.documents, request) {
+            Ok(response) => return response,
+            Err(other) => other,
+        };
         let id = request.id.clone();
         match request.method.as_str() {
             Formatting::METHOD => match request
