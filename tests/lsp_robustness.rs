@@ -2,7 +2,8 @@
 //! brackets, quotes, comment openers, non-ASCII and garbage; deletions; truncations; duplicated
 //! slices), sent in bursts as fast typing would: the server never crashes or hangs, and after
 //! every burst the diagnostics it publishes for the newest text equal what `scnc check` reports
-//! for the same text (code, severity and UTF-16 range of every diagnostic in the file).
+//! for the same text (code, severity and UTF-16 range of every diagnostic in the file), and
+//! hover and completion at random positions of it answer without an error.
 
 mod lsp_common;
 
@@ -168,6 +169,17 @@ fn thousands_of_random_edits_never_crash_and_match_scnc_check() {
                 path.display()
             );
             compared += 1;
+            // Hover and completion anywhere in the mangled text answer (a value or null).
+            let lines = text.lines().count() as u64 + 2;
+            for method in ["textDocument/hover", "textDocument/completion"] {
+                let position = serde_json::json!({
+                    "line": rng.below(lines as usize), "character": rng.below(90)
+                });
+                let params =
+                    serde_json::json!({ "textDocument": { "uri": doc }, "position": position });
+                let response = client.request(method, params);
+                assert!(response.get("error").is_none(), "{method}: {response}");
+            }
         }
         client.notify(
             "textDocument/didClose",

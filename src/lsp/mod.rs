@@ -2,7 +2,9 @@
 //!
 //! Open `.scn` documents → what an editor shows: the diagnostics of `scnc check` on the editor's
 //! text ([`diagnostics`]: compile and build stages, same codes, UTF-16 ranges, related
-//! locations, help), and formatting by [`crate::fmt`]. The protocol is `lsp-server` (the
+//! locations, help, a link to the code's explanation), hover and completion ([`assist`]: the
+//! language reference's entry of a key, a unit's normalised value, a colour's values; keys,
+//! names, functions and units, on text mid-edit too), and formatting by [`crate::fmt`]. The protocol is `lsp-server` (the
 //! transport rust-analyzer and ruff use) with `lsp-types`.
 //!
 //! Checks are debounced: a change marks the documents dirty, and they are checked once no new
@@ -12,8 +14,13 @@
 //! re-checks the files that include it. An open document's text is read instead of the disk
 //! ([`documents::OverlayLoader`]), for the document itself and for includes.
 
+pub mod assist;
+pub mod completion;
+pub mod context;
 pub mod diagnostics;
 pub mod documents;
+pub mod hover;
+pub mod names;
 pub mod position;
 
 use std::time::{Duration, Instant};
@@ -59,6 +66,8 @@ pub fn capabilities() -> ServerCapabilities {
     ServerCapabilities {
         text_document_sync: Some(TextDocumentSyncCapability::Kind(TextDocumentSyncKind::FULL)),
         document_formatting_provider: Some(lsp_types::OneOf::Left(true)),
+        hover_provider: Some(lsp_types::HoverProviderCapability::Simple(true)),
+        completion_provider: Some(lsp_types::CompletionOptions::default()),
         ..ServerCapabilities::default()
     }
 }
@@ -208,6 +217,10 @@ impl Server<'_> {
     }
 
     fn respond(&self, request: Request) -> Response {
+        let request = match assist::handle(&self.documents, request) {
+            Ok(response) => return response,
+            Err(request) => request,
+        };
         let id = request.id.clone();
         match request.method.as_str() {
             Formatting::METHOD => match request
