@@ -216,10 +216,13 @@ impl Folds<'_> {
     fn bracketed(&mut self, span: Span, kind: Option<FoldingRangeKind>) {
         let open = self.index.position(span.start as usize).line;
         let close = self.index.position(span.end as usize).line;
-        let last = (span.end as usize).saturating_sub(1);
-        let line_start = self.text[..last.min(self.text.len())]
-            .rfind('\n')
-            .map_or(0, |n| n + 1);
+        // The closer's first byte: a span of mangled text may end inside a multi-byte
+        // character, so step back to a character boundary before slicing.
+        let mut last = (span.end as usize).saturating_sub(1).min(self.text.len());
+        while !self.text.is_char_boundary(last) {
+            last -= 1;
+        }
+        let line_start = self.text[..last].rfind('\n').map_or(0, |n| n + 1);
         let closer_alone = self
             .text
             .get(line_start..last)
