@@ -3,7 +3,8 @@
 //! slices), sent in bursts as fast typing would: the server never crashes or hangs, and after
 //! every burst the diagnostics it publishes for the newest text equal what `scnc check` reports
 //! for the same text (code, severity and UTF-16 range of every diagnostic in the file), and
-//! the outline, folding, semantic token and navigation requests are answered.
+//! the outline, folding, semantic token and navigation requests are answered, and hover and
+//! completion at random positions of it answer without an error.
 
 mod lsp_common;
 
@@ -199,6 +200,17 @@ fn thousands_of_random_edits_never_crash_and_match_scnc_check() {
             );
             compared += 1;
             navigate(&mut client, &doc, &text, &mut rng);
+            // Hover and completion anywhere in the mangled text answer (a value or null).
+            let lines = text.lines().count() as u64 + 2;
+            for method in ["textDocument/hover", "textDocument/completion"] {
+                let position = serde_json::json!({
+                    "line": rng.below(lines as usize), "character": rng.below(90)
+                });
+                let params =
+                    serde_json::json!({ "textDocument": { "uri": doc }, "position": position });
+                let response = client.request(method, params);
+                assert!(response.get("error").is_none(), "{method}: {response}");
+            }
         }
         client.notify(
             "textDocument/didClose",

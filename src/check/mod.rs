@@ -20,6 +20,8 @@ mod mesh;
 mod names;
 mod object;
 mod props;
+pub mod reference;
+mod reference_table;
 mod render;
 mod texture;
 pub mod transform;

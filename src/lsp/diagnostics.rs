@@ -1,16 +1,20 @@
 //! Language server: the diagnostics of one open document, exactly those of `scnc check` on its
 //! text (compile, then build: a missing OBJ or texture is reported too), as LSP diagnostics with
 //! the same codes, UTF-16 ranges, secondary labels as related information and the help text.
+//! Each carries a link to its code's explanation ([`explain_url`]).
 
 use std::path::Path;
 
-use lsp_types::{DiagnosticRelatedInformation, DiagnosticSeverity, Location, NumberOrString, Url};
+use lsp_types::{
+    CodeDescription, DiagnosticRelatedInformation, DiagnosticSeverity, Location, NumberOrString,
+    Url,
+};
 
 use super::position::LineIndex;
 use crate::assets::Loader;
 use crate::bvh::AccelKind;
 use crate::compile::compile;
-use crate::diag::{Diagnostic, Severity, Staged};
+use crate::diag::{Code, Diagnostic, Severity, Staged};
 use crate::scene::{self, BuildOptions};
 use crate::source::{SourceMap, Span};
 
@@ -59,6 +63,20 @@ pub fn to_lsp(
         .collect()
 }
 
+/// Where the explanations of codes are: `SCNC_EXPLAIN_URL` when set (e.g. the explain folder
+/// of a hosted copy of the repository), else the checkout scnc was built from.
+pub const EXPLAIN_URL_VAR: &str = "SCNC_EXPLAIN_URL";
+
+/// The link to `code`'s explanation (what `scnc explain CODE` prints): the registry's Markdown
+/// file, `BASE/STAGE/NAME.md`, where BASE is [`EXPLAIN_URL_VAR`] or, by default,
+/// `file://…/src/diag/explain` in the checkout scnc was built from.
+pub fn explain_url(code: Code) -> Option<Url> {
+    let base = std::env::var(EXPLAIN_URL_VAR)
+        .unwrap_or_else(|_| format!("file://{}/src/diag/explain", env!("CARGO_MANIFEST_DIR")));
+    let base = base.trim_end_matches('/');
+    Url::parse(&format!("{base}/{}/{}.md", code.stage(), code.name())).ok()
+}
+
 fn span_range(index: &LineIndex<'_>, span: Span) -> lsp_types::Range {
     index.range(span.start as usize, span.end as usize)
 }
@@ -91,6 +109,7 @@ fn convert(d: &Diagnostic, range: lsp_types::Range, sources: &SourceMap) -> lsp_
             Severity::Warning => DiagnosticSeverity::WARNING,
         }),
         code: Some(NumberOrString::String(d.code.as_str().to_string())),
+        code_description: explain_url(d.code).map(|href| CodeDescription { href }),
         source: Some("scnc".into()),
         message,
         related_information: (!related.is_empty()).then_some(related),

@@ -2,10 +2,12 @@
 //!
 //! Open `.scn` documents → what an editor shows: the diagnostics of `scnc check` on the editor's
 //! text ([`diagnostics`]: compile and build stages, same codes, UTF-16 ranges, related
-//! locations, help), and formatting by [`crate::fmt`]; go to definition, references, rename,
+//! locations, help, a link to the code's explanation); hover and completion ([`assist`]: the
+//! language reference's entry of a key, a unit's normalised value, a colour's values; keys,
+//! names, functions and units, on text mid-edit too); go to definition, references, rename,
 //! outline, folding and semantic tokens from the [`symbols`] index (`requests.rs` dispatches
-//! them). The protocol is `lsp-server` (the transport rust-analyzer and ruff use) with
-//! `lsp-types`.
+//! them); and formatting by [`crate::fmt`]. The protocol is `lsp-server` (the transport
+//! rust-analyzer and ruff use) with `lsp-types`.
 //!
 //! Checks are debounced: a change marks the documents dirty, and they are checked once no new
 //! message has arrived for [`DEBOUNCE`] (or [`DEBOUNCE_CAP`] after the first unchecked change,
@@ -14,9 +16,14 @@
 //! re-checks the files that include it. An open document's text is read instead of the disk
 //! ([`documents::OverlayLoader`]), for the document itself and for includes.
 
+pub mod assist;
 pub mod blocks;
+pub mod completion;
+pub mod context;
 pub mod diagnostics;
 pub mod documents;
+pub mod hover;
+pub mod names;
 pub mod navigation;
 pub mod outline;
 pub mod position;
@@ -69,6 +76,8 @@ pub fn capabilities() -> ServerCapabilities {
     let mut capabilities = ServerCapabilities {
         text_document_sync: Some(TextDocumentSyncCapability::Kind(TextDocumentSyncKind::FULL)),
         document_formatting_provider: Some(lsp_types::OneOf::Left(true)),
+        hover_provider: Some(lsp_types::HoverProviderCapability::Simple(true)),
+        completion_provider: Some(lsp_types::CompletionOptions::default()),
         ..ServerCapabilities::default()
     };
     requests::announce(&mut capabilities);
@@ -223,6 +232,10 @@ impl Server<'_> {
         let request = match requests::respond(&self.documents, request) {
             Ok(response) => return response,
             Err(other) => other,
+        };
+        let request = match assist::handle(&self.documents, request) {
+            Ok(response) => return response,
+            Err(request) => request,
         };
         let id = request.id.clone();
         match request.method.as_str() {

@@ -216,8 +216,8 @@ impl Folds<'_> {
     fn bracketed(&mut self, span: Span, kind: Option<FoldingRangeKind>) {
         let open = self.index.position(span.start as usize).line;
         let close = self.index.position(span.end as usize).line;
-        // The closer's line holds nothing before it (`get` is `None` off a char boundary, as
-        // at the end of an unclosed comment).
+        // The closer's line holds nothing before it (`get` is `None` off a char boundary: a
+        // span of mangled text, or an unclosed comment, may end inside a multi-byte character).
         let last = (span.end as usize).saturating_sub(1);
         let line_start = self
             .text
@@ -239,7 +239,8 @@ impl Folds<'_> {
         }
     }
 
-    /// Runs of line comments on consecutive lines (each alone on its line), and block comments over several lines.
+    /// Runs of line comments on consecutive lines (each alone on its line), and block comments
+    /// over several lines.
     fn comments(&mut self) {
         let mut run: Option<(u32, u32)> = None;
         for token in tokenize(self.text) {
