@@ -84,6 +84,19 @@ pub fn compile_file(path: &Path, loader: &dyn Loader) -> Compiled {
     Driver::new(loader).compile_root(path)
 }
 
+/// The statements of the scene file at `path` and of its includes, expanded as [`compile`]
+/// expands them (paths relative to the including file, each file once, cycles cut), parsed but
+/// not checked, with the files read. A statement lost to a syntax error is missing; everything
+/// else is there. The language server indexes declared names and their uses in these.
+pub fn parse_files(path: &Path, loader: &dyn Loader) -> (SourceMap, Vec<Stmt>) {
+    let mut d = Driver::new(loader);
+    if let Ok(bytes) = loader.read(path) {
+        let name = path.display().to_string();
+        d.add_root(path, &name, &bytes);
+    }
+    (d.sources, d.statements)
+}
+
 impl Driver<'_> {
     /// Reads the root file at `path` (a diagnostic if it cannot be) and compiles it.
     fn compile_root(mut self, path: &Path) -> Compiled {

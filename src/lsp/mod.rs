@@ -15,6 +15,7 @@
 //! ([`documents::OverlayLoader`]), for the document itself and for includes.
 
 pub mod assist;
+pub mod blocks;
 pub mod completion;
 pub mod context;
 pub mod diagnostics;
@@ -22,6 +23,8 @@ pub mod documents;
 pub mod hover;
 pub mod names;
 pub mod position;
+mod resolve;
+pub mod symbols;
 
 use std::time::{Duration, Instant};
 
