@@ -90,13 +90,8 @@ fn neovim_shows_diagnostics_hover_definition_and_formats() {
         "{hover}"
     );
 
-    let definition = &results["definition"];
-    if results["definition_provider"] != true {
-        // TODO(lsp-nav merge): go to definition comes with the navigation branch; strict then.
-        eprintln!("SKIPPED part: the server announces no definitionProvider yet");
-    } else {
-        definition_is_the_included_declaration(definition, &dir);
-    }
+    assert_eq!(results["definition_provider"], true, "{results:#}");
+    definition_is_the_included_declaration(&results["definition"], &dir);
 
     let scene = std::fs::read_to_string(dir.join("scene.scn")).expect("the scene");
     let want = scnc::fmt::format(

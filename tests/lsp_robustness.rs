@@ -3,7 +3,8 @@
 //! slices), sent in bursts as fast typing would: the server never crashes or hangs, and after
 //! every burst the diagnostics it publishes for the newest text equal what `scnc check` reports
 //! for the same text (code, severity and UTF-16 range of every diagnostic in the file), and
-//! hover and completion at random positions of it answer without an error.
+//! hover and completion at random positions of it answer without an error, and the outline,
+//! folding, semantic token and navigation requests are answered.
 
 mod lsp_common;
 
@@ -129,6 +130,35 @@ fn copy_dir(from: &Path, to: &Path) {
     }
 }
 
+/// The structure and navigation requests on the edited text, at a random position: each is
+/// answered (a result or a refusal), never a crash.
+fn navigate(client: &mut Client, doc: &str, text: &str, rng: &mut Rng) {
+    let (line, character) = position(text, rng.below(text.len() + 1));
+    let document = serde_json::json!({ "textDocument": { "uri": doc } });
+    let mut at = document.clone();
+    at["position"] = serde_json::json!({ "line": line, "character": character });
+    let mut references = at.clone();
+    references["context"] = serde_json::json!({ "includeDeclaration": true });
+    let mut rename = at.clone();
+    rename["newName"] = serde_json::json!("renamed");
+    for (method, params) in [
+        ("textDocument/semanticTokens/full", &document),
+        ("textDocument/documentSymbol", &document),
+        ("textDocument/foldingRange", &document),
+        ("textDocument/definition", &at),
+        ("textDocument/references", &references),
+        ("textDocument/prepareRename", &at),
+        ("textDocument/rename", &rename),
+    ] {
+        let response = client.request(method, params.clone());
+        let refused = response["error"]["code"] == -32803;
+        assert!(
+            response.get("result").is_some() || refused,
+            "{method} after an edit: {response}\n{text}"
+        );
+    }
+}
+
 #[test]
 fn thousands_of_random_edits_never_crash_and_match_scnc_check() {
     let dir = temp_dir("robust");
@@ -180,6 +210,7 @@ fn thousands_of_random_edits_never_crash_and_match_scnc_check() {
                 let response = client.request(method, params);
                 assert!(response.get("error").is_none(), "{method}: {response}");
             }
+            navigate(&mut client, &doc, &text, &mut rng);
         }
         client.notify(
             "textDocument/didClose",

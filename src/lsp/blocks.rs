@@ -126,6 +126,12 @@ impl BlockKind {
     }
 }
 
+/// Whether `word` is a keyword: one that starts a statement (the grammar's list), or
+/// `transform`.
+pub fn is_keyword(word: &str) -> bool {
+    crate::syntax::scan::STATEMENT_KEYWORDS.contains(&word) || word == "transform"
+}
+
 /// What a bare name in a value position refers to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Expected {

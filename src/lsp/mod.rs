@@ -4,8 +4,10 @@
 //! text ([`diagnostics`]: compile and build stages, same codes, UTF-16 ranges, related
 //! locations, help, a link to the code's explanation), hover and completion ([`assist`]: the
 //! language reference's entry of a key, a unit's normalised value, a colour's values; keys,
-//! names, functions and units, on text mid-edit too), and formatting by [`crate::fmt`]. The protocol is `lsp-server` (the
-//! transport rust-analyzer and ruff use) with `lsp-types`.
+//! names, functions and units, on text mid-edit too), and formatting by [`crate::fmt`]; go to
+//! definition, references, rename, outline, folding and semantic tokens from the [`symbols`]
+//! index (`requests.rs` dispatches them). The protocol is `lsp-server` (the transport
+//! rust-analyzer and ruff use) with `lsp-types`.
 //!
 //! Checks are debounced: a change marks the documents dirty, and they are checked once no new
 //! message has arrived for [`DEBOUNCE`] (or [`DEBOUNCE_CAP`] after the first unchecked change,
@@ -22,9 +24,14 @@ pub mod diagnostics;
 pub mod documents;
 pub mod hover;
 pub mod names;
+pub mod navigation;
+pub mod outline;
 pub mod position;
+mod requests;
 mod resolve;
+pub mod semantic;
 pub mod symbols;
+pub mod workspace;
 
 use std::time::{Duration, Instant};
 
@@ -66,13 +73,15 @@ pub enum LspError {
 
 /// What the server can do, announced at `initialize`.
 pub fn capabilities() -> ServerCapabilities {
-    ServerCapabilities {
+    let mut capabilities = ServerCapabilities {
         text_document_sync: Some(TextDocumentSyncCapability::Kind(TextDocumentSyncKind::FULL)),
         document_formatting_provider: Some(lsp_types::OneOf::Left(true)),
         hover_provider: Some(lsp_types::HoverProviderCapability::Simple(true)),
         completion_provider: Some(lsp_types::CompletionOptions::default()),
         ..ServerCapabilities::default()
-    }
+    };
+    requests::announce(&mut capabilities);
+    capabilities
 }
 
 /// Runs the server on `connection` until the client says `exit` (or disconnects).
@@ -223,6 +232,10 @@ impl Server<'_> {
         let request = match assist::handle(&self.documents, request) {
             Ok(response) => return response,
             Err(request) => request,
+        };
+        let request = match requests::respond(&self.documents, request) {
+            Ok(response) => return response,
+            Err(other) => other,
         };
         let id = request.id.clone();
         match request.method.as_str() {

@@ -54,6 +54,11 @@ impl<'a> LineIndex<'a> {
         line_end
     }
 
+    /// The text indexed.
+    pub fn text(&self) -> &'a str {
+        self.text
+    }
+
     /// The range covering the whole text.
     pub fn whole(&self) -> Range {
         self.range(0, self.text.len())

@@ -5,7 +5,7 @@
 //!
 //! It is built from the parse alone ([`crate::compile::parse_files`]: includes expanded as the
 //! compiler expands them), so it works on a document with errors as far as the parse goes; names
-//! resolve as the checker resolves them ([`resolve`](super::resolve)). Queries take byte
+//! resolve as the checker resolves them (`resolve.rs`). Queries take byte
 //! offsets and [`Span`]s; the LSP layers convert with [`super::position`].
 //!
 //! ```text

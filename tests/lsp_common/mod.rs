@@ -16,6 +16,8 @@ pub struct Client {
     stdin: ChildStdin,
     incoming: Receiver<Value>,
     next_id: i64,
+    /// What the server announced at `initialize`.
+    pub capabilities: Value,
 }
 
 impl Client {
@@ -62,12 +64,14 @@ impl Client {
             stdin,
             incoming,
             next_id: 0,
+            capabilities: Value::Null,
         };
         let init = client.request("initialize", json!({ "capabilities": {} }));
         assert_eq!(
             init["result"]["capabilities"]["documentFormattingProvider"],
             true
         );
+        client.capabilities = init["result"]["capabilities"].clone();
         client.notify("initialized", json!({}));
         client
     }

@@ -1,0 +1,298 @@
+//! Language server: the outline of one document (document symbols: every declaration, object
+//! and `render`, groups holding their objects and groups) and its folding ranges (blocks and
+//! arrays over several lines, runs of line comments, block comments), from its own parse.
+//!
+//! A fold ends on the line before its closing `}` or `]` when that line holds nothing else, so
+//! the closer stays visible; otherwise on the closer's line.
+
+use lsp_types::{DocumentSymbol, FoldingRange, FoldingRangeKind, SymbolKind as Lsp};
+
+use super::position::LineIndex;
+use crate::fmt::tokens::{tokenize, TokenKind};
+use crate::source::{FileId, Span};
+use crate::syntax::{self, Block, Expr, ExprKind, GroupStmt, Ident, Item, ObjectStmt, Stmt};
+
+/// The outline of `text`: its statements as a tree of symbols.
+pub fn symbols(text: &str) -> Vec<DocumentSymbol> {
+    let parsed = syntax::parse(FileId(0), text).value.unwrap_or_default();
+    let index = LineIndex::new(text);
+    parsed
+        .statements
+        .iter()
+        .filter_map(|s| statement(&index, s))
+        .collect()
+}
+
+fn statement(index: &LineIndex<'_>, stmt: &Stmt) -> Option<DocumentSymbol> {
+    let named = |name: &Ident, kind, detail: Option<&str>, span| {
+        symbol(index, &name.name, kind, detail, span, name.span, Vec::new())
+    };
+    Some(match stmt {
+        Stmt::Version { .. } => return None,
+        Stmt::Include { path, span } => {
+            let ExprKind::Str(file) = &path.kind else {
+                return None;
+            };
+            symbol(
+                index,
+                file,
+                Lsp::FILE,
+                Some("include"),
+                *span,
+                path.span,
+                Vec::new(),
+            )
+        }
+        Stmt::Let { name, span, .. } => named(name, Lsp::CONSTANT, None, *span),
+        Stmt::Camera { name, span, .. } => named(name, Lsp::OBJECT, Some("camera"), *span),
+        Stmt::Decl(d) => {
+            let kind = match d.kind {
+                syntax::DeclKind::Material => Lsp::STRUCT,
+                syntax::DeclKind::Texture => Lsp::TYPE_PARAMETER,
+                syntax::DeclKind::Mesh => Lsp::CLASS,
+                syntax::DeclKind::Light => Lsp::EVENT,
+            };
+            let detail = format!("{} = {}", d.kind.keyword(), d.ctor.name.name);
+            named(&d.name, kind, Some(&detail), d.span)
+        }
+        Stmt::Object(o) => object(index, o),
+        Stmt::Group(g) => group(index, g),
+        Stmt::Render { span, .. } => {
+            let keyword = Span::new(span.file, span.start as usize, span.start as usize + 6);
+            symbol(
+                index,
+                "render",
+                Lsp::MODULE,
+                None,
+                *span,
+                keyword,
+                Vec::new(),
+            )
+        }
+    })
+}
+
+fn object(index: &LineIndex<'_>, o: &ObjectStmt) -> DocumentSymbol {
+    let detail = Some("object");
+    symbol(
+        index,
+        &o.mesh.name,
+        Lsp::FIELD,
+        detail,
+        o.span,
+        o.mesh.span,
+        Vec::new(),
+    )
+}
+
+fn group(index: &LineIndex<'_>, g: &GroupStmt) -> DocumentSymbol {
+    let children = g
+        .body
+        .items
+        .iter()
+        .filter_map(|item| match item {
+            Item::Object(o) => Some(object(index, o)),
+            Item::Group(child) => Some(group(index, child)),
+            Item::Value(_) | Item::Transform(_) => None,
+        })
+        .collect();
+    let (name, span) = (&g.name, g.span);
+    symbol(
+        index,
+        &name.name,
+        Lsp::NAMESPACE,
+        Some("group"),
+        span,
+        name.span,
+        children,
+    )
+}
+
+fn symbol(
+    index: &LineIndex<'_>,
+    name: &str,
+    kind: Lsp,
+    detail: Option<&str>,
+    span: Span,
+    selection: Span,
+    children: Vec<DocumentSymbol>,
+) -> DocumentSymbol {
+    let range = |s: Span| index.range(s.start as usize, s.end as usize);
+    // A statement's span takes the whitespace after it.
+    let written = index
+        .text()
+        .get(span.range())
+        .map_or(0, |t| t.trim_end().len());
+    let span = Span::new(
+        span.file,
+        span.start as usize,
+        span.start as usize + written,
+    );
+    #[allow(
+        deprecated,
+        reason = "`deprecated` is a field the protocol still requires"
+    )]
+    DocumentSymbol {
+        name: name.to_string(),
+        detail: detail.map(str::to_string),
+        kind,
+        tags: None,
+        deprecated: None,
+        range: range(span),
+        selection_range: range(selection),
+        children: (!children.is_empty()).then_some(children),
+    }
+}
+
+/// The folding ranges of `text`, in text order.
+pub fn folding_ranges(text: &str) -> Vec<FoldingRange> {
+    let parsed = syntax::parse(FileId(0), text).value.unwrap_or_default();
+    let index = LineIndex::new(text);
+    let mut folds = Folds {
+        index: &index,
+        text,
+        out: Vec::new(),
+    };
+    for stmt in &parsed.statements {
+        folds.statement(stmt);
+    }
+    folds.comments();
+    let mut out = folds.out;
+    out.sort_by_key(|f| (f.start_line, f.end_line));
+    out
+}
+
+struct Folds<'a> {
+    index: &'a LineIndex<'a>,
+    text: &'a str,
+    out: Vec<FoldingRange>,
+}
+
+impl Folds<'_> {
+    fn statement(&mut self, stmt: &Stmt) {
+        match stmt {
+            Stmt::Let { value, .. } => self.expr(value),
+            Stmt::Camera { body, .. } | Stmt::Render { body, .. } => self.block(body),
+            Stmt::Decl(d) => {
+                d.ctor.args.iter().flatten().for_each(|a| self.expr(a));
+                if let Some(body) = &d.body {
+                    self.block(body);
+                }
+            }
+            Stmt::Object(o) => self.block(&o.body),
+            Stmt::Group(g) => self.block(&g.body),
+            Stmt::Version { .. } | Stmt::Include { .. } => {}
+        }
+    }
+
+    fn block(&mut self, block: &Block) {
+        self.bracketed(block.span, None);
+        for item in &block.items {
+            match item {
+                Item::Value(e) => self.expr(e),
+                Item::Transform(b) => self.block(b),
+                Item::Object(o) => self.block(&o.body),
+                Item::Group(g) => self.block(&g.body),
+            }
+        }
+    }
+
+    fn expr(&mut self, e: &Expr) {
+        match &e.kind {
+            ExprKind::Array => self.bracketed(e.span, None),
+            ExprKind::Call { args: parts, .. } | ExprKind::Tuple(parts) => {
+                parts.iter().for_each(|p| self.expr(p));
+            }
+            ExprKind::Paren(inner) | ExprKind::Neg(inner) => self.expr(inner),
+            ExprKind::Binary { lhs, rhs, .. } => {
+                self.expr(lhs);
+                self.expr(rhs);
+            }
+            _ => {}
+        }
+    }
+
+    /// A fold over `span` (a bracketed region, or a comment when `kind` says so).
+    fn bracketed(&mut self, span: Span, kind: Option<FoldingRangeKind>) {
+        let open = self.index.position(span.start as usize).line;
+        let close = self.index.position(span.end as usize).line;
+        // The closer's first byte (an unclosed comment may end inside a character: floor it).
+        let mut last = (span.end as usize).saturating_sub(1).min(self.text.len());
+        while !self.text.is_char_boundary(last) {
+            last -= 1;
+        }
+        let line_start = self.text[..last].rfind('\n').map_or(0, |n| n + 1);
+        let closer_alone = self
+            .text
+            .get(line_start..last)
+            .is_some_and(|before| before.trim().is_empty());
+        let end = if closer_alone && kind.is_none() {
+            close.saturating_sub(1)
+        } else {
+            close
+        };
+        if end > open {
+            self.out.push(fold(open, end, kind));
+        }
+    }
+
+    /// Runs of line comments on consecutive lines (each alone on its line), and block comments over several lines.
+    fn comments(&mut self) {
+        let mut run: Option<(u32, u32)> = None;
+        for token in tokenize(self.text) {
+            let line = self.index.position(token.start).line;
+            // A comment after code on its line is no part of a run.
+            let own_line = token.newlines_before > 0 || token.start == 0;
+            match token.kind {
+                TokenKind::LineComment if own_line => match &mut run {
+                    Some((_, last)) if *last + 1 == line => *last = line,
+                    _ => {
+                        self.close_run(run.take());
+                        run = Some((line, line));
+                    }
+                },
+                TokenKind::BlockComment => {
+                    self.close_run(run.take());
+                    let end = token.start + token.text.len();
+                    let span = Span::new(FileId(0), token.start, end);
+                    self.bracketed(span, Some(FoldingRangeKind::Comment));
+                }
+                _ => self.close_run(run.take()),
+            }
+        }
+        self.close_run(run);
+    }
+
+    fn close_run(&mut self, run: Option<(u32, u32)>) {
+        if let Some((first, last)) = run.filter(|(f, l)| l > f) {
+            self.out
+                .push(fold(first, last, Some(FoldingRangeKind::Comment)));
+        }
+    }
+}
+
+fn fold(start_line: u32, end_line: u32, kind: Option<FoldingRangeKind>) -> FoldingRange {
+    FoldingRange {
+        start_line,
+        start_character: None,
+        end_line,
+        end_character: None,
+        kind,
+        collapsed_text: None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An unclosed block comment ending in a multi-byte character folds without panicking
+    /// (found by tests/lsp_robustness.rs).
+    #[test]
+    fn unclosed_comment_ending_mid_character() {
+        for text in ["scnc 1\n/*éxé", "/*é\n\né", "/*\n𝛼"] {
+            let _ = folding_ranges(text);
+            let _ = symbols(text);
+        }
+    }
+}
