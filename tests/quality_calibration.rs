@@ -20,7 +20,7 @@ use scnc::render::{render_with_error, RenderOptions, Rendered};
 use scnc::scene::{build, BuildOptions, Scene};
 
 const SIDE: u32 = 48;
-const REFERENCE_SPP: u32 = 8192;
+const REFERENCE_SPP: u32 = 4096;
 const LUMA: Vec3 = Vec3::new(0.2126, 0.7152, 0.0722);
 
 fn example(name: &str) -> Scene {
