@@ -220,6 +220,7 @@ pub fn check_with(
     for d in &decls[Namespace::Light as usize] {
         cx.light(d);
     }
+    cx.objects.reserve(object::count_objects(&placements));
     for stmt in placements {
         cx.placement(stmt);
     }

@@ -11,7 +11,31 @@ use super::names::Namespace;
 use super::Checker;
 use crate::diag::{Code, Diagnostic};
 use crate::ir;
-use crate::syntax::{GroupStmt, ObjectStmt, Stmt};
+use crate::syntax::{Block, GroupStmt, Item, ObjectStmt, Stmt};
+
+/// How many `object`s `stmts` place, nested ones included: the IR's object list is reserved
+/// at once (80,000 placements would otherwise end in a list up to twice their size, and a copy
+/// of half of it while it grows).
+pub(super) fn count_objects(stmts: &[&Stmt]) -> usize {
+    fn in_block(b: &Block) -> usize {
+        b.items
+            .iter()
+            .map(|i| match i {
+                Item::Object(_) => 1,
+                Item::Group(g) => in_block(&g.body),
+                Item::Value(_) | Item::Transform(_) => 0,
+            })
+            .sum()
+    }
+    stmts
+        .iter()
+        .map(|s| match s {
+            Stmt::Object(_) => 1,
+            Stmt::Group(g) => in_block(&g.body),
+            _ => 0,
+        })
+        .sum()
+}
 
 impl Checker<'_> {
     pub(super) fn placement(&mut self, stmt: &Stmt) {

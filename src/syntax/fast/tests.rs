@@ -210,8 +210,13 @@ fn fast_parser_matches_pest_on_seeded_mutations() {
     let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
     let mut failing = 0;
     let mut total = 0;
+    // `SCNC_FAST_MUTATIONS=N` runs N per scene instead (a longer hunt, by hand).
+    let per_scene = std::env::var("SCNC_FAST_MUTATIONS")
+        .ok()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(80);
     for text in corpus() {
-        for _ in 0..80 {
+        for _ in 0..per_scene {
             let mutated = mutate(&mut rng, &text);
             let deep = crate::syntax::scan::scan(&mutated).too_deep_at;
             assert_eq!(crate::syntax::scan::too_deep(&mutated), deep, "{mutated}");
