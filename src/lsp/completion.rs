@@ -62,9 +62,14 @@ pub fn complete(text: &str, offset: usize, names: &[Declared]) -> Vec<Completion
 
 /// The items for a word at the cursor's place.
 fn by_place(cx: &Context<'_>, names: &[Declared]) -> Vec<CompletionItem> {
+    // In `let NAME = ...`: the latest statement keyword is `let` and `=` follows it.
+    let statement = cx
+        .before
+        .iter()
+        .rposition(|w| STATEMENT_KEYWORDS.contains(w));
     let after_let = cx.frames.is_empty()
-        && cx.before.last() == Some(&"=")
-        && cx.before.iter().rev().nth(2) == Some(&"let");
+        && !cx.in_column_0
+        && statement.is_some_and(|i| cx.before[i] == "let" && cx.before.get(i + 2) == Some(&"="));
     if cx.in_parens || after_let {
         return expression(names);
     }
@@ -179,7 +184,7 @@ fn top_level(cx: &Context<'_>, names: &[Declared]) -> Vec<CompletionItem> {
         return declared(names, &[SymbolKind::Mesh]);
     }
     let naming = STATEMENT_KEYWORDS.contains(&last) || last == "scnc" || last == "include";
-    if naming && !cx.before.is_empty() {
+    if naming && !cx.in_column_0 {
         // A new name or a path is being written.
         return Vec::new();
     }
@@ -269,5 +274,37 @@ fn item(label: &str, kind: CompletionItemKind, detail: &str, doc: String) -> Com
             value: doc,
         })),
         ..CompletionItem::default()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn labels(marked: &str) -> Vec<String> {
+        let offset = marked.find('|').unwrap_or(0);
+        complete(&marked.replacen('|', "", 1), offset, &[])
+            .into_iter()
+            .map(|i| i.label)
+            .collect()
+    }
+
+    #[test]
+    fn places_decide_what_is_offered() {
+        assert!(labels("let a = 1 + |").contains(&"sqrt".to_string()));
+        assert!(labels("let a = 1\nma|").contains(&"material".to_string()));
+        assert_eq!(labels("mesh m = sph|")[..2], ["obj", "inline"]);
+        assert_eq!(
+            labels("group g { transform { rotate | } }"),
+            ["x", "y", "z"]
+        );
+        assert_eq!(labels("group g { | }"), ["transform", "object", "group"]);
+        assert_eq!(
+            labels("render { output \"a.png\" | }")[..2],
+            ["resolution", "samples"]
+        );
+        assert!(labels("render { output \"a.png\" | }").contains(&"output".to_string()));
+        assert_eq!(labels("camera |"), Vec::<String>::new());
+        assert_eq!(labels("// |"), Vec::<String>::new());
     }
 }

@@ -41,6 +41,9 @@ pub struct Context<'t> {
     /// The key of the innermost block that the word at the cursor is the value of: the key is
     /// the previous token at block level.
     pub value_of: Option<&'static str>,
+    /// Whether the word at the cursor (or the cursor) stands in column 0, where a top-level
+    /// statement starts.
+    pub in_column_0: bool,
 }
 
 impl<'t> Context<'t> {
@@ -183,7 +186,10 @@ pub fn at(text: &str, offset: usize) -> Context<'_> {
             .and_then(|w| block.keys().iter().copied().find(|k| k == w)),
         _ => None,
     };
+    let word_start = at.map_or(offset, |i| tokens[i].start).min(text.len());
+    let in_column_0 = word_start == 0 || text.as_bytes().get(word_start - 1) == Some(&b'\n');
     Context {
+        in_column_0,
         tokens,
         at,
         in_comment_or_string,
