@@ -214,6 +214,18 @@ impl<'l> Driver<'l> {
         let file = file.unwrap_or_default();
         self.check_version(id, &text, &file.statements);
         self.stack.push((path, from));
+        let includes = file
+            .statements
+            .iter()
+            .any(|s| matches!(s, Stmt::Include { .. }));
+        if self.statements.is_empty() && !includes {
+            // The usual root file without includes: its statements move over, never two
+            // arrays of them at once.
+            self.statements = file.statements;
+            self.stack.pop();
+            return;
+        }
+        self.statements.reserve(file.statements.len());
         for stmt in file.statements {
             if let Stmt::Include { path, .. } = &stmt {
                 self.include(id, path);

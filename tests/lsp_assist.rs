@@ -129,6 +129,20 @@ fn completion_offers_missing_keys_names_by_kind_functions_and_units() {
         ["wall", "floor"]
     );
 
+    // Names declared in an included file are offered too, after the document's own.
+    std::fs::write(
+        dir.join("lib.scn"),
+        "scnc 1\nmaterial gold = phong { specular 0.9 }\n",
+    )
+    .expect("write");
+    let text2 = format!("{SCENE}include \"lib.scn\"\nobject ball {{ material  }}\n");
+    client.change(&main, 6, &text2);
+    let n = text2.rfind("material ").expect("the key") + "material ".len();
+    assert_eq!(
+        labels(&mut client, &main, position(&text2, n)),
+        ["wall", "floor", "gold"]
+    );
+
     // In parentheses: constants, then every function, booleans and `frame`.
     let text3 = format!("{SCENE}let x = (gr");
     client.change(&main, 3, &text3);
@@ -214,7 +228,14 @@ fn hover_and_completion_answer_at_every_offset_of_mangled_examples() {
             text.replace('"', "/*é𝛼"),
         ];
         for variant in &variants {
-            let names = scnc::lsp::names::declared(variant);
+            let mut sources = scnc::source::SourceMap::new();
+            let file = sources.add("main.scn", "main.scn", variant.as_str());
+            let statements = scnc::syntax::parse(file, variant)
+                .value
+                .map(|f| f.statements)
+                .unwrap_or_default();
+            let index = scnc::lsp::symbols::SymbolIndex::from_statements(sources, &statements);
+            let names = scnc::lsp::names::declared(&index);
             for offset in (0..=variant.len()).filter(|&i| variant.is_char_boundary(i)) {
                 let _ = scnc::lsp::hover::hover(variant, offset);
                 let _ = scnc::lsp::completion::complete(variant, offset, &names);

@@ -90,7 +90,7 @@ fn adaptive_sampling_is_deterministic_and_converges_to_the_reference() {
     let mut scene = example("cornell");
     let reference = fixed(&mut scene, 4096, 1_000_003);
     // Compared where a fixed-count render takes its plain count: the pixels that may see the
-    // light take 16× more there (`render::emitter_pixels`), adaptive renders do not.
+    // light take 16× more there (`render::emitter_pixels`; adaptive renders a minimum count).
     let camera = PinholeCamera::new(&scene.camera, scene.settings.width, scene.settings.height);
     let light_pixels = EmitterPixels::find(&scene, &camera, 16);
     let e = |f: &Film| compare(f, &reference).expect("same size").rmse;
@@ -125,8 +125,9 @@ fn adaptive_sampling_is_deterministic_and_converges_to_the_reference() {
     );
     // No bias floor: 16× the samples, about 1/4 the error (1/√16; allow 1/2.5).
     assert!(at_max[2] < at_max[0] / 2.5, "{at_max:?}");
-    // Independent 16-sample batches lose the stratification across the whole pixel that a
-    // fixed 256-sample pattern has: worse, but within a small factor.
+    // Four independent progressive replicates of 64 samples lose some of the stratification
+    // across the whole pixel that a fixed 256-sample pattern has: worse, but within a small
+    // factor.
     assert!(rest_at_256 < 2.5 * plain, "{rest_at_256} vs {plain}");
     scene.settings.noise = Some(0.02);
     scene.settings.max_samples = Some(1024);

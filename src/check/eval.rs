@@ -81,7 +81,7 @@ impl Checker<'_> {
             ExprKind::Tuple(parts) => self.tuple(parts, e),
             ExprKind::Neg(inner) => self.negate(inner, e),
             ExprKind::Binary { op, lhs, rhs } => self.binary_op(*op, lhs, rhs, e),
-            ExprKind::Call { func, args } => self.call(&func.name, func.span, args, e),
+            ExprKind::Call(call) => self.call(&call.func.name, call.func.span, &call.args, e),
             ExprKind::Array => {
                 self.error(
                     Diagnostic::error(Code::CheckUnexpectedArray, "an array is not allowed here")

@@ -126,7 +126,7 @@ impl Checker<'_> {
         out: &mut Props<'a>,
     ) -> bool {
         let key_span = match &e.kind {
-            ExprKind::Call { func, .. } => func.span,
+            ExprKind::Call(call) => call.func.span,
             _ => e.span,
         };
         if !repeatable.contains(&key) {
@@ -144,7 +144,7 @@ impl Checker<'_> {
             }
         }
         let values = match &e.kind {
-            ExprKind::Call { args, .. } => args.iter().collect(),
+            ExprKind::Call(call) => call.args.iter().collect(),
             _ => Vec::new(),
         };
         out.props.push(Prop {
@@ -203,7 +203,7 @@ impl Checker<'_> {
 fn static_key(e: &Expr, keys: &[&'static str]) -> Option<&'static str> {
     let name = match &e.kind {
         ExprKind::Name(n) => n.as_str(),
-        ExprKind::Call { func, .. } => func.name.as_str(),
+        ExprKind::Call(call) => call.func.name.as_str(),
         _ => return None,
     };
     keys.iter().copied().find(|k| *k == name)

@@ -1,5 +1,7 @@
 //! Language server: the assist requests — hover and completion — answered from an open
-//! document's text at the requested position ([`super::hover`], [`super::completion`]).
+//! document's text at the requested position ([`super::hover`], [`super::completion`]) and its
+//! [`SymbolIndex`] (the names it and its includes declare: a name's hover says what it is and
+//! where it is declared; completion offers the names of the kind a key expects).
 
 use lsp_server::{ErrorCode, Request, Response};
 use lsp_types::request::{Completion, HoverRequest, Request as _};
@@ -10,6 +12,7 @@ use lsp_types::{
 
 use super::documents::{Document, Documents};
 use super::position::LineIndex;
+use super::symbols::SymbolIndex;
 use super::{completion, hover, names};
 
 /// The response to `request` when it is an assist request; the request back otherwise.
@@ -49,7 +52,8 @@ fn locate<'d>(
 
 fn hover_at(documents: &Documents, at: &TextDocumentPositionParams) -> Option<Hover> {
     let (document, offset) = locate(documents, at)?;
-    let found = hover::hover(&document.text, offset)?;
+    let found =
+        name_hover(documents, document, offset).or_else(|| hover::hover(&document.text, offset))?;
     let index = LineIndex::new(&document.text);
     Some(Hover {
         contents: HoverContents::Markup(MarkupContent {
@@ -60,12 +64,25 @@ fn hover_at(documents: &Documents, at: &TextDocumentPositionParams) -> Option<Ho
     })
 }
 
+/// The hover of a declared name at `offset`: what it is and where it is declared.
+fn name_hover(documents: &Documents, document: &Document, offset: usize) -> Option<hover::Hover> {
+    let index = SymbolIndex::build(&document.path, &documents.loader());
+    let file = index.file(&document.path)?;
+    let occurrence = index.at(file, offset)?;
+    let symbol = index.symbol(occurrence.symbol);
+    Some(hover::Hover {
+        start: occurrence.span.start as usize,
+        end: occurrence.span.end as usize,
+        markdown: names::summary(symbol, index.sources()),
+    })
+}
+
 fn completion_at(
     documents: &Documents,
     at: &TextDocumentPositionParams,
 ) -> Option<CompletionResponse> {
     let (document, offset) = locate(documents, at)?;
-    let declared = names::declared(&document.text);
+    let declared = names::declared(&SymbolIndex::build(&document.path, &documents.loader()));
     let items = completion::complete(&document.text, offset, &declared);
     Some(CompletionResponse::Array(items))
 }

@@ -17,9 +17,11 @@ use lsp_types::{
     MarkupKind, TextEdit,
 };
 
+use super::blocks::{BlockKind, Expected};
 use super::context::{self, end, Context};
-use super::names::{Declared, NameKind};
+use super::names::{completion_kind, Declared};
 use super::position::LineIndex;
+use super::symbols::SymbolKind;
 use crate::check::reference::{function_doc, unit_doc, Block};
 use crate::check::vocabulary as v;
 use crate::check::FUNCTIONS;
@@ -125,16 +127,13 @@ fn values(block: Block, key: &str, names: &[Declared]) -> Vec<CompletionItem> {
     if ty.contains("`true`") || ty == "boolean" {
         return booleans();
     }
-    let kinds: &[NameKind] = match (block, key) {
-        (Block::Object | Block::ObjMesh, "material") => &[NameKind::Material],
-        (Block::Phong, "normal_map") => &[NameKind::Texture],
-        (Block::Phong, _) => &[NameKind::Texture, NameKind::Constant],
-        (Block::AreaLight, "mesh") => &[NameKind::Mesh],
-        (Block::Render, "camera") => &[NameKind::Camera],
-        _ => return expression(names),
+    let kinds = match lsp_block(block).expected(key, 0) {
+        Some(Expected::Name(kind)) => vec![kind],
+        Some(Expected::ConstantOrTexture) => vec![SymbolKind::Texture, SymbolKind::Constant],
+        None => return expression(names),
     };
-    let mut items = declared(names, kinds);
-    if kinds.contains(&NameKind::Constant) {
+    let mut items = declared(names, &kinds);
+    if kinds.contains(&SymbolKind::Constant) {
         items.extend(functions());
     }
     items
@@ -142,7 +141,7 @@ fn values(block: Block, key: &str, names: &[Declared]) -> Vec<CompletionItem> {
 
 /// What an expression may hold: constants, functions, booleans and `frame`.
 fn expression(names: &[Declared]) -> Vec<CompletionItem> {
-    let mut items = declared(names, &[NameKind::Constant]);
+    let mut items = declared(names, &[SymbolKind::Constant]);
     items.extend(functions());
     items.extend(booleans());
     items.push(item(
@@ -177,7 +176,7 @@ fn top_level(cx: &Context<'_>, names: &[Declared]) -> Vec<CompletionItem> {
             .collect();
     }
     if last == "object" {
-        return declared(names, &[NameKind::Mesh]);
+        return declared(names, &[SymbolKind::Mesh]);
     }
     let naming = STATEMENT_KEYWORDS.contains(&last) || last == "scnc" || last == "include";
     if naming && !cx.before.is_empty() {
@@ -193,15 +192,15 @@ fn top_level(cx: &Context<'_>, names: &[Declared]) -> Vec<CompletionItem> {
         .collect()
 }
 
-fn declared(names: &[Declared], kinds: &[NameKind]) -> Vec<CompletionItem> {
+fn declared(names: &[Declared], kinds: &[SymbolKind]) -> Vec<CompletionItem> {
     names
         .iter()
         .filter(|d| kinds.contains(&d.kind))
         .map(|d| {
             item(
                 &d.name,
-                d.kind.completion_kind(),
-                d.kind.keyword(),
+                completion_kind(d.kind),
+                d.kind.what(),
                 d.summary.clone(),
             )
         })
@@ -234,6 +233,30 @@ fn booleans() -> Vec<CompletionItem> {
         .iter()
         .map(|b| item(b, CompletionItemKind::CONSTANT, "boolean", String::new()))
         .collect()
+}
+
+/// The symbol index's name for a block kind (it knows which kind of name a key's values name).
+fn lsp_block(block: Block) -> BlockKind {
+    match block {
+        Block::Camera => BlockKind::Camera,
+        Block::Transform => BlockKind::Transform,
+        Block::Phong => BlockKind::Material,
+        Block::ImageTexture => BlockKind::ImageTexture,
+        Block::Checker => BlockKind::CheckerTexture,
+        Block::ConstantTexture => BlockKind::ConstantTexture,
+        Block::ObjMesh => BlockKind::ObjMesh,
+        Block::InlineMesh => BlockKind::InlineMesh,
+        Block::Sphere => BlockKind::Sphere,
+        Block::Icosphere => BlockKind::Icosphere,
+        Block::Quad => BlockKind::Quad,
+        Block::Box => BlockKind::Box,
+        Block::Object => BlockKind::Object,
+        Block::Group => BlockKind::Group,
+        Block::PointLight => BlockKind::PointLight,
+        Block::AreaLight => BlockKind::AreaLight,
+        Block::EnvironmentLight => BlockKind::EnvironmentLight,
+        Block::Render => BlockKind::Render,
+    }
 }
 
 fn item(label: &str, kind: CompletionItemKind, detail: &str, doc: String) -> CompletionItem {

@@ -68,9 +68,8 @@ impl Folds<'_> {
     fn expr(&mut self, e: &Expr) {
         match &e.kind {
             ExprKind::Array => self.bracketed(e.span, None),
-            ExprKind::Call { args: parts, .. } | ExprKind::Tuple(parts) => {
-                parts.iter().for_each(|p| self.expr(p));
-            }
+            ExprKind::Call(call) => call.args.iter().for_each(|p| self.expr(p)),
+            ExprKind::Tuple(parts) => parts.iter().for_each(|p| self.expr(p)),
             ExprKind::Paren(inner) | ExprKind::Neg(inner) => self.expr(inner),
             ExprKind::Binary { lhs, rhs, .. } => {
                 self.expr(lhs);

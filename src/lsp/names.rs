@@ -1,148 +1,68 @@
-//! Language server: the declared names hover and completion offer, by kind.
-//!
-//! Until the symbol index (`symbols.rs`) is merged, this reads the open document's own
-//! declarations with the tolerant token scan (`KEYWORD NAME` at bracket depth 0, groups at any
-//! depth; a declaration in column 0 closes blocks left open), which works on text that does
-//! not parse.
+//! Language server: the declared names hover and completion show, read from the document's
+//! [`SymbolIndex`] (the document and its includes: every name it can use), each with a one-line
+//! summary of its declaration and where it is.
 
 use lsp_types::CompletionItemKind;
 
-use crate::fmt::tokens::{tokenize, TokenKind};
+use super::symbols::{Symbol, SymbolIndex, SymbolKind};
+use crate::source::SourceMap;
 
-/// What a declared name names.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum NameKind {
-    /// `let NAME = ...`.
-    Constant,
-    /// `camera NAME { ... }`.
-    Camera,
-    /// `material NAME = ...`.
-    Material,
-    /// `texture NAME = ...`.
-    Texture,
-    /// `mesh NAME = ...`.
-    Mesh,
-    /// `light NAME = ...`.
-    Light,
-    /// `group NAME { ... }`.
-    Group,
-}
-
-impl NameKind {
-    /// The statement keyword that declares it.
-    pub fn keyword(self) -> &'static str {
-        match self {
-            NameKind::Constant => "let",
-            NameKind::Camera => "camera",
-            NameKind::Material => "material",
-            NameKind::Texture => "texture",
-            NameKind::Mesh => "mesh",
-            NameKind::Light => "light",
-            NameKind::Group => "group",
-        }
-    }
-
-    /// The kind a statement keyword declares.
-    pub fn of_keyword(keyword: &str) -> Option<NameKind> {
-        [
-            NameKind::Constant,
-            NameKind::Camera,
-            NameKind::Material,
-            NameKind::Texture,
-            NameKind::Mesh,
-            NameKind::Light,
-            NameKind::Group,
-        ]
-        .into_iter()
-        .find(|k| k.keyword() == keyword)
-    }
-
-    /// How an editor shows it in a completion list.
-    pub fn completion_kind(self) -> CompletionItemKind {
-        match self {
-            NameKind::Constant => CompletionItemKind::CONSTANT,
-            NameKind::Camera | NameKind::Light | NameKind::Group => CompletionItemKind::VARIABLE,
-            NameKind::Material | NameKind::Texture | NameKind::Mesh => CompletionItemKind::VALUE,
-        }
-    }
-}
-
-/// One declared name.
+/// One declared name, as completion offers it.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Declared {
     /// The name.
     pub name: String,
     /// What it names.
-    pub kind: NameKind,
-    /// A one-line summary of its declaration (`material wall = phong`).
+    pub kind: SymbolKind,
+    /// Markdown: its declaration's first line and where it is.
     pub summary: String,
 }
 
-/// The names `text` declares.
-pub fn declared(text: &str) -> Vec<Declared> {
-    let tokens: Vec<_> = tokenize(text)
-        .into_iter()
-        .filter(|t| !matches!(t.kind, TokenKind::LineComment | TokenKind::BlockComment))
-        .collect();
-    let mut depth = 0usize;
-    let mut out = Vec::new();
-    for (i, t) in tokens.iter().enumerate() {
-        match t.kind {
-            TokenKind::Punct('{' | '(') => depth += 1,
-            TokenKind::Punct('}' | ')') => depth = depth.saturating_sub(1),
-            _ => {}
-        }
-        let Some(kind) = NameKind::of_keyword(t.text) else {
-            continue;
-        };
-        // A declaration in column 0 ends any block left open above it (mid-edit text).
-        if t.spaces_before == 0 && (t.newlines_before > 0 || i == 0) {
-            depth = 0;
-        }
-        let Some(name) = tokens.get(i + 1).filter(|n| is_name(n.text)) else {
-            continue;
-        };
-        if depth > 0 && kind != NameKind::Group {
-            continue;
-        }
-        let line_end = text[t.start..]
-            .find('\n')
-            .map_or(text.len(), |n| t.start + n);
-        let line = text[t.start..line_end].trim_end();
-        let summary = match line.char_indices().nth(80) {
-            Some((cut, _)) => format!("`{}…`", &line[..cut]),
-            None => format!("`{line}`"),
-        };
-        out.push(Declared {
-            name: name.text.to_string(),
-            kind,
-            summary,
-        });
-    }
-    out
+/// Every name `index` declares, in declaration order.
+pub fn declared(index: &SymbolIndex) -> Vec<Declared> {
+    index
+        .symbols()
+        .map(|(_, s)| Declared {
+            name: s.name.clone(),
+            kind: s.kind,
+            summary: summary(s, index.sources()),
+        })
+        .collect()
 }
 
-fn is_name(word: &str) -> bool {
-    word.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
+/// What a symbol is: its kind, its declaration's first line (in a code span) and its place,
+/// `file.scn:LINE`.
+pub fn summary(symbol: &Symbol, sources: &SourceMap) -> String {
+    let file = sources.get(symbol.span.file);
+    let start = (symbol.span.start as usize).min(file.text.len());
+    let end = (symbol.span.end as usize).clamp(start, file.text.len());
+    let declaration = file.text.get(start..end).unwrap_or_default();
+    let first = declaration.lines().next().unwrap_or_default().trim_end();
+    let shown = match first.char_indices().nth(80) {
+        Some((cut, _)) => format!("{}…", &first[..cut]),
+        None => first.to_string(),
+    };
+    let line = file
+        .text
+        .get(..start)
+        .map_or(0, |t| t.matches('\n').count())
+        + 1;
+    let name = file
+        .path
+        .file_name()
+        .map_or_else(|| file.name.clone(), |n| n.to_string_lossy().into_owned());
+    format!(
+        "{} `{}`\n\n```scn\n{shown}\n```\ndeclared at {name}:{line}",
+        symbol.kind.what(),
+        symbol.name
+    )
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn declarations_by_kind_even_mid_edit() {
-        let names =
-            declared("scnc 1\nlet a = 1\nmaterial w = phong { diffuse\nmesh m = sphere {}\n");
-        let found: Vec<(NameKind, &str)> =
-            names.iter().map(|d| (d.kind, d.name.as_str())).collect();
-        assert_eq!(
-            found,
-            vec![
-                (NameKind::Constant, "a"),
-                (NameKind::Material, "w"),
-                (NameKind::Mesh, "m")
-            ]
-        );
+/// How an editor shows a name of `kind` in a completion list.
+pub fn completion_kind(kind: SymbolKind) -> CompletionItemKind {
+    match kind {
+        SymbolKind::Constant => CompletionItemKind::CONSTANT,
+        SymbolKind::Camera | SymbolKind::Light | SymbolKind::Group => CompletionItemKind::VARIABLE,
+        SymbolKind::Material | SymbolKind::Texture | SymbolKind::Mesh => CompletionItemKind::VALUE,
     }
 }

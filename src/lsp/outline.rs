@@ -152,4 +152,14 @@ mod tests {
         }
         assert!(outlined > 0);
     }
+
+    /// An unclosed block comment ending in a multi-byte character folds without panicking
+    /// (found by tests/lsp_robustness.rs).
+    #[test]
+    fn unclosed_comment_ending_mid_character() {
+        for text in ["scnc 1\n/*éxé", "/*é\n\né", "/*\n𝛼"] {
+            let _ = super::super::folding::ranges(text);
+            let _ = symbols(text);
+        }
+    }
 }

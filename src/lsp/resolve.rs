@@ -222,9 +222,9 @@ impl Resolver {
     fn expr(&mut self, e: &Expr, expected: Option<Expected>, block: Option<BlockKind>) {
         match &e.kind {
             ExprKind::Name(name) => self.name(name, e.span, expected, block),
-            ExprKind::Call { func, args } => {
-                self.mark(func.span, Role::Function);
-                for a in args {
+            ExprKind::Call(call) => {
+                self.mark(call.func.span, Role::Function);
+                for a in &call.args {
                     self.expr(a, None, block);
                 }
             }
@@ -277,7 +277,7 @@ fn is_word(name: &str) -> bool {
 fn as_key<'e>(e: &'e Expr, keys: &[&'static str]) -> Option<(&'static str, Span, &'e [Expr])> {
     let (name, span, args) = match &e.kind {
         ExprKind::Name(n) => (n.as_str(), e.span, &[][..]),
-        ExprKind::Call { func, args } => (func.name.as_str(), func.span, &args[..]),
+        ExprKind::Call(call) => (call.func.name.as_str(), call.func.span, &call.args[..]),
         _ => return None,
     };
     let key = keys.iter().copied().find(|k| *k == name)?;

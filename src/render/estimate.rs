@@ -2,47 +2,70 @@
 //! standard error of that mean, and the adaptive stopping rule of `render { noise 0.01
 //! max_samples 4096 }` / `--noise 0.01`.
 //!
-//! **The error estimate is right for stratified samples.** Adaptive sampling takes batches;
-//! each batch is an independent randomised stratified set (its own shifted
-//! rotated grid and its own scrambled light-sample sets, see `render::batch`). The means of
-//! independent batches are independent, identically distributed estimates, so the spread
-//! between them measures the real error of their average, stratification included (the
-//! classic error estimate of randomised quasi-Monte Carlo: independent replicates, as Owen
-//! and L'Ecuyer use them). The samples' own spread (`σ̂² / n`, the formula for independent
-//! samples) over-states the error of stratified samples, by 2–6× on cornell, which is why
-//! adaptive renders used to stop with 4–6× less error than asked.
+//! **The error estimate is right for low-discrepancy samples.** An adaptive pixel's samples
+//! are dealt round-robin to [`REPLICATES`] independent replicates, each one progressive
+//! Owen-scrambled Sobol' sequence continued from batch to batch (`rng::PixelSequences`). The
+//! replicates' means are independent, identically distributed estimates, so the spread between
+//! them measures the real error of their average, stratification included (the classic error
+//! estimate of randomised quasi-Monte Carlo: independent replicates, as Owen and L'Ecuyer use
+//! them). The samples' own spread (`σ̂² / n`, the formula for independent samples) over-states
+//! the error of stratified samples, by 2–6× on cornell, which is why adaptive renders used to
+//! stop with 4–6× less error than asked.
 //!
-//! With few batches the between-batch variance is itself noisy (B − 1 degrees of freedom),
-//! and stopping on a luckily small estimate biases the pixel. So the two are combined as a
-//! posterior with a prior: the per-sample estimate, an upper bound in expectation, counts as
-//! [`PRIOR_DOF`] degrees of freedom, the between-batch estimate as `B − 1`; early decisions
-//! lean on the conservative one, later ones on the accurate one. Relative error is that of the
-//! luminance, divided by the mean luminance floored at [`REL_FLOOR`]; a term `REL_FLOOR / n`
-//! keeps pixels whose samples all agree so far (all black) sampling until `n ≥ 1/target`.
+//! The spread of four means has three degrees of freedom: noisy, and stopping on a luckily
+//! small estimate biases the pixel. So it is combined with the per-sample estimate (an upper
+//! bound in expectation) as a prior worth [`PRIOR_DOF`] degrees of freedom. Relative error is
+//! that of the luminance, divided by the mean luminance floored at [`REL_FLOOR`]; a term
+//! `REL_FLOOR / n` keeps pixels whose samples all agree so far (all black) sampling until
+//! `n ≥ 1/target`.
 //!
-//! A pixel takes [`FIRST_BATCHES`] small batches of [`FIRST_BATCH`] (a flat, directly lit pixel
-//! may stop there), then batches of [`BATCH`], and stops after the first batch at which its
-//! relative error is at most the target or its count reached `max_samples`. Every decision uses the
-//! pixel's own samples only, so the image does not depend on threads or tiles.
+//! A pixel takes a first batch of [`FIRST_BATCH`] samples (a flat, directly lit pixel may stop
+//! there), then batches of [`BATCH`], and stops after the first batch at which its relative
+//! error is at most the target or its count reached `max_samples`. Every decision uses the
+//! pixel's own samples only (and a geometric mark, `render::emitter_pixels`), so the image does
+//! not depend on threads or tiles.
 
 use glam::{DVec3, Vec3};
 
-/// Samples per first batch along each side of the rotated grid.
-pub const FIRST_BATCH_SIDE: u32 = 2;
-/// Samples per first batch: small, so that a pixel that needs little (a flat, directly lit
-/// wall) can stop after a few.
-pub const FIRST_BATCH: u32 = FIRST_BATCH_SIDE * FIRST_BATCH_SIDE;
-/// How many small batches come first; the first decision is after them.
-pub const FIRST_BATCHES: u32 = 2;
-/// Samples per later batch along each side of the rotated grid.
-pub const BATCH_SIDE: u32 = 4;
-/// Samples per later batch: a 4×4 stratified set keeps most of the stratification a fixed
-/// pattern has (batches of 4 measured 3× the RMSE of a fixed 256-sample render at 256 samples
-/// on cornell; batches of 16, under 2.5×).
-pub const BATCH: u32 = BATCH_SIDE * BATCH_SIDE;
+pub use super::rng::REPLICATES;
+
+/// Samples of the first batch: small, so that a pixel that needs little (a flat, directly lit
+/// wall) can stop after a few; two per replicate.
+pub const FIRST_BATCH: u32 = 2 * REPLICATES;
+/// Samples per later batch.
+pub const BATCH: u32 = 4 * REPLICATES;
 /// Weight, in degrees of freedom, of the per-sample variance estimate (conservative for
-/// stratified samples) against the between-batch one (`B − 1` degrees of freedom).
-pub const PRIOR_DOF: f64 = 1.0;
+/// stratified samples) against the between-replicate one (`REPLICATES − 1` degrees of freedom).
+pub const PRIOR_DOF: f64 = 0.5;
+/// A pixel that may see an area light takes at least this many samples over the target
+/// ([`emitter_min_samples`]).
+pub const EMITTER_MIN_PER_TARGET: f64 = 8.0;
+
+/// The fewest samples an adaptive pixel that may see an area light takes at `target`: the
+/// light's edge can cross it as a sliver a few percent of its area wide, bright enough to
+/// matter, which its first samples can all miss (then they agree, and the pixel would stop
+/// dark beside the light); a `1/target`-proportional count sees such slivers.
+pub fn emitter_min_samples(target: f64) -> u32 {
+    (EMITTER_MIN_PER_TARGET / target.max(1e-6))
+        .ceil()
+        .min(u32::MAX as f64) as u32
+}
+
+/// Every adaptive pixel takes at least this many samples over the target ([`min_samples`]).
+pub const MIN_PER_TARGET: f64 = 1.0;
+
+/// The fewest samples any adaptive pixel takes at `target`, whatever its estimate says: a
+/// pixel whose first samples all agree (a light sample that almost always finds the sun, a
+/// dark corner that rarely sees the light) has no spread to measure yet, and an event of
+/// probability `p` is first seen after about `1/p` samples. `1/target` samples bound what an
+/// unseen event can still be worth (the rule of three, as the black-pixel term does for
+/// all-black pixels), without entering the reported estimate.
+pub fn min_samples(target: f64) -> u32 {
+    (MIN_PER_TARGET / target.max(1e-6))
+        .ceil()
+        .min(u32::MAX as f64) as u32
+}
+
 /// Mean luminance below which relative error is measured against this value instead.
 pub const REL_FLOOR: f64 = 1e-3;
 
@@ -53,7 +76,7 @@ pub const RMS_MIN_LUMINANCE: f64 = 0.01;
 /// Rec. 709 luminance weights (linear RGB).
 const LUMA: DVec3 = DVec3::new(0.2126, 0.7152, 0.0722);
 
-/// Running sums of one pixel's samples and of its batches' means.
+/// Running sums of one pixel's samples and of its replicates' luminance.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Accumulator {
     /// f32 like the film, so a fixed-count render's mean is bit-identical to the plain average.
@@ -62,40 +85,14 @@ pub struct Accumulator {
     luma_sum: f64,
     luma_sum_sq: f64,
     n: u32,
-    /// Luminance sum and count of the batch under way.
-    batch_luma: f64,
-    batch_n: u32,
-    /// Closed batches, in two groups of equal size (the small first ones, the full ones):
-    /// count, sum of their mean luminances, sum of squares.
-    groups: [BatchGroup; 2],
-}
-
-/// Batches of one size: how many, the sum of their mean luminances and of its squares.
-#[derive(Debug, Clone, Copy, Default)]
-struct BatchGroup {
-    size: u32,
-    count: u32,
-    mean_sum: f64,
-    mean_sum_sq: f64,
-}
-
-impl BatchGroup {
-    /// The between-batch sum of squares scaled by the batch size (an estimate of `c` times
-    /// its degrees of freedom, where a batch mean of `k` samples has variance `c / k`), and
-    /// those degrees of freedom.
-    fn scaled_spread(&self) -> (f64, f64) {
-        if self.count < 2 {
-            return (0.0, 0.0);
-        }
-        let b = self.count as f64;
-        let ss = (self.mean_sum_sq - self.mean_sum * self.mean_sum / b).max(0.0);
-        (ss * self.size as f64, b - 1.0)
-    }
+    /// Luminance sum and sample count of each replicate (adaptive renders only).
+    replicate_luma: [f64; REPLICATES as usize],
+    replicate_n: [u32; REPLICATES as usize],
 }
 
 impl Accumulator {
-    /// Adds one sample's radiance.
-    pub fn add(&mut self, l: Vec3) {
+    /// Adds one sample's radiance; returns its luminance.
+    pub fn add(&mut self, l: Vec3) -> f64 {
         self.sum += l;
         let d = l.as_dvec3();
         self.sum_sq += d * d;
@@ -103,23 +100,41 @@ impl Accumulator {
         self.luma_sum += y;
         self.luma_sum_sq += y * y;
         self.n += 1;
-        self.batch_luma += y;
-        self.batch_n += 1;
+        y
     }
 
-    /// Closes the batch under way (of `size` samples planned); its mean joins the spread of
-    /// the batches of its size.
-    pub fn end_batch(&mut self, size: u32) {
-        if self.batch_n > 0 {
-            let m = self.batch_luma / self.batch_n as f64;
-            let g = &mut self.groups[usize::from(size == BATCH)];
-            g.size = size;
-            g.count += 1;
-            g.mean_sum += m;
-            g.mean_sum_sq += m * m;
+    /// Adds one sample of replicate `replicate` (`rng::PixelSequences::replicate`).
+    pub fn add_replicate(&mut self, l: Vec3, replicate: usize) {
+        let y = self.add(l);
+        if let (Some(sum), Some(n)) = (
+            self.replicate_luma.get_mut(replicate),
+            self.replicate_n.get_mut(replicate),
+        ) {
+            *sum += y;
+            *n += 1;
         }
-        self.batch_luma = 0.0;
-        self.batch_n = 0;
+    }
+
+    /// The between-replicate sum of squares, each replicate's squared deviation weighted by
+    /// its count (an estimate of `c` times its degrees of freedom, where a mean of `k` samples
+    /// has variance `c / k`, as in a one-way analysis of variance), and those degrees of
+    /// freedom; `None` until every replicate has a sample.
+    fn between_replicates(&self) -> Option<(f64, f64)> {
+        if self.replicate_n.contains(&0) {
+            return None;
+        }
+        let n: u32 = self.replicate_n.iter().sum();
+        let grand = self.replicate_luma.iter().sum::<f64>() / n as f64;
+        let ss = self
+            .replicate_luma
+            .iter()
+            .zip(&self.replicate_n)
+            .map(|(&s, &k)| {
+                let m = s / k as f64;
+                k as f64 * (m - grand) * (m - grand)
+            })
+            .sum::<f64>();
+        Some((ss, (REPLICATES - 1) as f64))
     }
 
     /// Samples added so far (finite ones only).
@@ -135,16 +150,12 @@ impl Accumulator {
         let n = self.n as f64;
         let mean = self.luma_sum / n;
         let per_sample = ((self.luma_sum_sq - self.luma_sum * mean) / (n - 1.0)).max(0.0) / n;
-        // Pooled over the two batch sizes, as in a one-way analysis of variance: a batch
-        // mean of k samples has variance c / k, so the mean of all n has c / n.
-        let (ss0, dof0) = self.groups[0].scaled_spread();
-        let (ss1, dof1) = self.groups[1].scaled_spread();
-        let dof = dof0 + dof1;
-        let var = if dof > 0.0 {
-            let between = (ss0 + ss1) / dof / n;
-            (PRIOR_DOF * per_sample + dof * between) / (PRIOR_DOF + dof)
-        } else {
-            per_sample
+        let var = match self.between_replicates() {
+            Some((ss, dof)) => {
+                let between = ss / dof / n;
+                (PRIOR_DOF * per_sample + dof * between) / (PRIOR_DOF + dof)
+            }
+            None => per_sample,
         };
         // A pixel whose samples so far all agree (often all black: a light seen through a
         // small gap by a few percent of the samples) has a sample variance of zero, and
@@ -288,11 +299,11 @@ impl NoiseStats {
     }
 }
 
-/// The batch sizes of an adaptive pixel with cap `max_samples`: [`FIRST_BATCHES`] of
-/// [`FIRST_BATCH`], then batches of [`BATCH`] until the cap is reached or passed.
+/// The batch sizes of an adaptive pixel with cap `max_samples`: one of [`FIRST_BATCH`], then
+/// batches of [`BATCH`] until the cap is reached or passed.
 pub fn batch_sizes(max_samples: u32) -> Vec<u32> {
-    let mut sizes = vec![FIRST_BATCH; FIRST_BATCHES as usize];
-    let mut total = FIRST_BATCH * FIRST_BATCHES;
+    let mut sizes = vec![FIRST_BATCH];
+    let mut total = FIRST_BATCH;
     while total < max_samples {
         sizes.push(BATCH);
         total += BATCH;
@@ -305,46 +316,41 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_spread_between_batches_decides_once_there_are_enough() {
-        // Samples that vary a lot within each batch but whose batch means agree (what
-        // stratification does): the per-sample formula says "noisy", the batches say "done".
+    fn the_spread_between_replicates_decides() {
+        // Samples that vary a lot within each replicate but whose replicate means agree (what
+        // stratification does): the per-sample formula says "noisy", the replicates say
+        // "done".
         let mut a = Accumulator::default();
-        for _ in 0..64 {
-            for x in [0.0f32, 2.0, 1.0, 1.0] {
-                a.add(Vec3::splat(x));
-            }
-            a.end_batch(FIRST_BATCH);
+        let mut b = Accumulator::default();
+        for g in 0..64 * REPLICATES {
+            let x = [0.0f32, 2.0, 1.0, 1.0][(g / REPLICATES % 4) as usize];
+            a.add_replicate(Vec3::splat(x), (g % REPLICATES) as usize);
+            b.add(Vec3::splat(x));
         }
-        let per_sample = {
-            let mut b = Accumulator::default();
-            for _ in 0..64 {
-                for x in [0.0f32, 2.0, 1.0, 1.0] {
-                    b.add(Vec3::splat(x));
-                }
-            }
-            b.relative_error()
-        };
-        // 64 batches, identical means: the combined estimate is the prior's share only,
-        // PRIOR_DOF / (PRIOR_DOF + 63) of the per-sample variance.
-        let expected = per_sample * (PRIOR_DOF / (PRIOR_DOF + 63.0)).sqrt();
+        let per_sample = b.relative_error();
+        // Identical replicate means: the combined estimate is the prior's share only.
+        let dof = (REPLICATES - 1) as f64;
+        let expected = per_sample * (PRIOR_DOF / (PRIOR_DOF + dof)).sqrt();
         assert!(
             (a.relative_error() - expected).abs() < 1e-3 * expected,
             "{a:?}"
         );
-        // Batches whose means differ: the estimate follows the spread of the means.
+        // Replicates whose means differ: the estimate follows their spread. Means 0.9 and 1.1
+        // (two replicates each), constant within: the between-replicate variance of the mean
+        // is Σ k (m − 1)² / (R − 1) / n = 0.01 / 3 however large n is, while the per-sample
+        // one is about 0.01 / n; the estimate is their mix, weighted by degrees of freedom.
         let mut c = Accumulator::default();
-        for k in 0..400 {
-            let m = if k % 2 == 0 { 0.9f32 } else { 1.1 };
-            for _ in 0..4 {
-                c.add(Vec3::splat(m));
-            }
-            c.end_batch(FIRST_BATCH);
+        let n = 100 * REPLICATES;
+        for g in 0..n {
+            let r = (g % REPLICATES) as usize;
+            c.add_replicate(Vec3::splat(if r % 2 == 0 { 0.9 } else { 1.1 }), r);
         }
-        // Means alternate 0.9/1.1: their spread is 0.1, over √400 batches: 0.005; the
-        // per-sample spread says the same here, so the combination must too.
+        let between = 0.01 / dof;
+        let per = 0.01 / (n as f64 - 1.0);
+        let mixed = ((PRIOR_DOF * per + dof * between) / (PRIOR_DOF + dof)).sqrt();
         assert!(
-            (c.relative_error() - 0.005).abs() < 2e-4,
-            "{}",
+            (c.relative_error() - mixed).abs() < 1e-3 * mixed,
+            "{} against {mixed}",
             c.relative_error()
         );
     }
@@ -374,8 +380,9 @@ mod tests {
         // samples before it may stop.
         assert!(a.relative_error() < 1e-3, "{}", a.relative_error());
         assert!((b.relative_error() - 1.0 / 16.0).abs() < 1e-9);
-        assert_eq!(batch_sizes(8), vec![4, 4]);
-        assert_eq!(batch_sizes(9), vec![4, 4, 16]);
+        assert_eq!(batch_sizes(8), vec![8]);
+        assert_eq!(batch_sizes(9), vec![8, 16]);
         assert_eq!(batch_sizes(4096).iter().sum::<u32>(), 4104);
+        assert_eq!(emitter_min_samples(0.1), 80);
     }
 }

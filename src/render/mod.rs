@@ -151,24 +151,24 @@ pub fn render_window(
     let settings = &scene.settings;
     let side = pattern::side_for(settings.samples_per_pixel);
     let offsets = pattern::offsets(side, settings.pattern);
-    let batch_offsets = pattern::offsets(estimate::BATCH_SIDE, settings.pattern);
-    let first_offsets = pattern::offsets(estimate::FIRST_BATCH_SIDE, settings.pattern);
     let max_samples = settings
         .max_samples
         .unwrap_or(crate::ir::DEFAULT_MAX_SAMPLES);
+    let camera = PinholeCamera::new(&scene.camera, settings.width, settings.height);
+    // Pixels that may see an area light: a fixed-count render takes more samples there, an
+    // adaptive one a minimum count (both decided from geometry alone).
+    let emitter_pixels = match settings.noise {
+        None => EmitterPixels::find(scene, &camera, side),
+        Some(_) => EmitterPixels::find(scene, &camera, estimate::BATCH),
+    };
     let adaptive = settings.noise.map(|target| Adaptive {
         target: target as f64,
         batch_sizes: estimate::batch_sizes(max_samples),
-        first_offsets: &first_offsets,
-        offsets: &batch_offsets,
+        emitter_min: estimate::emitter_min_samples(target as f64),
+        min: estimate::min_samples(target as f64),
     });
-    let camera = PinholeCamera::new(&scene.camera, settings.width, settings.height);
-    // Pixels that may see an area light take more samples (fixed-count renders only).
-    let emitter_pixels = match adaptive {
-        None => EmitterPixels::find(scene, &camera, side),
-        Some(_) => EmitterPixels::none(),
-    };
     let boosted_offsets = match emitter_pixels.factor() {
+        _ if adaptive.is_some() => Vec::new(),
         1 => Vec::new(),
         f => pattern::offsets(side * f, settings.pattern),
     };
@@ -212,25 +212,26 @@ fn tiles(window: PixelWindow) -> Vec<Tile> {
 }
 
 /// Adaptive sampling's settings for the pixel loop.
-struct Adaptive<'a> {
+struct Adaptive {
     target: f64,
     /// Samples of each batch, in order (`estimate::batch_sizes`).
     batch_sizes: Vec<u32>,
-    /// A first batch's sub-pixel positions (a 2×2 pattern).
-    first_offsets: &'a [Vec2],
-    /// A later batch's sub-pixel positions (a 4×4 pattern).
-    offsets: &'a [Vec2],
+    /// The fewest samples a pixel that may see an area light takes
+    /// (`estimate::emitter_min_samples`).
+    emitter_min: u32,
+    /// The fewest samples any pixel takes (`estimate::min_samples`).
+    min: u32,
 }
 
 struct Job<'a> {
     scene: &'a Scene,
     camera: PinholeCamera,
     offsets: &'a [Vec2],
-    /// Pixels of a fixed-count render that may see an area light ([`emitter_pixels`]).
+    /// Pixels that may see an area light ([`emitter_pixels`]).
     emitter_pixels: &'a EmitterPixels,
     /// Their sub-pixel positions (a finer grid of the same pattern).
     boosted_offsets: &'a [Vec2],
-    adaptive: Option<Adaptive<'a>>,
+    adaptive: Option<Adaptive>,
 }
 
 impl Job<'_> {
@@ -311,6 +312,7 @@ impl Job<'_> {
             threads: 0,
             samples_per_pixel,
             emitter_pixels: match self.emitter_pixels.boosted() {
+                _ if self.adaptive.is_some() => (0, 0),
                 0 => (0, 0),
                 n => (n, self.boosted_offsets.len() as u32),
             },
@@ -348,20 +350,50 @@ impl Job<'_> {
             self.batch(x, y, 0, (offsets, scale), &mut acc, counts);
             return acc.finish(offsets.len() as u32, false);
         };
+        let sequences = rng::PixelSequences::new(self.scene.settings.seed, x, y);
+        let min = match self.emitter_pixels.factor_at(x, y) {
+            1 => a.min,
+            _ => a.emitter_min.max(a.min),
+        };
         let mut taken = 0;
-        for (b, &size) in a.batch_sizes.iter().enumerate() {
-            let full = size == estimate::BATCH;
-            let offsets = if full { a.offsets } else { a.first_offsets };
+        for &size in &a.batch_sizes {
             // Textures are filtered for the samples the pixel will have by this batch's end.
             let scale = footprint_scale(taken + size);
-            self.batch(x, y, b as u32, (offsets, scale), &mut acc, counts);
-            acc.end_batch(size);
+            let samples = taken..taken + size;
+            self.progressive_batch(x, y, &sequences, samples, scale, &mut acc, counts);
             taken += size;
-            if b + 1 >= estimate::FIRST_BATCHES as usize && acc.relative_error() <= a.target {
+            if taken >= min && acc.relative_error() <= a.target {
                 return acc.finish(taken, false);
             }
         }
         acc.finish(taken, true)
+    }
+
+    /// Samples `samples` (counted over all the pixel's batches) of an adaptive pixel: each
+    /// continues its replicate's sequences, sub-pixel position and light samples alike.
+    #[allow(clippy::too_many_arguments)] // reason: the pixel, its sequences and the sinks
+    fn progressive_batch(
+        &self,
+        x: u32,
+        y: u32,
+        sequences: &rng::PixelSequences,
+        samples: std::ops::Range<u32>,
+        footprint_scale: f32,
+        acc: &mut Accumulator,
+        counts: &mut RayCounts,
+    ) {
+        for g in samples {
+            let mut sampler = sequences.sampler(g);
+            let (index, _) = sampler.index();
+            let o = sampler.point_2d(rng::STREAM_SUBPIXEL, index);
+            let ray = self.camera.ray(Vec2::new(x as f32, y as f32) + o);
+            let l = radiance_scaled(self.scene, &ray, footprint_scale, &mut sampler, counts);
+            if l.is_finite() {
+                acc.add_replicate(l, rng::PixelSequences::replicate(g));
+            } else {
+                counts.nonfinite += 1;
+            }
+        }
     }
 
     /// Batch `batch` of the pixel: one sample at each of `offsets`, with its own

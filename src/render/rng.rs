@@ -2,11 +2,12 @@
 //! index, dimension): never of the thread, the tile order or the time, so renders are
 //! bit-identical whatever the thread count (`render { seed 0 }` changes every value).
 //!
-//! [`Sampler::point_2d`] is an alternative, not used by the render loop today: per-stream
-//! Owen-scrambled Sobol' (0,2)-sequences per pixel (pbrt-v4's padded Owen-scrambled Sobol', with
-//! the hash-based nested uniform scramble of Laine–Karras / Burley 2020), whose point `j` does
-//! not depend on the pixel's sample count, so adaptive batches could extend one net. Measured
-//! against the Hammersley sets above it did not pay (docs/speed.md), so it stays off.
+//! [`Sampler::point_2d`]: per-stream Owen-scrambled Sobol' (0,2)-sequences per pixel (pbrt-v4's
+//! padded Owen-scrambled Sobol', with the hash-based nested uniform scramble of Laine–Karras /
+//! Burley 2020), whose point `j` does not depend on the pixel's sample count. Adaptive renders
+//! use them ([`PixelSequences`]: a few independently scrambled replicates, each continued from
+//! batch to batch); fixed-count renders keep the Hammersley sets above, which measured as good
+//! for a known count (docs/speed.md).
 //!
 //! This lives in `render/`, not in `shade::sampling`: it is the render loop's sample sequence
 //! (which pixel, which sample, which stratum of the pixel's set), while the shading layer only
@@ -46,7 +47,57 @@ impl PixelBatch {
             pixel_key: self.pixel_key,
             index: index.min(self.count - 1),
             count: self.count,
+            progressive: false,
         }
+    }
+}
+
+/// Independent progressive sequences of one pixel for adaptive sampling: sample `g` of the
+/// pixel belongs to replicate `g mod REPLICATES` and is point `g / REPLICATES` of that
+/// replicate's Owen-scrambled Sobol' sequences ([`Sampler::point_2d`]), so each replicate's
+/// samples stay one low-discrepancy set however many batches the pixel takes (the sequence
+/// continues instead of restarting), while the replicates, scrambled independently, give
+/// independent estimates of the pixel whose spread measures the error of their mean.
+#[derive(Debug, Clone, Copy)]
+pub struct PixelSequences {
+    pixel_hash: u64,
+    replicate_keys: [u64; REPLICATES as usize],
+}
+
+/// Independent replicates of an adaptive pixel's samples.
+pub const REPLICATES: u32 = 4;
+
+impl PixelSequences {
+    /// The sequences of pixel (`px`, `py`).
+    pub fn new(seed: u64, px: u32, py: u32) -> PixelSequences {
+        let pixel_hash = pixel_hash(seed, px, py);
+        let replicate_keys = std::array::from_fn(|r| {
+            mix64(key_of(pixel_hash, u32::MAX - r as u32) ^ 0x2f1d_83a5_c3b9_0e47)
+        });
+        PixelSequences {
+            pixel_hash,
+            replicate_keys,
+        }
+    }
+
+    /// The sampler of the pixel's sample `global` (counted over all its batches).
+    #[inline]
+    pub fn sampler(&self, global: u32) -> Sampler {
+        let r = (global % REPLICATES) as usize;
+        Sampler {
+            key: key_of(self.pixel_hash, global),
+            dim: 0,
+            pixel_key: self.replicate_keys[r],
+            index: global / REPLICATES,
+            count: 0,
+            progressive: true,
+        }
+    }
+
+    /// The replicate sample `global` belongs to.
+    #[inline]
+    pub fn replicate(global: u32) -> usize {
+        (global % REPLICATES) as usize
     }
 }
 
@@ -70,6 +121,8 @@ pub struct Sampler {
     pixel_key: u64,
     index: u32,
     count: u32,
+    /// Points come from the replicate's progressive sequences ([`PixelSequences`]).
+    progressive: bool,
 }
 
 impl Sampler {
@@ -82,6 +135,7 @@ impl Sampler {
             pixel_key: mix64(key ^ 0x5851_f42d_4c95_7f2d),
             index: 0,
             count: 1,
+            progressive: false,
         }
     }
 
@@ -121,15 +175,21 @@ impl Sampler {
         mix64(self.pixel_key ^ dim.wrapping_mul(0x9e37_79b9_7f4a_7c15))
     }
 
-    /// This sample's index among the pixel's samples, and their count.
+    /// This sample's index among the pixel's samples, and their count (0 for a progressive
+    /// sample, whose set has no fixed size: its index is within its replicate).
     pub fn index(&self) -> (u32, u32) {
         (self.index, self.count)
     }
 
     /// Point `j` of a 2-D set of `n` points shared by the pixel's samples (Hammersley points
     /// with a per-pixel Cranley–Patterson shift in x and a per-pixel digit scramble in y,
-    /// keyed by `stream`): stratified over [0, 1)², and each point uniform on its own.
+    /// keyed by `stream`): stratified over [0, 1)², and each point uniform on its own. For a
+    /// progressive sample, point `j` of its replicate's sequence ([`Sampler::point_2d`]),
+    /// whatever `n`.
     pub fn stratified_2d(&self, stream: u64, j: u32, n: u32) -> Vec2 {
+        if self.progressive {
+            return self.point_2d(stream, j);
+        }
         let bits = self.pixel_bits(stream);
         let shift = to_unit(bits);
         let x = wrap_unit((j as f32 + 0.5) / n as f32 + shift);

@@ -48,8 +48,9 @@ pub enum ExprKind {
     Number {
         /// The number's value.
         value: f64,
-        /// The unit glued to it, if any.
-        suffix: Option<Ident>,
+        /// The unit glued to it, if any (boxed: most numbers have none, and every expression
+        /// node is as large as its largest kind).
+        suffix: Option<Box<Ident>>,
     },
     /// `#rgb` / `#rrggbb`, the text after `#` (validated by `check`).
     HexColor(String),
@@ -61,13 +62,8 @@ pub enum ExprKind {
     Paren(Box<Expr>),
     /// `(a, b)` or `(a, b, c)` (any arity here; `check` accepts 2 and 3).
     Tuple(Vec<Expr>),
-    /// `f(a, b)`.
-    Call {
-        /// The function's name.
-        func: Ident,
-        /// The arguments in order.
-        args: Vec<Expr>,
-    },
+    /// `f(a, b)` (boxed, to keep every expression node small).
+    Call(Box<Call>),
     /// `-e`.
     Neg(Box<Expr>),
     /// `lhs op rhs`.
@@ -83,6 +79,15 @@ pub enum ExprKind {
     Array,
     /// A part that was already reported as a syntax error (e.g. too large); `check` skips it.
     Error,
+}
+
+/// `f(a, b)`: a function call.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Call {
+    /// The function's name.
+    pub func: Ident,
+    /// The arguments in order.
+    pub args: Vec<Expr>,
 }
 
 /// An expression with its span.
@@ -120,10 +125,10 @@ pub enum Item {
     Value(Expr),
     /// `transform { ... }`.
     Transform(Block),
-    /// `object MESH { ... }` (inside a group).
-    Object(ObjectStmt),
-    /// `group NAME { ... }` (inside a group).
-    Group(GroupStmt),
+    /// `object MESH { ... }` (inside a group; boxed, as the rarer and larger kind of item).
+    Object(Box<ObjectStmt>),
+    /// `group NAME { ... }` (inside a group; boxed).
+    Group(Box<GroupStmt>),
 }
 
 /// `object MESH { ... }`.
@@ -234,8 +239,8 @@ pub enum Stmt {
         /// The whole statement.
         span: Span,
     },
-    /// `material`/`texture`/`mesh`/`light NAME = ...`.
-    Decl(Decl),
+    /// `material`/`texture`/`mesh`/`light NAME = ...` (boxed: the largest statement).
+    Decl(Box<Decl>),
     /// `object MESH { ... }`.
     Object(ObjectStmt),
     /// `group NAME { ... }`.

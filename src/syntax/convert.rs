@@ -10,6 +10,7 @@ use std::cell::{Cell, RefCell};
 use pest::iterators::{Pair, Pairs};
 
 mod expr;
+pub(super) mod fold;
 
 use super::ast::*;
 use super::Rule;
@@ -99,7 +100,7 @@ impl Converter {
             .collect()
     }
 
-    fn statement(&self, pair: Pair<Rule>) -> Stmt {
+    pub fn statement(&self, pair: Pair<Rule>) -> Stmt {
         let span = self.span(&pair);
         let rule = pair.as_rule();
         let mut inner = pair.into_inner();
@@ -139,13 +140,13 @@ impl Converter {
                 let name = self.ident(part(&mut inner, "decl has a name"));
                 let ctor = self.ctor(part(&mut inner, "decl has a constructor"));
                 let body = inner.next().map(|b| self.block(b));
-                Stmt::Decl(Decl {
+                Stmt::Decl(Box::new(Decl {
                     kind,
                     name,
                     ctor,
                     body,
                     span,
-                })
+                }))
             }
             _ => unreachable!("grammar: `statement` has no other alternatives"),
         }
@@ -223,12 +224,12 @@ impl Converter {
                     Rule::object => {
                         let mut inner = p.into_inner();
                         inner.next();
-                        Item::Object(self.object_rest(inner, item_span))
+                        Item::Object(Box::new(self.object_rest(inner, item_span)))
                     }
                     Rule::group => {
                         let mut inner = p.into_inner();
                         inner.next();
-                        Item::Group(self.group_rest(inner, item_span))
+                        Item::Group(Box::new(self.group_rest(inner, item_span)))
                     }
                     _ => Item::Value(self.top_term(p)),
                 }

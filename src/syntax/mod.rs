@@ -1,15 +1,18 @@
 //! Stage 1, syntax: `.scn` text → AST ([`SceneFile`]), every node spanned. Errors: syntax
 //! diagnostics (`scnc::syntax::*`).
 //!
-//! The grammar is `grammar/scene.pest`. A file that parses whole is converted directly. When it
-//! does not, the text is cut at resynchronisation points (lines that start a statement, found by
-//! [`scan`]) and each chunk is parsed on its own, so one run reports the syntax error of every
-//! broken statement and still keeps every good statement for the checker. Before pest runs,
-//! nesting depth is checked by the linear pre-scan so deep input cannot overflow the stack.
+//! The grammar is `grammar/scene.pest`. A file without syntax errors is parsed by the
+//! hand-written fast path (`fast.rs`: the same AST, pest's parse for any statement it does not
+//! accept whole). When it has errors, the text is cut at resynchronisation points (lines that
+//! start a statement, found by [`scan`]) and each chunk is parsed by pest on its own, so one run
+//! reports the syntax error of every broken statement and still keeps every good statement for
+//! the checker. Before either parser runs, nesting depth is checked by a linear pre-scan so deep
+//! input cannot overflow the stack.
 
 pub mod ast;
 mod convert;
 mod errors;
+mod fast;
 pub mod scan;
 
 pub use ast::*;
@@ -42,71 +45,57 @@ pub fn parse(file: FileId, text: &str) -> Staged<SceneFile> {
 }
 
 fn parse_recovering(file: FileId, text: &str) -> (SceneFile, Vec<Diagnostic>) {
-    let scanned = scan::scan(text);
-    if scanned.too_deep_at.is_none() {
-        if let Some(ok) = parse_batched(file, text, &scanned) {
-            return ok;
-        }
-        if let Some(ok) = parse_range(file, text, 0) {
-            return ok;
+    if scan::too_deep(text).is_none() {
+        if let Some((statements, diags)) = fast::parse(file, text) {
+            return (SceneFile { statements }, diags);
         }
     }
-    parse_chunks(file, text, &scanned)
+    parse_chunks(file, text, &scan::scan(text))
 }
 
-/// Bytes of source parsed per pest call on the fast path. pest keeps the whole token queue of
-/// a parse alive until it is converted, so parsing in batches bounds that memory.
-const BATCH_BYTES: usize = 64 * 1024;
-
-/// Parses `text[base..]` as a whole sequence of statements, or `None` on a syntax error.
+/// The whole file parsed by pest alone, or `None` on a syntax error: the oracle the fast
+/// parser is tested against.
+#[cfg(test)]
 #[allow(
     clippy::expect_used,
     reason = "a successful parse of `file` yields exactly one pair"
 )]
-fn parse_range(file: FileId, text: &str, base: usize) -> Option<(SceneFile, Vec<Diagnostic>)> {
-    let mut pairs = SceneParser::parse(Rule::file, &text[base..]).ok()?;
-    let conv = convert::Converter::new(file, base);
+fn parse_with_pest(file: FileId, text: &str) -> Option<(SceneFile, Vec<Diagnostic>)> {
+    let mut pairs = SceneParser::parse(Rule::file, text).ok()?;
+    let conv = convert::Converter::new(file, 0);
     let file_pair = pairs.next().expect("pest: Rule::file yields one pair");
     let statements = conv.file(file_pair);
     Some((SceneFile { statements }, conv.errors.into_inner()))
 }
 
-/// Fast path for valid files: parses batches of about [`BATCH_BYTES`] cut at resync points.
-/// A resync point can fall inside a statement (a name starting a continuation line), so any
-/// failing batch sends the caller back to parsing the file whole.
-#[allow(
-    clippy::expect_used,
-    reason = "a successful parse of `file` yields exactly one pair"
-)]
-fn parse_batched(
-    file: FileId,
-    text: &str,
-    scanned: &scan::Scan,
-) -> Option<(SceneFile, Vec<Diagnostic>)> {
-    if text.len() <= BATCH_BYTES {
-        return None;
+/// pest's error detail (the literal tokens tried at the failure point) is one process-wide
+/// switch that slows every parse; it is on only while some error recovery runs, counted so
+/// that parses on other threads never turn it off under each other.
+struct ErrorDetail;
+
+static ERROR_DETAIL_USERS: std::sync::Mutex<usize> = std::sync::Mutex::new(0);
+
+impl ErrorDetail {
+    fn on() -> ErrorDetail {
+        let mut users = ERROR_DETAIL_USERS
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        *users += 1;
+        pest::set_error_detail(true);
+        ErrorDetail
     }
-    let mut statements = Vec::new();
-    let mut diags = Vec::new();
-    let mut start = 0;
-    let mut cuts = scanned.resync.iter().copied().peekable();
-    while start < text.len() {
-        let mut end = text.len();
-        while let Some(&c) = cuts.peek() {
-            cuts.next();
-            if c >= start + BATCH_BYTES {
-                end = c;
-                break;
-            }
+}
+
+impl Drop for ErrorDetail {
+    fn drop(&mut self) {
+        let mut users = ERROR_DETAIL_USERS
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        *users = users.saturating_sub(1);
+        if *users == 0 {
+            pest::set_error_detail(false);
         }
-        let mut pairs = SceneParser::parse(Rule::file, &text[start..end]).ok()?;
-        let conv = convert::Converter::new(file, start);
-        let file_pair = pairs.next().expect("pest: Rule::file yields one pair");
-        statements.extend(conv.file(file_pair));
-        diags.extend(conv.errors.into_inner());
-        start = end;
     }
-    Some((SceneFile { statements }, diags))
 }
 
 /// Error recovery: parse each chunk between resync points separately.
@@ -117,7 +106,7 @@ fn parse_batched(
 fn parse_chunks(file: FileId, text: &str, scanned: &scan::Scan) -> (SceneFile, Vec<Diagnostic>) {
     // Record the literal tokens pest tried at the failure point (`=`, `}`), for the messages.
     // Only the error path turns this on; it never changes whether a parse succeeds.
-    pest::set_error_detail(true);
+    let _detail = ErrorDetail::on();
     let mut starts: Vec<usize> = vec![0];
     starts.extend(scanned.resync.iter().copied().filter(|&s| s > 0));
     starts.push(text.len());
@@ -192,7 +181,7 @@ mod tests {
         assert!(matches!(
             &items[3],
             Item::Value(Expr {
-                kind: ExprKind::Call { .. },
+                kind: ExprKind::Call(_),
                 ..
             })
         ));

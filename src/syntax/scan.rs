@@ -223,3 +223,93 @@ pub fn unclosed(text: &str) -> Option<(usize, &'static str)> {
     }
     stack.pop()
 }
+
+/// [`Scan::too_deep_at`] alone, as [`scan`] finds it, without the resynchronisation points:
+/// the check every parse runs before anything recursive sees the text. Runs of bytes that
+/// change no state are skipped in tight loops (most of a file).
+pub fn too_deep(text: &str) -> Option<usize> {
+    let bytes = text.as_bytes();
+    let mut depth = 0usize;
+    let mut i = 0;
+    while i < bytes.len() {
+        // Names, numbers and blanks change nothing: step over them without the `match`.
+        while i < bytes.len() && !DEPTH_BYTES[bytes[i] as usize] {
+            i += 1;
+        }
+        let Some(&b) = bytes.get(i) else {
+            break;
+        };
+        match b {
+            b'"' => {
+                i += 1;
+                while i < bytes.len() {
+                    match bytes[i] {
+                        b'\\' => i += 2,
+                        b'"' | b'\n' => break,
+                        _ => i += 1,
+                    }
+                }
+            }
+            b'/' if bytes.get(i + 1) == Some(&b'/') => {
+                i = memchr::memchr(b'\n', &bytes[i..]).map_or(bytes.len(), |n| i + n);
+            }
+            b'/' if bytes.get(i + 1) == Some(&b'*') => match comment_end(bytes, i, depth) {
+                Ok(end) => {
+                    i = end;
+                    continue;
+                }
+                Err(at) => return at,
+            },
+            b'(' | b'[' | b'{' => {
+                depth += 1;
+                if depth > MAX_NESTING {
+                    return Some(i);
+                }
+            }
+            b')' | b']' | b'}' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+        i += 1;
+    }
+    None
+}
+
+/// The bytes that can change [`too_deep`]'s state: quotes, comment starts and brackets.
+const DEPTH_BYTES: [bool; 256] = {
+    let mut t = [false; 256];
+    let mut k = 0;
+    let interesting = b"\"/([{)]}";
+    while k < interesting.len() {
+        t[interesting[k] as usize] = true;
+        k += 1;
+    }
+    t
+};
+
+/// Past the block comment opening at `start` (at bracket depth `depth`): `Ok(end)`, or
+/// `Err(Some(at))` where its nesting goes too deep, `Err(None)` if it never closes (then the
+/// rest of the text is comment, as [`scan`] sees it).
+fn comment_end(bytes: &[u8], start: usize, depth: usize) -> Result<usize, Option<usize>> {
+    let mut n = 0usize;
+    let mut i = start;
+    while i < bytes.len() {
+        match (bytes[i], bytes.get(i + 1)) {
+            (b'/', Some(b'*')) => {
+                n += 1;
+                if depth + n > MAX_NESTING {
+                    return Err(Some(i));
+                }
+                i += 2;
+            }
+            (b'*', Some(b'/')) => {
+                n -= 1;
+                i += 2;
+                if n == 0 {
+                    return Ok(i);
+                }
+            }
+            _ => i += 1,
+        }
+    }
+    Err(None)
+}

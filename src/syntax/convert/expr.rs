@@ -1,21 +1,17 @@
 //! Stage 1, syntax: expression parse trees → [`Expr`], folded by precedence.
 //!
-//! `* /` bind tighter than `+ -`, both left-associative, folded with an explicit operator stack
-//! (no recursion per operator, so a long sum cannot overflow the stack); every node counts
-//! towards the top-level expression's [`super::MAX_EXPR_NODES`].
+//! The folding (`fold.rs`) is shared with the fast parser; every node counts towards the
+//! top-level expression's [`super::MAX_EXPR_NODES`].
 
 use pest::iterators::Pair;
 
+use super::fold::{self, unescape};
 use super::{part, Converter};
 use crate::syntax::ast::*;
 use crate::syntax::Rule;
 
 impl Converter {
     /// `expr = term (op term)*`, folded with a two-level precedence by an explicit stack.
-    #[allow(
-        clippy::expect_used,
-        reason = "the grammar gives an expression at least one term"
-    )]
     pub fn expr(&self, pair: Pair<Rule>) -> Expr {
         if self.overflowed() {
             return self.error_expr(&pair);
@@ -35,26 +31,13 @@ impl Converter {
                     "*" => BinOp::Mul,
                     _ => BinOp::Div,
                 };
-                while let Some(&top) = ops.last() {
-                    if prec(top) >= prec(op) {
-                        ops.pop();
-                        reduce(&mut operands, top);
-                    } else {
-                        break;
-                    }
-                }
-                ops.push(op);
+                fold::push_op(&mut operands, &mut ops, op);
             } else {
                 self.count();
                 operands.push(self.term(p));
             }
         }
-        while let Some(op) = ops.pop() {
-            reduce(&mut operands, op);
-        }
-        operands
-            .pop()
-            .expect("grammar: an expression has at least one term")
+        fold::finish(operands, ops)
     }
 
     fn error_expr(&self, pair: &Pair<Rule>) -> Expr {
@@ -100,7 +83,7 @@ impl Converter {
                 // The grammar only admits well-formed decimal literals, which f64 parses; the
                 // fallback is for literals too long to matter.
                 let value = digits.as_str().parse::<f64>().unwrap_or(f64::NAN);
-                let suffix = inner.next().map(|s| self.ident(s));
+                let suffix = inner.next().map(|s| Box::new(self.ident(s)));
                 ExprKind::Number { value, suffix }
             }
             Rule::hex_color => ExprKind::HexColor(pair.as_str()[1..].to_string()),
@@ -110,7 +93,7 @@ impl Converter {
             }
             Rule::call => {
                 let (func, args) = self.call_parts(pair);
-                ExprKind::Call { func, args }
+                ExprKind::Call(Box::new(Call { func, args }))
             }
             Rule::paren => {
                 let mut parts: Vec<Expr> = pair.into_inner().map(|p| self.expr(p)).collect();
@@ -125,51 +108,4 @@ impl Converter {
         };
         Expr { kind, span }
     }
-}
-
-fn prec(op: BinOp) -> u8 {
-    match op {
-        BinOp::Add | BinOp::Sub => 1,
-        BinOp::Mul | BinOp::Div => 2,
-    }
-}
-
-#[allow(
-    clippy::expect_used,
-    reason = "the operator stack holds two operands per binary operator"
-)]
-fn reduce(operands: &mut Vec<Expr>, op: BinOp) {
-    let rhs = operands
-        .pop()
-        .expect("operator stack: a binary op has a right operand");
-    let lhs = operands
-        .pop()
-        .expect("operator stack: a binary op has a left operand");
-    let span = lhs.span.join(rhs.span);
-    operands.push(Expr {
-        kind: ExprKind::Binary {
-            op,
-            lhs: Box::new(lhs),
-            rhs: Box::new(rhs),
-        },
-        span,
-    });
-}
-
-fn unescape(raw: &str) -> String {
-    let mut out = String::with_capacity(raw.len());
-    let mut chars = raw.chars();
-    while let Some(c) = chars.next() {
-        if c == '\\' {
-            match chars.next() {
-                Some('n') => out.push('\n'),
-                Some('t') => out.push('\t'),
-                Some(other) => out.push(other),
-                None => out.push('\\'),
-            }
-        } else {
-            out.push(c);
-        }
-    }
-    out
 }

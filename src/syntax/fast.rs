@@ -1,0 +1,246 @@
+//! Stage 1, syntax (fast path): a hand-written parser for `grammar/scene.pest`'s statements,
+//! producing the same AST (spans included) as pest plus the converter, with ≈ 12× fewer
+//! instructions (docs/frontend-bench.md).
+//!
+//! pest stays the definition of the language and the only source of syntax errors: the fast
+//! parser never backtracks and never reports; on any statement it does not accept whole (a
+//! syntax error, or a rare form it leaves to pest, such as `object` used as a plain value or
+//! an expression over the node limit) it hands that one statement to pest (`Rule::statement`)
+//! and goes on after it. If pest fails on it too, the file has a syntax error and the caller's
+//! error recovery (`parse_chunks`) reports it exactly as before. A PEG parses `statement*`
+//! left to right with no look-behind, so a statement parsed at the position pest would reach
+//! is the statement pest would parse there; `tests` (differential, against pest on every
+//! example and on seeded mutations) holds the two parsers to identical output.
+
+mod cursor;
+mod expr;
+
+use pest::Parser;
+
+use self::cursor::Cursor;
+use super::ast::*;
+use super::convert::Converter;
+use super::{Rule, SceneParser};
+use crate::diag::Diagnostic;
+use crate::source::FileId;
+
+/// Parses a whole file; `None` when it has a syntax error (pest failed on a statement).
+pub(super) fn parse(file: FileId, text: &str) -> Option<(Vec<Stmt>, Vec<Diagnostic>)> {
+    let mut c = Cursor::new(file, text);
+    let mut statements = Vec::new();
+    let mut diags = Vec::new();
+    loop {
+        c.skip();
+        if c.pos >= text.len() {
+            return Some((statements, diags));
+        }
+        let start = c.pos;
+        match c.statement() {
+            Some(s) => statements.push(s),
+            None => {
+                let (s, end) = pest_statement(file, text, start, &mut diags)?;
+                statements.push(s);
+                c.pos = end;
+            }
+        }
+    }
+}
+
+/// One statement at `start` parsed by pest and converted; its end offset.
+fn pest_statement(
+    file: FileId,
+    text: &str,
+    start: usize,
+    diags: &mut Vec<Diagnostic>,
+) -> Option<(Stmt, usize)> {
+    let mut pairs = SceneParser::parse(Rule::statement, &text[start..]).ok()?;
+    let pair = pairs.next()?;
+    let end = start + pair.as_span().end();
+    let conv = Converter::new(file, start);
+    let stmt = conv.statement(pair);
+    diags.extend(conv.errors.into_inner());
+    Some((stmt, end))
+}
+
+impl Cursor<'_> {
+    /// A top-level statement, the cursor on its keyword.
+    fn statement(&mut self) -> Option<Stmt> {
+        let start = self.pos;
+        let kw = self.word()?;
+        self.pos += kw.len();
+        self.skip();
+        let stmt = match kw {
+            "object" => Stmt::Object(self.object_rest(start)?),
+            "group" => Stmt::Group(self.group_rest(start)?),
+            "material" => Stmt::Decl(Box::new(self.decl_rest(DeclKind::Material, start)?)),
+            "texture" => Stmt::Decl(Box::new(self.decl_rest(DeclKind::Texture, start)?)),
+            "mesh" => Stmt::Decl(Box::new(self.decl_rest(DeclKind::Mesh, start)?)),
+            "light" => Stmt::Decl(Box::new(self.decl_rest(DeclKind::Light, start)?)),
+            "let" => {
+                let name = self.ident()?;
+                self.skip();
+                self.eat(b'=')?;
+                self.skip();
+                let value = self.top_expr()?;
+                Stmt::Let {
+                    name,
+                    value,
+                    span: self.span(start, self.pos),
+                }
+            }
+            "camera" => {
+                let name = self.ident()?;
+                self.skip();
+                let body = self.block()?;
+                Stmt::Camera {
+                    name,
+                    body,
+                    span: self.span(start, self.pos),
+                }
+            }
+            "render" => {
+                let body = self.block()?;
+                Stmt::Render {
+                    body,
+                    span: self.span(start, self.pos),
+                }
+            }
+            "include" => {
+                let path = self.top_term()?;
+                Stmt::Include {
+                    path,
+                    span: self.span(start, self.pos),
+                }
+            }
+            "scnc" => {
+                let value = self.top_term()?;
+                Stmt::Version {
+                    value,
+                    span: self.span(start, self.pos),
+                }
+            }
+            _ => return None,
+        };
+        Some(stmt)
+    }
+
+    /// `object MESH { ... }` after its keyword (and the whitespace after it).
+    fn object_rest(&mut self, start: usize) -> Option<ObjectStmt> {
+        let mesh = self.ident()?;
+        self.skip();
+        let body = self.block()?;
+        Some(ObjectStmt {
+            mesh,
+            body,
+            span: self.span(start, self.pos),
+        })
+    }
+
+    /// `group NAME { ... }` after its keyword.
+    fn group_rest(&mut self, start: usize) -> Option<GroupStmt> {
+        let name = self.ident()?;
+        self.skip();
+        let body = self.block()?;
+        Some(GroupStmt {
+            name,
+            body,
+            span: self.span(start, self.pos),
+        })
+    }
+
+    /// `NAME = CTOR { ... }?` after a declaration's keyword.
+    fn decl_rest(&mut self, kind: DeclKind, start: usize) -> Option<Decl> {
+        let name = self.ident()?;
+        self.skip();
+        self.eat(b'=')?;
+        self.skip();
+        let ctor = self.ctor()?;
+        // Without a block the span keeps the whitespace after the constructor, as pest's
+        // `ctor ~ block?` does.
+        self.skip();
+        let body = if self.peek() == Some(b'{') {
+            Some(self.block()?)
+        } else {
+            None
+        };
+        Some(Decl {
+            kind,
+            name,
+            ctor,
+            body,
+            span: self.span(start, self.pos),
+        })
+    }
+
+    /// `ctor = call | ident`.
+    fn ctor(&mut self) -> Option<Ctor> {
+        let start = self.pos;
+        let end = self.word_end()?;
+        let name = self.ident()?;
+        let args = if self.at(end) == Some(b'(') {
+            self.nodes = 0;
+            Some(self.call_args()?)
+        } else {
+            None
+        };
+        Some(Ctor {
+            name,
+            args,
+            span: self.span(start, self.pos),
+        })
+    }
+
+    /// `block = "{" ~ item* ~ "}"`.
+    ///
+    /// Items gather on one scratch stack shared by all blocks (nested ones above their
+    /// parent's) and each block gets one allocation of exactly its size.
+    fn block(&mut self) -> Option<Block> {
+        let start = self.pos;
+        self.eat(b'{')?;
+        let mark = self.items.len();
+        loop {
+            self.skip();
+            if self.eat(b'}').is_some() {
+                return Some(Block {
+                    items: self.items.drain(mark..).collect(),
+                    span: self.span(start, self.pos),
+                });
+            }
+            match self.item() {
+                Some(item) => self.items.push(item),
+                None => {
+                    self.items.truncate(mark);
+                    return None;
+                }
+            }
+        }
+    }
+
+    /// `item`: `transform { }`, a nested `object` or `group`, or a term.
+    fn item(&mut self) -> Option<Item> {
+        let start = self.pos;
+        let word = self.word();
+        let keyword = |this: &mut Self, kw: &str| {
+            this.pos += kw.len();
+            this.skip();
+        };
+        Some(match word {
+            Some("transform") => {
+                keyword(self, "transform");
+                Item::Transform(self.block()?)
+            }
+            Some("object") => {
+                keyword(self, "object");
+                Item::Object(Box::new(self.object_rest(start)?))
+            }
+            Some("group") => {
+                keyword(self, "group");
+                Item::Group(Box::new(self.group_rest(start)?))
+            }
+            _ => Item::Value(self.top_term()?),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,214 @@
+//! Stage 1, syntax (fast path): the byte cursor of the hand-written parser, with pest's implicit
+//! whitespace and comments and the atomic tokens of `grammar/scene.pest` (names, numbers,
+//! strings, colours, arrays) matched exactly as the grammar's atomic rules match them.
+//!
+//! Nothing here backtracks: a token that does not match is `None`, and the caller gives the
+//! statement to pest.
+
+use crate::source::{FileId, Span};
+use crate::syntax::ast::{Ident, Item};
+
+/// Where the fast parser is in the text.
+pub(super) struct Cursor<'t> {
+    pub bytes: &'t [u8],
+    pub text: &'t str,
+    pub pos: usize,
+    pub file: FileId,
+    /// Expression nodes of the current top-level expression, counted at least as generously as
+    /// the pest converter counts them (see [`crate::syntax::MAX_EXPR_NODES`]).
+    pub nodes: usize,
+    /// Items of the blocks being parsed, innermost last (see `block`).
+    pub items: Vec<Item>,
+}
+
+pub(super) fn is_ident_start(b: u8) -> bool {
+    b.is_ascii_alphabetic() || b == b'_'
+}
+
+pub(super) fn is_ident_char(b: u8) -> bool {
+    b.is_ascii_alphanumeric() || b == b'_'
+}
+
+impl<'t> Cursor<'t> {
+    pub fn new(file: FileId, text: &'t str) -> Cursor<'t> {
+        Cursor {
+            bytes: text.as_bytes(),
+            text,
+            pos: 0,
+            file,
+            nodes: 0,
+            items: Vec::new(),
+        }
+    }
+
+    pub fn peek(&self) -> Option<u8> {
+        self.bytes.get(self.pos).copied()
+    }
+
+    pub fn at(&self, i: usize) -> Option<u8> {
+        self.bytes.get(i).copied()
+    }
+
+    pub fn span(&self, start: usize, end: usize) -> Span {
+        Span::new(self.file, start, end)
+    }
+
+    /// Consumes `b` if it is next.
+    pub fn eat(&mut self, b: u8) -> Option<()> {
+        (self.peek() == Some(b)).then(|| self.pos += 1)
+    }
+
+    /// pest's implicit `(WHITESPACE | COMMENT)*`: an unterminated block comment is left in
+    /// place (pest's skip fails on it too, and whatever comes next then fails at its `/`).
+    pub fn skip(&mut self) {
+        loop {
+            match self.peek() {
+                Some(b' ' | b'\n' | b'\t' | b'\r') => self.pos += 1,
+                Some(0xEF) if self.bytes[self.pos..].starts_with("\u{FEFF}".as_bytes()) => {
+                    self.pos += 3;
+                }
+                Some(b'/') => match self.at(self.pos + 1) {
+                    Some(b'/') => {
+                        self.pos = memchr::memchr(b'\n', &self.bytes[self.pos..])
+                            .map_or(self.bytes.len(), |n| self.pos + n);
+                    }
+                    Some(b'*') => match self.block_comment_end(self.pos) {
+                        Some(end) => self.pos = end,
+                        None => return,
+                    },
+                    _ => return,
+                },
+                _ => return,
+            }
+        }
+    }
+
+    /// The end of the (nested) block comment opening at `start`, or `None` if it never closes.
+    fn block_comment_end(&self, start: usize) -> Option<usize> {
+        let mut depth = 0usize;
+        let mut i = start;
+        while i + 1 < self.bytes.len() {
+            match (self.bytes[i], self.bytes[i + 1]) {
+                (b'/', b'*') => {
+                    depth += 1;
+                    i += 2;
+                }
+                (b'*', b'/') => {
+                    depth -= 1;
+                    i += 2;
+                    if depth == 0 {
+                        return Some(i);
+                    }
+                }
+                _ => i += 1,
+            }
+        }
+        None
+    }
+
+    /// `ident_raw`: the end of the name starting at `pos`, if one does.
+    pub fn word_end(&self) -> Option<usize> {
+        if !is_ident_start(self.peek()?) {
+            return None;
+        }
+        let rest = &self.bytes[self.pos + 1..];
+        let n = rest
+            .iter()
+            .position(|&b| !is_ident_char(b))
+            .unwrap_or(rest.len());
+        Some(self.pos + 1 + n)
+    }
+
+    /// The name at the cursor, if any (not consumed).
+    pub fn word(&self) -> Option<&'t str> {
+        self.word_end().map(|end| &self.text[self.pos..end])
+    }
+
+    /// `ident`.
+    pub fn ident(&mut self) -> Option<Ident> {
+        let start = self.pos;
+        let end = self.word_end()?;
+        self.pos = end;
+        Some(Ident {
+            name: self.text[start..end].to_string(),
+            span: self.span(start, end),
+        })
+    }
+
+    /// `digits`: the end of the decimal literal at `pos`, if one starts there.
+    pub fn digits_end(&self) -> Option<usize> {
+        let digit = |i: usize| self.at(i).is_some_and(|b| b.is_ascii_digit());
+        let mut i = self.pos;
+        if digit(i) {
+            while digit(i) {
+                i += 1;
+            }
+            if self.at(i) == Some(b'.') {
+                i += 1;
+                while digit(i) {
+                    i += 1;
+                }
+            }
+        } else if self.at(i) == Some(b'.') && digit(i + 1) {
+            i += 1;
+            while digit(i) {
+                i += 1;
+            }
+        } else {
+            return None;
+        }
+        if matches!(self.at(i), Some(b'e' | b'E')) {
+            let mut j = i + 1;
+            if matches!(self.at(j), Some(b'+' | b'-')) {
+                j += 1;
+            }
+            if digit(j) {
+                while digit(j) {
+                    j += 1;
+                }
+                i = j;
+            }
+        }
+        Some(i)
+    }
+
+    /// `string`'s inside (`str_inner`) as written, the cursor left after the closing quote.
+    pub fn string_raw(&mut self) -> Option<&'t str> {
+        let start = self.pos + 1;
+        let mut i = start;
+        loop {
+            match self.at(i)? {
+                b'"' => break,
+                b'\n' => return None,
+                b'\\' => {
+                    self.at(i + 1)?;
+                    i += 2;
+                }
+                _ => i += 1,
+            }
+        }
+        self.pos = i + 1;
+        // A `\` before a multi-byte character steps into it by one byte; the scan only stops
+        // at ASCII bytes, so `i` is a character boundary again by the closing quote.
+        self.text.get(start..i)
+    }
+
+    /// `array`: `[` up to the first `]`; the cursor left after it.
+    pub fn array(&mut self) -> Option<()> {
+        let n = memchr::memchr(b']', &self.bytes[self.pos..])?;
+        self.pos += n + 1;
+        Some(())
+    }
+
+    /// `hex_color`: `#` and letters or digits; the text after `#`.
+    pub fn hex_color(&mut self) -> &'t str {
+        let start = self.pos + 1;
+        let rest = &self.bytes[start..];
+        let n = rest
+            .iter()
+            .position(|b| !b.is_ascii_alphanumeric())
+            .unwrap_or(rest.len());
+        self.pos = start + n;
+        &self.text[start..start + n]
+    }
+}

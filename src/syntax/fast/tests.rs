@@ -1,0 +1,231 @@
+//! Differential tests: the fast parser against pest (with the converter) on every `.scn` file of
+//! the repository, on generated statement-dense text and on seeded mutations of all of them.
+//! Both must give the same statements (spans included) and diagnostics, or both fail.
+
+use std::path::Path;
+
+use crate::source::FileId;
+use crate::syntax::{fast, parse_with_pest};
+
+/// Every `.scn` file under `dir`, recursively.
+fn scenes(dir: &Path, out: &mut Vec<String>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            scenes(&path, out);
+        } else if path.extension().is_some_and(|e| e == "scn") {
+            if let Ok(text) = std::fs::read_to_string(&path) {
+                out.push(text);
+            }
+        }
+    }
+}
+
+fn corpus() -> Vec<String> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut out = Vec::new();
+    scenes(&root.join("examples"), &mut out);
+    scenes(&root.join("tests"), &mut out);
+    assert!(out.len() > 20, "found only {} scenes", out.len());
+    out.push(
+        "scnc 1\nmaterial m = phong { diffuse rgb(0.5, 0.3, 0.2)  specular 0.05 }\n\
+         object tree { material m  transform { rotate y 30deg  translate (1.25, 0, -2.5e1) } }\n\
+         group g { transform { translate (1, 0, 0) } group a { object rock { material m } } }\n\
+         let k = -(1 + 2) * --3 / 4 - 5 - -6\nlight l = area(1, 2,) { quad (1,0,0,) #fff \"a\\\"b\\n\" }\n\
+         mesh t = inline { positions [1 2 3]  indices [0 0 0] } texture x = image(\"a.png\")\n\
+         camera c { eye (0,0,0) /* a /* nested */ comment */ fov 30deg // line\n}\nrender{}"
+            .to_string(),
+    );
+    out
+}
+
+fn assert_same(text: &str) {
+    let fast = fast::parse(FileId(0), text);
+    let pest = parse_with_pest(FileId(0), text).map(|(f, d)| (f.statements, d));
+    if fast == pest {
+        return;
+    }
+    // NaN literals compare unequal to themselves; their Debug forms do not.
+    let (fast, pest) = (format!("{fast:#?}"), format!("{pest:#?}"));
+    if fast != pest {
+        let line = fast
+            .lines()
+            .zip(pest.lines())
+            .position(|(a, b)| a != b)
+            .unwrap_or(0);
+        let near = |s: &str| {
+            s.lines()
+                .skip(line.saturating_sub(12))
+                .take(16)
+                .collect::<Vec<_>>()
+                .join("\n")
+        };
+        panic!(
+            "fast parser and pest differ on:\n{text}\n--- fast:\n{}\n--- pest:\n{}",
+            near(&fast),
+            near(&pest)
+        );
+    }
+}
+
+#[test]
+fn fast_parser_matches_pest_on_every_scene() {
+    for text in corpus() {
+        assert_same(&text);
+    }
+}
+
+#[test]
+fn quick_depth_check_agrees_with_the_scan() {
+    let deep = |open: &str, close: &str, n: usize| {
+        format!(
+            "scnc 1 let a = \"x\" // (\n{}1{}",
+            open.repeat(n),
+            close.repeat(n)
+        )
+    };
+    for n in [47, 48, 49, 60] {
+        for (open, close) in [
+            ("(", ")"),
+            ("[", "]"),
+            ("{", "}"),
+            ("/*", "*/"),
+            ("( /*", "*/ )"),
+        ] {
+            let text = deep(open, close, n);
+            let scanned = crate::syntax::scan::scan(&text).too_deep_at;
+            assert_eq!(crate::syntax::scan::too_deep(&text), scanned, "{text}");
+            // Inside a comment only `/*` nests: `( /*( /*...` is 1 + n deep.
+            let depth = if open.len() > 2 { n + 1 } else { n };
+            assert_eq!(scanned.is_some(), depth > 48, "{text}");
+        }
+    }
+}
+
+/// Tokens that mutations insert: every punctuation mark of the grammar, keywords, the starts of
+/// comments, strings and numbers, and a few forms that make pest backtrack.
+const TOKENS: &[&str] = &[
+    " ",
+    "\n",
+    "-",
+    "+",
+    "*",
+    "/",
+    "(",
+    ")",
+    "{",
+    "}",
+    "[",
+    "]",
+    ",",
+    "=",
+    "\"",
+    "\\",
+    "#",
+    ".",
+    "1",
+    "2.5",
+    "1e",
+    "e5",
+    "deg",
+    "x",
+    "_",
+    "/*",
+    "*/",
+    "//",
+    "object",
+    "group",
+    "transform",
+    "let",
+    "mesh",
+    "material",
+    "scnc",
+    "render",
+    "\u{FEFF}",
+    "é",
+    "\t",
+    "object o ",
+    "transform 1",
+    "f(",
+    "()",
+];
+
+/// A small deterministic generator (xorshift64*), so failures reproduce.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+    }
+
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n.max(1) as u64) as usize
+    }
+
+    /// A character boundary of `text`.
+    fn boundary(&mut self, text: &str) -> usize {
+        let mut i = self.below(text.len() + 1);
+        while !text.is_char_boundary(i) {
+            i -= 1;
+        }
+        i
+    }
+}
+
+fn mutate(rng: &mut Rng, text: &str) -> String {
+    let mut out = text.to_string();
+    for _ in 0..1 + rng.below(3) {
+        let at = rng.boundary(&out);
+        match rng.below(3) {
+            0 => out.insert_str(at, TOKENS[rng.below(TOKENS.len())]),
+            1 => {
+                let mut end = (at + 1 + rng.below(4)).min(out.len());
+                while !out.is_char_boundary(end) {
+                    end += 1;
+                }
+                out.replace_range(at..end, "");
+            }
+            _ => {
+                let from = rng.boundary(&out);
+                let mut end = (from + rng.below(24)).min(out.len());
+                while !out.is_char_boundary(end) {
+                    end += 1;
+                }
+                let piece = out[from..end].to_string();
+                out.insert_str(at, &piece);
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn fast_parser_matches_pest_on_seeded_mutations() {
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let mut failing = 0;
+    let mut total = 0;
+    for text in corpus() {
+        for _ in 0..80 {
+            let mutated = mutate(&mut rng, &text);
+            let deep = crate::syntax::scan::scan(&mutated).too_deep_at;
+            assert_eq!(crate::syntax::scan::too_deep(&mutated), deep, "{mutated}");
+            if deep.is_some() {
+                continue;
+            }
+            failing += usize::from(parse_with_pest(FileId(0), &mutated).is_none());
+            total += 1;
+            assert_same(&mutated);
+        }
+    }
+    // The mutations must exercise both outcomes.
+    assert!(
+        failing > total / 10 && failing < total * 9 / 10,
+        "{failing}/{total}"
+    );
+}
