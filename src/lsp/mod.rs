@@ -22,6 +22,7 @@ pub mod completion;
 pub mod context;
 pub mod diagnostics;
 pub mod documents;
+pub mod folding;
 pub mod hover;
 pub mod names;
 pub mod navigation;

@@ -20,7 +20,7 @@ use serde::de::DeserializeOwned;
 use serde::Serialize;
 
 use super::documents::Documents;
-use super::{navigation, outline, semantic};
+use super::{folding, navigation, outline, semantic};
 use crate::assets::Loader;
 
 /// LSP 3.17's `RequestFailed`: the request was valid but cannot be done (a refused rename).
@@ -72,7 +72,7 @@ pub fn respond(documents: &Documents, request: Request) -> Result<Response, Requ
             Ok(DocumentSymbolResponse::Nested(outline::symbols(&text)))
         }),
         FoldingRangeRequest::METHOD => run(&request, |p: FoldingRangeParams| {
-            Ok(outline::folding_ranges(&text(d, &p.text_document)?))
+            Ok(folding::ranges(&text(d, &p.text_document)?))
         }),
         SemanticTokensFullRequest::METHOD => run(&request, |p: SemanticTokensParams| {
             let path = file_path(&p.text_document)?;
