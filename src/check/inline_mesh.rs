@@ -30,7 +30,7 @@ impl Checker<'_> {
         let mut ok = true;
         let mut get = |cx: &mut Self, key: &str| -> Option<(&Expr, Span)> {
             let p = props.get(key)?;
-            let e = cx.one(p, &format!("{key} [ ... ]"));
+            let e = cx.one(p, format_args!("{key} [ ... ]"));
             if e.is_none() {
                 ok = false;
             }

@@ -178,7 +178,7 @@ impl Checker<'_> {
     /// `quad P0 P1 P2 P3` as a two-triangle mesh of its own; its first three corners must
     /// span an area.
     fn quad_light_mesh(&mut self, d: &Decl, q: &Prop) -> Option<usize> {
-        let v = self.arity(q, 4, "quad P0 P1 P2 P3")?;
+        let v = self.arity::<4>(q, "quad P0 P1 P2 P3")?;
         let pts: Vec<Option<DVec3>> = v.iter().map(|e| self.vec3(e)).collect();
         let pts: Vec<DVec3> = pts.into_iter().collect::<Option<_>>()?;
         let [p0, p1, p2, _] = pts[..] else {

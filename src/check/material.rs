@@ -84,7 +84,7 @@ impl Checker<'_> {
         let Some(p) = props.get(key) else {
             return Some(ir::ColorInput::Constant(DVec3::splat(default).as_vec3()));
         };
-        let e = self.one(p, &format!("{key} rgb(0.8, 0.8, 0.8)"))?;
+        let e = self.one(p, format_args!("{key} rgb(0.8, 0.8, 0.8)"))?;
         if let Some(t) = self.texture_ref(e) {
             textures.push(t);
             return Some(ir::ColorInput::Texture(t as u32));

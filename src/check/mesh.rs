@@ -147,7 +147,7 @@ impl Checker<'_> {
         );
         let mut out = ir::ObjOptions::default();
         for p in props.props.iter().filter(|p| p.key == "material") {
-            let Some(v) = self.arity(p, 2, "material \"name in the OBJ\" NAME") else {
+            let Some(v) = self.arity::<2>(p, "material \"name in the OBJ\" NAME") else {
                 continue;
             };
             let obj_name = match &v[0].kind {

@@ -17,15 +17,94 @@ use crate::syntax::{Block, Expr, ExprKind, GroupStmt, Item, ObjectStmt};
 pub struct Prop<'a> {
     pub key: &'a str,
     pub key_span: Span,
-    pub values: Vec<&'a Expr>,
+    pub values: Values<'a>,
+    /// The index in the block's items just after the last value taken from them (a following
+    /// value there extends `Values::Items` without allocating).
+    next_item: usize,
 }
 
-impl Prop<'_> {
+/// A property's values, borrowed where they lie in the AST: a call's arguments, or a run of
+/// consecutive block items; gathered into a `Vec` only in the rare other cases (a call key with
+/// values after it, values interrupted by a nested block).
+#[derive(Debug, Clone)]
+pub enum Values<'a> {
+    /// A key written as a call: its arguments.
+    Args(&'a [Expr]),
+    /// Consecutive block items, every one an `Item::Value`.
+    Items(&'a [Item]),
+    /// Anything else.
+    Gathered(Vec<&'a Expr>),
+}
+
+impl<'a> Values<'a> {
+    /// How many values.
+    pub fn len(&self) -> usize {
+        match self {
+            Values::Args(a) => a.len(),
+            Values::Items(i) => i.len(),
+            Values::Gathered(g) => g.len(),
+        }
+    }
+
+    /// True when there is no value.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The values in order.
+    pub fn iter(&self) -> impl Iterator<Item = &'a Expr> + '_ {
+        let (args, items, gathered): (&'a [Expr], &'a [Item], &[&'a Expr]) = match self {
+            Values::Args(a) => (a, &[], &[]),
+            Values::Items(i) => (&[], i, &[]),
+            Values::Gathered(g) => (&[], &[], g),
+        };
+        args.iter()
+            .chain(items.iter().filter_map(|i| match i {
+                Item::Value(e) => Some(e),
+                _ => None,
+            }))
+            .chain(gathered.iter().copied())
+    }
+
+    /// The last value.
+    pub fn last(&self) -> Option<&'a Expr> {
+        match self {
+            Values::Args(a) => a.last(),
+            Values::Items(i) => match i.last() {
+                Some(Item::Value(e)) => Some(e),
+                _ => None,
+            },
+            Values::Gathered(g) => g.last().copied(),
+        }
+    }
+
+    /// The values as a `Vec` (for matching on their number; allocates).
+    pub fn to_vec(&self) -> Vec<&'a Expr> {
+        self.iter().collect()
+    }
+}
+
+impl<'a> Prop<'a> {
     /// The span from the key to its last value.
     pub fn span(&self) -> Span {
         self.values
             .last()
             .map_or(self.key_span, |v| self.key_span.join(v.span))
+    }
+
+    /// Appends the value `e`, which is `items[i]`.
+    fn push(&mut self, items: &'a [Item], i: usize, e: &'a Expr) {
+        if let Values::Items(run) = &self.values {
+            if i == self.next_item {
+                let start = i - run.len();
+                self.values = Values::Items(&items[start..=i]);
+                self.next_item = i + 1;
+                return;
+            }
+        }
+        let mut all = self.values.to_vec();
+        all.push(e);
+        self.values = Values::Gathered(all);
     }
 }
 
@@ -60,21 +139,21 @@ impl Checker<'_> {
         let mut out = Props::default();
         // After an unknown key or a duplicate, its values are skipped up to the next key.
         let mut skipping = false;
-        for item in &block.items {
+        for (i, item) in block.items.iter().enumerate() {
             let Item::Value(e) = item else {
                 skipping = false;
                 self.nested_block(item, what, nested, &mut out);
                 continue;
             };
             if let Some(key) = static_key(e, keys) {
-                skipping = !self.start_property(e, key, what, repeatable, &mut out);
+                skipping = !self.start_property(e, key, i + 1, what, repeatable, &mut out);
                 continue;
             }
             if skipping {
                 continue;
             }
             if let Some(last) = out.props.last_mut() {
-                last.values.push(e);
+                last.push(&block.items, i, e);
                 continue;
             }
             self.unknown_key(e, what, keys);
@@ -117,10 +196,16 @@ impl Checker<'_> {
 
     /// Starts the property `key` (a call's arguments are its first values); false when it is a
     /// duplicate that is not `repeatable` (reported, and its values are to be skipped).
+    /// `next_item` is the index of the block item after `e`.
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "the split's state, passed down once"
+    )]
     fn start_property<'a>(
         &mut self,
         e: &'a Expr,
         key: &'static str,
+        next_item: usize,
         what: &str,
         repeatable: &[&str],
         out: &mut Props<'a>,
@@ -144,13 +229,14 @@ impl Checker<'_> {
             }
         }
         let values = match &e.kind {
-            ExprKind::Call(call) => call.args.iter().collect(),
-            _ => Vec::new(),
+            ExprKind::Call(call) => Values::Args(&call.args),
+            _ => Values::Items(&[]),
         };
         out.props.push(Prop {
             key,
             key_span,
             values,
+            next_item,
         });
         true
     }
@@ -174,12 +260,21 @@ impl Checker<'_> {
         self.error(d);
     }
 
-    /// Exactly `n` values, or an error at the property.
-    pub fn arity<'a>(&mut self, p: &Prop<'a>, n: usize, form: &str) -> Option<Vec<&'a Expr>> {
-        if p.values.len() == n {
-            return Some(p.values.clone());
-        }
+    /// Exactly `N` values, or an error at the property.
+    pub fn arity<'a, const N: usize>(
+        &mut self,
+        p: &Prop<'a>,
+        form: impl std::fmt::Display,
+    ) -> Option<[&'a Expr; N]> {
+        let n = N;
         let found = p.values.len();
+        if found == n {
+            let mut values = p.values.iter();
+            return Some(std::array::from_fn(|_| match values.next() {
+                Some(v) => v,
+                None => unreachable!("counted above"),
+            }));
+        }
         let msg = if found == 0 {
             format!("`{}` needs a value", p.key)
         } else {
@@ -194,8 +289,8 @@ impl Checker<'_> {
     }
 
     /// The single value of `p`.
-    pub fn one<'a>(&mut self, p: &Prop<'a>, form: &str) -> Option<&'a Expr> {
-        self.arity(p, 1, form).map(|v| v[0])
+    pub fn one<'a>(&mut self, p: &Prop<'a>, form: impl std::fmt::Display) -> Option<&'a Expr> {
+        self.arity::<1>(p, form).map(|[v]| v)
     }
 }
 

@@ -145,11 +145,11 @@ impl Checker<'_> {
 
     fn resolution(&mut self, p: &super::props::Prop, s: &mut ir::RenderSettings) -> Option<()> {
         let form = "resolution 640 x 480";
-        if let [one] = p.values.as_slice() {
+        if let [one] = p.values.to_vec().as_slice() {
             // `640x480` reads as 640 with unit `x480`: evaluating it explains that.
             self.eval(one)?;
         }
-        let v = self.arity(p, 3, form)?;
+        let v = self.arity::<3>(p, form)?;
         if v[1].as_name() != Some("x") {
             self.error(
                 Diagnostic::error(
@@ -169,11 +169,11 @@ impl Checker<'_> {
     }
 
     fn samples(&mut self, p: &super::props::Prop, s: &mut ir::RenderSettings) -> Option<()> {
-        let (pattern, count) = match p.values.as_slice() {
+        let (pattern, count) = match p.values.to_vec().as_slice() {
             [n] => (ir::SamplePattern::RotatedGrid, *n),
             [pat, n] => (self.choice::<ir::SamplePattern>(pat, "sample pattern")?, *n),
             _ => {
-                self.arity(p, 2, "samples rgss 4")?;
+                self.arity::<2>(p, "samples rgss 4")?;
                 return None;
             }
         };

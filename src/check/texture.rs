@@ -37,7 +37,7 @@ impl Checker<'_> {
                 let col = |cx: &mut Self, key: &str, default: f64| match props.get(key) {
                     None => Some(DVec3::splat(default)),
                     Some(p) => cx
-                        .one(p, &format!("{key} #ffffff"))
+                        .one(p, format_args!("{key} #ffffff"))
                         .and_then(|e| cx.color(e)),
                 };
                 let even = col(self, "even", 0.8);

@@ -78,7 +78,7 @@ impl Checker<'_> {
                 Some(DMat4::from_translation(self.vec3(e)?))
             }
             "rotate" => {
-                let v = self.arity(p, 2, "rotate y 30deg")?;
+                let v = self.arity::<2>(p, "rotate y 30deg")?;
                 let axis = self.axis(v[0]);
                 let angle = self.angle(v[1]);
                 Some(DMat4::from_axis_angle(axis?, angle?))
@@ -97,7 +97,7 @@ impl Checker<'_> {
                 Some(DMat4::from_scale(s))
             }
             "look_at" => {
-                let v = self.arity(p, 3, "look_at EYE TARGET UP")?;
+                let v = self.arity::<3>(p, "look_at EYE TARGET UP")?;
                 let (eye, target, up) = (self.vec3(v[0]), self.vec3(v[1]), self.vec3(v[2]));
                 let m = look_at(eye?, target?, up?);
                 if m.is_none() {
