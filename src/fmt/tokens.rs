@@ -170,6 +170,19 @@ fn string_end(bytes: &[u8], i: usize) -> usize {
 
 /// End of a number as the grammar's `number` reads it: digits, fraction, exponent, unit suffix.
 fn number_end(bytes: &[u8], i: usize) -> usize {
+    let mut k = numeral_end(bytes, i);
+    let at = |k: usize| bytes.get(k).copied().unwrap_or(0);
+    if at(k).is_ascii_alphabetic() || at(k) == b'_' {
+        while is_word_char(at(k)) {
+            k += 1;
+        }
+    }
+    k
+}
+
+/// End of a number's numeral (digits, fraction, exponent) starting at `i`, before any unit
+/// suffix; the language server splits number tokens with it.
+pub fn numeral_end(bytes: &[u8], i: usize) -> usize {
     let at = |k: usize| bytes.get(k).copied().unwrap_or(0);
     let digits = |mut k: usize| {
         while at(k).is_ascii_digit() {
@@ -185,11 +198,6 @@ fn number_end(bytes: &[u8], i: usize) -> usize {
         let sign = usize::from(matches!(at(k + 1), b'+' | b'-'));
         if at(k + 1 + sign).is_ascii_digit() {
             k = digits(k + 1 + sign);
-        }
-    }
-    if at(k).is_ascii_alphabetic() || at(k) == b'_' {
-        while is_word_char(at(k)) {
-            k += 1;
         }
     }
     k

@@ -74,24 +74,7 @@ pub fn end(t: &Token<'_>) -> usize {
 
 /// A number token split into its digits and its unit suffix, as the tokenizer reads it.
 pub fn split_unit(word: &str) -> (&str, &str) {
-    let b = word.as_bytes();
-    let at = |k: usize| b.get(k).copied().unwrap_or(0);
-    let digits = |mut k: usize| {
-        while at(k).is_ascii_digit() {
-            k += 1;
-        }
-        k
-    };
-    let mut k = digits(0);
-    if at(k) == b'.' {
-        k = digits(k + 1);
-    }
-    if matches!(at(k), b'e' | b'E') {
-        let sign = usize::from(matches!(at(k + 1), b'+' | b'-'));
-        if at(k + 1 + sign).is_ascii_digit() {
-            k = digits(k + 1 + sign);
-        }
-    }
+    let k = crate::fmt::tokens::numeral_end(word.as_bytes(), 0);
     word.split_at(k.min(word.len()))
 }
 
