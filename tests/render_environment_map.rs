@@ -214,16 +214,49 @@ fn fixture() -> (SourceMap, scnc::source::FileId) {
 }
 
 #[test]
+fn the_test_sky_s_sun_is_sampled_on_its_own_and_a_plain_gradient_is_not() {
+    // The tests of this file then cover the split (`shade::light::env_bright`).
+    assert!(map(0.0).has_bright());
+    let gradient: Vec<Vec3> = sky_texels()
+        .into_iter()
+        .map(|t| if t.x > 100.0 { Vec3::splat(0.5) } else { t })
+        .collect();
+    let mut m = EnvMap::new(W, H, gradient, 0.0).expect("sizes match");
+    assert!(m.build_distribution());
+    assert!(!m.has_bright());
+}
+
+#[test]
 fn a_diffuse_plane_under_the_map_renders_its_irradiance_for_every_strategy() {
+    plane_irradiance_for_every_strategy(0.0);
+}
+
+/// With a constant part as well, the sky strategy's uniform sphere overlaps the sun's texels:
+/// three strategies' weights meet there.
+#[test]
+fn a_diffuse_plane_under_the_map_and_a_constant_renders_its_irradiance() {
+    plane_irradiance_for_every_strategy(0.4);
+}
+
+fn plane_irradiance_for_every_strategy(constant: f32) {
     let (_sources, file) = fixture();
     let rotation = 0.8;
     let mut loader = MemLoader::new();
     loader.insert("sky.pfm", pfm_bytes(W, H, &sky_texels()));
-    let desc = plane_under(asset(file, SCN, "sky.pfm"), rotation);
+    let mut desc = plane_under(asset(file, SCN, "sky.pfm"), rotation);
+    if constant > 0.0 {
+        desc.lights.push(environment(
+            EnvSource::Constant(Vec3::splat(constant)),
+            1.0,
+            0.0,
+            true,
+        ));
+    }
     let (mut scene, _) = build_with(&desc, &loader).expect("builds");
     // E = ∫ L cos θ dω over the upper hemisphere, L looked up exactly as the renderer does.
     let m = map(rotation);
-    let irradiance = sphere_integral(|d| (2.0 * m.radiance(d).x * d.y.max(0.0)) as f64);
+    let irradiance =
+        sphere_integral(|d| ((2.0 * m.radiance(d).x + constant) * d.y.max(0.0)) as f64);
     let expected = 0.5 / PI as f64 * irradiance;
     let eye = Vec3::new(0.3, 1.0, -0.2);
     let ray = Ray::new(eye, (Vec3::new(0.1, 0.0, 0.05) - eye).normalize());

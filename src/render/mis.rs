@@ -22,11 +22,14 @@
 
 use glam::Vec3;
 
-use super::integrator::{RayCounts, Shading, STREAM_BRDF, STREAM_ENVIRONMENT};
+use super::integrator::{
+    RayCounts, Shading, STREAM_BRDF, STREAM_ENVIRONMENT, STREAM_ENVIRONMENT_BRIGHT,
+};
 use super::rng::Sampler;
 use crate::geom::Ray;
 use crate::scene::{DirectStrategy, LightSampling, Scene, Surface};
 use crate::shade::brdf::Phong;
+use crate::shade::light::EnvSample;
 use crate::shade::sampling::power_heuristic;
 use crate::shade::{Environment, Light};
 
@@ -64,9 +67,11 @@ impl Shading<'_> {
         }
     }
 
-    /// One light-sampled direction of the environment, picked with probability `pmf` for the
-    /// `pick`-th of `picks` picks in the pixel; `L · f · cos θ / pdf · w` (the caller divides by
-    /// `pmf`).
+    /// The environment's light samples for one pick (probability `pmf`, the `pick`-th of
+    /// `picks` in the pixel): one direction of the sky and, when the map has a bright set (a
+    /// small sun, `shade::light::env_bright`), one of that set too, each weighted against the
+    /// other and the BRDF by the power heuristic; `Σ L · f · cos θ / pdf · w` (the caller
+    /// divides by `pmf`).
     pub(super) fn environment(
         &self,
         env: &Environment,
@@ -77,9 +82,28 @@ impl Shading<'_> {
         counts: &mut RayCounts,
     ) -> Vec3 {
         let u = sampler.stratified_2d(STREAM_ENVIRONMENT, pick, picks);
-        let Some(s) = env.sample_facing(u, Some(self.ns)) else {
-            return Vec3::ZERO;
-        };
+        let mut sum = Vec3::ZERO;
+        if let Some((s, other)) = env.sample_sky_facing(u, Some(self.ns)) {
+            sum += self.environment_sample(&s, pmf, other, counts);
+        }
+        if env.has_bright() {
+            let u = sampler.stratified_2d(STREAM_ENVIRONMENT_BRIGHT, pick, picks);
+            if let Some((s, other)) = env.sample_bright(u) {
+                sum += self.environment_sample(&s, pmf, other, counts);
+            }
+        }
+        sum
+    }
+
+    /// One light-sampled direction of the environment, drawn with density `s.pdf_solid_angle`
+    /// by its strategy while the environment's other light strategy has density `other` there.
+    fn environment_sample(
+        &self,
+        s: &EnvSample,
+        pmf: f32,
+        other: f32,
+        counts: &mut RayCounts,
+    ) -> Vec3 {
         let cos = self.ns.dot(s.wi);
         if s.pdf_solid_angle <= 0.0 || cos <= 0.0 || s.wi.dot(self.ng) <= 0.0 {
             return Vec3::ZERO;
@@ -88,7 +112,16 @@ impl Shading<'_> {
             return Vec3::ZERO;
         }
         let f = self.phong.eval(self.ns, s.wi, self.wo);
-        let w = self.light_weight(pmf * s.pdf_solid_angle, s.wi);
+        let w = match self.strategy {
+            DirectStrategy::Mis => {
+                // Power heuristic over three strategies: own² / (own² + other² + brdf²).
+                let brdf = self.phong.pdf(self.ns, self.wo, s.wi);
+                power_heuristic(pmf * s.pdf_solid_angle, (pmf * other).hypot(brdf))
+            }
+            DirectStrategy::LightOnly | DirectStrategy::BrdfOnly => {
+                power_heuristic(s.pdf_solid_angle, other)
+            }
+        };
         s.radiance * f * (cos * w / s.pdf_solid_angle)
     }
 
@@ -158,8 +191,11 @@ impl Shading<'_> {
                 None => match env {
                     Some(e) => {
                         counts.environment += 1;
-                        let (radiance, pdf) = e.radiance_and_pdf_facing(wi, Some(self.ns));
-                        (radiance, lights.pmf_environment() * pdf)
+                        let (radiance, sky, bright) =
+                            e.radiance_and_densities_facing(wi, Some(self.ns));
+                        // Both light strategies of the environment count against this one.
+                        let light = if bright > 0.0 { sky.hypot(bright) } else { sky };
+                        (radiance, lights.pmf_environment() * light)
                     }
                     None => continue,
                 },

@@ -13,18 +13,23 @@
 //! **Lookup: nearest texel**, no filtering, so the piecewise-constant sampling distribution
 //! matches the radiance exactly (a sampled direction's radiance is its texel's value).
 //!
-//! **Sampling**: texel weights are luminance × sin θ (row centre); `env_sampler` turns them into
-//! tables (cells of texels, and per normal bin the cells weighted towards that hemisphere) that
-//! give `pdf_uv`, and `pdf_solid_angle = pdf_uv / (2π² sin θ)` (the Jacobian of
-//! `(u, v) → ω`). [`EnvMap::sample_facing`] and [`EnvMap::pdf_facing`] sit side by side (their
-//! `None`-normal forms, [`EnvMap::sample`] and [`EnvMap::pdf`], sample by radiance alone). Tables are built
-//! only when the scene has geometry to shade (`Environment::prepare_sampling`).
+//! **Sampling**: texel weights are luminance × sin θ (row centre); a compact bright region that
+//! holds much of the power (a sun) is taken apart (`env_bright`), and `env_sampler` turns the
+//! rest into tables (cells of texels, and per normal bin the cells weighted towards that
+//! hemisphere). Each gives `pdf_uv`, and `pdf_solid_angle = pdf_uv / (2π² sin θ)` (the Jacobian
+//! of `(u, v) → ω`). The render draws one sample of each part ([`EnvMap::sample_sky_facing`],
+//! [`EnvMap::sample_bright`], their densities from [`EnvMap::densities_facing`]);
+//! [`EnvMap::sample_facing`] is their one-sample mixture (the bright part with its power
+//! share), beside its [`EnvMap::pdf_facing`] (their `None`-normal forms, [`EnvMap::sample`] and
+//! [`EnvMap::pdf`], sample by radiance alone). Tables are built only when the scene has
+//! geometry to shade (`Environment::prepare_sampling`).
 
 use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
-use super::env_sampler::EnvSampler;
+use super::env_bright::BrightTexels;
+use super::env_sampler::{EnvSampler, TexelSample};
 
 /// Rec. 709 luminance of linear RGB.
 pub fn luminance(c: Vec3) -> f32 {
@@ -41,7 +46,10 @@ pub struct EnvMap {
     sin_rot: f32,
     /// Solid-angle-weighted mean radiance.
     average: Vec3,
+    /// The sky's tables (without the bright texels, if any).
     distribution: Option<EnvSampler>,
+    /// The few texels that hold most of the power, sampled on their own (`env_bright`).
+    bright: Option<BrightTexels>,
 }
 
 /// A direction sampled from the environment.
@@ -83,6 +91,7 @@ impl EnvMap {
             sin_rot: rotation_y_rad.sin(),
             average: (sum / weight.max(f64::MIN_POSITIVE)).as_vec3(),
             distribution: None,
+            bright: None,
         })
     }
 
@@ -99,7 +108,7 @@ impl EnvMap {
     /// Builds the sampling table (luminance × sin θ). Returns `false` (and builds nothing) when
     /// the map is black.
     pub fn build_distribution(&mut self) -> bool {
-        let weights: Vec<f32> = self
+        let mut weights: Vec<f32> = self
             .texels
             .chunks(self.width)
             .enumerate()
@@ -125,20 +134,44 @@ impl EnvMap {
                 sin_theta * sin_phi,
             ))
         };
+        self.bright = BrightTexels::find(self.width, self.height, &weights);
+        if let Some(b) = &self.bright {
+            for (i, w) in weights.iter_mut().enumerate() {
+                if b.contains(i % self.width, i / self.width) {
+                    *w = 0.0;
+                }
+            }
+        }
         self.distribution = EnvSampler::new(self.width, self.height, &weights, direction);
-        self.distribution.is_some()
+        self.has_distribution()
     }
 
     /// Whether the sampling table was built.
     pub fn has_distribution(&self) -> bool {
-        self.distribution.is_some()
+        self.distribution.is_some() || self.bright.is_some()
+    }
+
+    /// Whether the map has a bright set sampled on its own ([`EnvMap::sample_bright`]).
+    pub fn has_bright(&self) -> bool {
+        self.bright.is_some()
+    }
+
+    /// The probability with which [`EnvMap::sample_facing`] takes the bright set: its share of
+    /// the power (1 when nothing else is lit, 0 without a set).
+    fn bright_fraction(&self) -> f32 {
+        match (&self.bright, &self.distribution) {
+            (None, _) => 0.0,
+            (Some(_), None) => 1.0,
+            (Some(b), Some(_)) => b.share(),
+        }
     }
 
     /// Heap memory of the texels and of the importance table (if built).
     pub fn bytes(&self) -> (usize, usize) {
         (
             self.texels.len() * std::mem::size_of::<Vec3>(),
-            self.distribution.as_ref().map_or(0, EnvSampler::bytes),
+            self.distribution.as_ref().map_or(0, EnvSampler::bytes)
+                + self.bright.as_ref().map_or(0, BrightTexels::bytes),
         )
     }
 
@@ -188,9 +221,50 @@ impl EnvMap {
     }
 
     /// [`EnvMap::sample`] for a surface facing unit `normal` (`None`: by radiance alone): the
-    /// map's cells weighted towards its hemisphere (see `env_sampler`).
+    /// bright set with its share of the power (`u.y` below it), else the map's cells weighted
+    /// towards the normal's hemisphere (see `env_sampler`). The render draws the two parts
+    /// apart ([`EnvMap::sample_sky_facing`], [`EnvMap::sample_bright`]); this one-sample mixture
+    /// is the map's whole distribution.
     pub fn sample_facing(&self, u: Vec2, normal: Option<Vec3>) -> Option<EnvSample> {
+        let q = self.bright_fraction();
+        if q == 0.0 {
+            return self.sample_sky_facing(u, normal);
+        }
+        let mut s = if u.y < q {
+            let v = (u.y / q).min(1.0 - f32::EPSILON / 2.0);
+            self.bright.as_ref()?.sample(Vec2::new(u.x, v))?
+        } else {
+            let v = ((u.y - q) / (1.0 - q)).clamp(0.0, 1.0 - f32::EPSILON / 2.0);
+            self.distribution
+                .as_ref()?
+                .sample(Vec2::new(u.x, v), normal)?
+        };
+        // The mixture's density at the drawn texel (each part's is 0 on the other's texels).
+        let bright = self.bright.as_ref().map_or(0.0, |b| b.pdf_uv(s.col, s.row));
+        let sky = self
+            .distribution
+            .as_ref()
+            .map_or(0.0, |t| t.pdf_uv(s.col, s.row, normal));
+        s.pdf_uv = q * bright + (1.0 - q) * sky;
+        self.texel_sample(s)
+    }
+
+    /// A direction from the sky's tables alone (the bright set left out): `pdf_solid_angle` is
+    /// that strategy's density ([`EnvMap::densities_facing`]'s first).
+    pub fn sample_sky_facing(&self, u: Vec2, normal: Option<Vec3>) -> Option<EnvSample> {
         let s = self.distribution.as_ref()?.sample(u, normal)?;
+        self.texel_sample(s)
+    }
+
+    /// A direction in one of the bright texels: `pdf_solid_angle` is that strategy's density
+    /// ([`EnvMap::densities_facing`]'s second).
+    pub fn sample_bright(&self, u: Vec2) -> Option<EnvSample> {
+        let s = self.bright.as_ref()?.sample(u)?;
+        self.texel_sample(s)
+    }
+
+    /// The world direction of a drawn point of the map, its texel's radiance and its density.
+    fn texel_sample(&self, s: TexelSample) -> Option<EnvSample> {
         let theta = PI * s.uv.y;
         let phi = 2.0 * PI * s.uv.x;
         let (sin_theta, cos_theta) = theta.sin_cos();
@@ -227,15 +301,26 @@ impl EnvMap {
 
     /// [`EnvMap::radiance`] and [`EnvMap::pdf_facing`] of one direction, finding its texel once.
     pub fn radiance_and_pdf_facing(&self, d: Vec3, normal: Option<Vec3>) -> (Vec3, f32) {
+        let (radiance, sky, bright) = self.densities_facing(d, normal);
+        let q = self.bright_fraction();
+        (radiance, q * bright + (1.0 - q) * sky)
+    }
+
+    /// [`EnvMap::radiance`] of direction `d` (unit), and the solid-angle densities of
+    /// [`EnvMap::sample_sky_facing`] and [`EnvMap::sample_bright`] there, finding its texel once.
+    pub fn densities_facing(&self, d: Vec3, normal: Option<Vec3>) -> (Vec3, f32, f32) {
         let (col, row, sin_theta) = self.texel_of(d);
         let radiance = self.texels[row * self.width + col];
-        let pdf = match &self.distribution {
-            Some(dist) if sin_theta > 0.0 => {
-                dist.pdf_uv(col, row, normal) / (2.0 * PI * PI * sin_theta)
-            }
-            _ => 0.0,
-        };
-        (radiance, pdf)
+        if sin_theta <= 0.0 {
+            return (radiance, 0.0, 0.0);
+        }
+        let jacobian = 2.0 * PI * PI * sin_theta;
+        let sky = self
+            .distribution
+            .as_ref()
+            .map_or(0.0, |t| t.pdf_uv(col, row, normal));
+        let bright = self.bright.as_ref().map_or(0.0, |b| b.pdf_uv(col, row));
+        (radiance, sky / jacobian, bright / jacobian)
     }
 }
 

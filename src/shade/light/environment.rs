@@ -141,6 +141,69 @@ impl Environment {
         )
     }
 
+    /// Whether the map has a bright set (a small sun) that the render samples on its own
+    /// ([`Environment::sample_bright`]) beside the rest ([`Environment::sample_sky_facing`]).
+    pub fn has_bright(&self) -> bool {
+        self.map.as_ref().is_some_and(EnvMap::has_bright)
+    }
+
+    /// The sky strategy of a split environment: the map without its bright set (probability
+    /// `map_fraction`) or the uniform sphere. Its sample's `pdf_solid_angle` is this strategy's
+    /// density; the second value is the bright strategy's density at the same direction.
+    pub fn sample_sky_facing(&self, u: Vec2, normal: Option<Vec3>) -> Option<(EnvSample, f32)> {
+        let f = self.map_fraction;
+        if u.x < f {
+            let map = self.map.as_ref()?;
+            let u_map = Vec2::new((u.x / f).min(1.0 - f32::EPSILON / 2.0), u.y);
+            let s = map.sample_sky_facing(u_map, normal)?;
+            // The sky's tables leave the bright texels out: the bright density is 0 here.
+            let sample = EnvSample {
+                wi: s.wi,
+                radiance: self.constant + s.radiance,
+                pdf_solid_angle: f * s.pdf_solid_angle + (1.0 - f) / (4.0 * PI),
+            };
+            return Some((sample, 0.0));
+        }
+        let u_sphere = Vec2::new(((u.x - f) / (1.0 - f)).clamp(0.0, 1.0), u.y);
+        let wi = uniform_sphere(u_sphere);
+        let (radiance, sky, bright) = self.radiance_and_densities_facing(wi, normal);
+        let sample = EnvSample {
+            wi,
+            radiance,
+            pdf_solid_angle: sky,
+        };
+        Some((sample, bright))
+    }
+
+    /// The bright strategy of a split environment: a direction in the map's bright set, with
+    /// this strategy's density, and the sky strategy's density at the same direction.
+    pub fn sample_bright(&self, u: Vec2) -> Option<(EnvSample, f32)> {
+        let s = self.map.as_ref()?.sample_bright(u)?;
+        let sample = EnvSample {
+            wi: s.wi,
+            radiance: self.constant + s.radiance,
+            pdf_solid_angle: s.pdf_solid_angle,
+        };
+        // The map's sky tables give the bright texels no weight; the uniform part does.
+        Some((sample, (1.0 - self.map_fraction) / (4.0 * PI)))
+    }
+
+    /// The radiance from direction `d` (unit) and the densities of the split environment's two
+    /// strategies there: sky ([`Environment::sample_sky_facing`]) and bright
+    /// ([`Environment::sample_bright`]).
+    pub fn radiance_and_densities_facing(&self, d: Vec3, normal: Option<Vec3>) -> (Vec3, f32, f32) {
+        let f = self.map_fraction;
+        let (map_radiance, sky, bright) = self
+            .map
+            .as_ref()
+            .map_or((Vec3::ZERO, 0.0, 0.0), |m| m.densities_facing(d, normal));
+        (
+            self.constant + map_radiance,
+            f * sky + (1.0 - f) / (4.0 * PI),
+            bright,
+        )
+    }
+
     /// The density of [`Environment::sample_facing`] for the same `normal`.
     #[inline]
     pub fn pdf_facing(&self, d: Vec3, normal: Option<Vec3>) -> f32 {
