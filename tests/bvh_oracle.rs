@@ -8,7 +8,7 @@
 //! rare.
 
 use glam::{Affine3A, Quat, Vec3};
-use scnc::bvh::{Accel, AccelKind, Hit, Instance, MeshRef, TriangleTest};
+use scnc::bvh::{Accel, AccelKind, Hit, Instance, MeshRef, Simd, TriangleTest};
 use scnc::geom::Ray;
 
 /// splitmix64: a tiny deterministic generator, so the test needs no dependency.
@@ -171,9 +171,35 @@ fn cos_to_normal(meshes: &[Mesh], instances: &[Instance], h: &Hit, ray: &Ray) ->
     n.normalize().dot(ray.dir.normalize())
 }
 
-/// Compares the BVH with the oracle on `rays` random rays; returns the number of rays whose
-/// disagreement was excused by passing near an edge (and fails on any other disagreement).
+/// The instruction sets this CPU can run the queries on (the portable one always).
+fn paths() -> Vec<Simd> {
+    let mut probe = Accel::build(&[], &[], AccelKind::Bvh);
+    [Simd::Portable, Simd::Avx2]
+        .into_iter()
+        .filter(|&s| probe.force_simd(s))
+        .collect()
+}
+
+/// [`compare_on`] for every instruction set this CPU runs; the most excused of them.
 fn compare(
+    meshes: &[Mesh],
+    instances: &[Instance],
+    test: TriangleTest,
+    seed: u64,
+    rays: usize,
+) -> usize {
+    paths()
+        .into_iter()
+        .map(|simd| compare_on(simd, meshes, instances, test, seed, rays))
+        .max()
+        .unwrap_or(0)
+}
+
+/// Compares the BVH, its queries forced onto `simd`, with the oracle on `rays` random rays;
+/// returns the number of rays whose disagreement was excused by passing near an edge (and
+/// fails on any other disagreement).
+fn compare_on(
+    simd: Simd,
     meshes: &[Mesh],
     instances: &[Instance],
     test: TriangleTest,
@@ -182,7 +208,9 @@ fn compare(
 ) -> usize {
     let refs: Vec<MeshRef<'_>> = meshes.iter().map(Mesh::as_ref).collect();
     let oracle = Accel::build(&refs, instances, AccelKind::None);
-    let bvh = Accel::build_with(&refs, instances, AccelKind::Bvh, test);
+    let mut bvh = Accel::build_with(&refs, instances, AccelKind::Bvh, test);
+    assert!(bvh.force_simd(simd), "{simd:?} was detected");
+    assert_eq!(bvh.simd(), simd);
     assert_eq!(bvh.check_invariants(&refs), Ok(()));
     let mut rng = Rng(seed);
     let mut excused = 0;
@@ -211,7 +239,10 @@ fn compare(
         if !agree || !any_agree {
             let explained =
                 want.is_some_and(|h| near_edge(&h)) || got.is_some_and(|h| near_edge(&h));
-            assert!(explained, "ray {i} {ray:?}: oracle {want:?}, bvh {got:?}");
+            assert!(
+                explained,
+                "{simd:?}, ray {i} {ray:?}: oracle {want:?}, bvh {got:?}"
+            );
             excused += 1;
         }
     }
@@ -295,6 +326,75 @@ fn rotated_and_scaled_instances_match_brute_force() {
     for (k, test) in TESTS.into_iter().enumerate() {
         let excused = compare(&meshes, &instances, test, 400 + k as u64, 5000);
         assert!(excused <= 10, "{test:?}: {excused} near-edge disagreements");
+    }
+}
+
+/// Every field of a hit, as bits.
+fn hit_bits(h: Option<Hit>) -> Option<(u32, u32, u32, u32, u32)> {
+    h.map(|h| {
+        (
+            h.t.to_bits(),
+            h.u.to_bits(),
+            h.v.to_bits(),
+            h.instance,
+            h.prim,
+        )
+    })
+}
+
+#[test]
+fn every_instruction_set_gives_the_same_bits() {
+    let paths = paths();
+    if paths.len() < 2 {
+        eprintln!("only the portable path runs on this CPU: nothing to compare");
+        return;
+    }
+    let mut rng = Rng(6);
+    // A dense soup (deep tree, full leaves), a grid (rays through shared edges and vertices),
+    // and instanced copies (the top level and object-space rays).
+    let meshes = [soup(&mut rng, 3000, 4.0, 0.3), grid(&mut rng, 30)];
+    let mut instances: Vec<Instance> = (0..6).map(|i| random_instance(&mut rng, i % 2)).collect();
+    instances.push(Instance::new(0, Affine3A::IDENTITY));
+    let refs: Vec<MeshRef<'_>> = meshes.iter().map(Mesh::as_ref).collect();
+    for test in TESTS {
+        for inst in [&instances[6..], &instances[..]] {
+            let accels: Vec<Accel> = paths
+                .iter()
+                .map(|&simd| {
+                    let mut a = Accel::build_with(&refs, inst, AccelKind::Bvh, test);
+                    assert!(a.force_simd(simd));
+                    a
+                })
+                .collect();
+            let mut hits = 0;
+            for i in 0..6000 {
+                // Every third ray aimed at a vertex: ties between the triangles around it.
+                let aim = if i % 3 == 0 {
+                    let p = &inst[(rng.next_u64() % inst.len() as u64) as usize];
+                    let m = &meshes[p.mesh as usize];
+                    let v = m.positions[(rng.next_u64() % m.positions.len() as u64) as usize];
+                    p.world_from_object.transform_point3(v)
+                } else {
+                    random_surface_point(&mut rng, &meshes, inst)
+                };
+                let mut ray = random_ray(&mut rng, 4.0, i % 2 == 1, aim);
+                if i % 5 == 0 {
+                    ray.t_max = 3.0;
+                }
+                let want = hit_bits(accels[0].closest_hit(&ray));
+                let blocked = accels[0].any_hit(&ray);
+                hits += usize::from(want.is_some());
+                for (a, simd) in accels.iter().zip(&paths).skip(1) {
+                    assert_eq!(
+                        hit_bits(a.closest_hit(&ray)),
+                        want,
+                        "{simd:?} {test:?} ray {i}"
+                    );
+                    assert_eq!(a.any_hit(&ray), blocked, "{simd:?} {test:?} ray {i}");
+                }
+            }
+            assert!(hits > 1500, "too few hits to test anything: {hits}");
+        }
     }
 }
 

@@ -10,8 +10,9 @@ use glam::Vec3;
 
 use super::mesh_bvh::{triangle_vertices, MeshBvh};
 use super::node::{MAX_DEPTH, MAX_LEAF};
+use super::traverse::STACK_MAX;
 use super::two_level::TwoLevel;
-use super::wide::{Wide, STACK_MAX, WIDTH};
+use super::wide::{Wide, WIDTH};
 use super::MeshRef;
 use crate::geom::triangle4::LANES;
 use crate::geom::Aabb;

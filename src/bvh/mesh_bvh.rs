@@ -8,10 +8,12 @@ use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
 
 use super::build::{build, Built, PrimBox, PrimRef};
-use super::wide::{collapse, traverse4, LeafVisitor, Wide, WideNode, WideRay, WIDTH};
+use super::isa::Isa;
+use super::traverse::{traverse, Entry, LeafVisitor};
+use super::wide::{collapse, Wide, WideNode, WideRay, WIDTH};
 use super::MeshRef;
 use crate::geom::triangle::{moller_trumbore, TriangleHit, WatertightRay};
-use crate::geom::triangle4::{any4, closest4, Tri4, LANES};
+use crate::geom::triangle4::{Tri4, LANES};
 use crate::geom::{Aabb, Ray};
 
 /// Triangles a leaf test handles at once (the packet width), for the build's cost model.
@@ -30,18 +32,19 @@ pub trait TriTest {
     /// The closest hit in the packets `tris` with `0 < t < *t_max`, as testing their triangles
     /// one by one in order (a later hit kept only if strictly nearer); shrinks `*t_max`.
     /// Returns the hit's slot within `tris` (packet · 4 + lane).
-    fn closest(
+    fn closest<I: Isa>(
+        isa: I,
         pre: &Self::Prepared,
         t_max: &mut f32,
         tris: &[Tri4],
     ) -> Option<(usize, TriangleHit)>;
     /// Whether any triangle of the packets `tris` is hit with `0 < t < t_max`.
-    fn any(pre: &Self::Prepared, t_max: f32, tris: &[Tri4]) -> bool;
+    fn any<I: Isa>(isa: I, pre: &Self::Prepared, t_max: f32, tris: &[Tri4]) -> bool;
 }
 
 /// [`TriTest`] running [`moller_trumbore`], one triangle at a time.
 pub struct MollerTrumbore;
-/// [`TriTest`] running the watertight test, four triangles at a time ([`closest4`]).
+/// [`TriTest`] running the watertight test, four or eight triangles at a time (the [`Isa`]'s).
 pub struct Watertight;
 
 impl TriTest for MollerTrumbore {
@@ -51,7 +54,12 @@ impl TriTest for MollerTrumbore {
         *ray
     }
     #[inline(always)]
-    fn closest(ray: &Ray, t_max: &mut f32, tris: &[Tri4]) -> Option<(usize, TriangleHit)> {
+    fn closest<I: Isa>(
+        _: I,
+        ray: &Ray,
+        t_max: &mut f32,
+        tris: &[Tri4],
+    ) -> Option<(usize, TriangleHit)> {
         let mut best = None;
         for (p, packet) in tris.iter().enumerate() {
             for lane in 0..LANES {
@@ -71,7 +79,7 @@ impl TriTest for MollerTrumbore {
         best
     }
     #[inline(always)]
-    fn any(ray: &Ray, t_max: f32, tris: &[Tri4]) -> bool {
+    fn any<I: Isa>(_: I, ray: &Ray, t_max: f32, tris: &[Tri4]) -> bool {
         let r = Ray { t_max, ..*ray };
         tris.iter().any(|packet| {
             (0..LANES).any(|lane| {
@@ -90,12 +98,17 @@ impl TriTest for Watertight {
         WatertightRay::new(ray)
     }
     #[inline(always)]
-    fn closest(r: &WatertightRay, t_max: &mut f32, tris: &[Tri4]) -> Option<(usize, TriangleHit)> {
-        closest4(r, t_max, tris)
+    fn closest<I: Isa>(
+        isa: I,
+        r: &WatertightRay,
+        t_max: &mut f32,
+        tris: &[Tri4],
+    ) -> Option<(usize, TriangleHit)> {
+        isa.closest_tris(r, t_max, tris)
     }
     #[inline(always)]
-    fn any(r: &WatertightRay, t_max: f32, tris: &[Tri4]) -> bool {
-        any4(r, t_max, tris)
+    fn any<I: Isa>(isa: I, r: &WatertightRay, t_max: f32, tris: &[Tri4]) -> bool {
+        isa.any_tris(r, t_max, tris)
     }
 }
 
@@ -251,31 +264,47 @@ impl MeshBvh {
     }
 
     /// Closest hit with `t < *t_max` (in units of `ray.dir`); shrinks `*t_max` when found.
-    #[inline]
-    pub fn closest<T: TriTest>(&self, ray: &Ray, t_max: &mut f32) -> Option<MeshHit> {
+    /// `stack`: at least `STACK_MAX` entries of scratch space.
+    #[inline(always)]
+    pub fn closest<T: TriTest, I: Isa>(
+        &self,
+        isa: I,
+        ray: &Ray,
+        t_max: &mut f32,
+        stack: &mut [Entry],
+    ) -> Option<MeshHit> {
         let wr = WideRay::new(ray);
-        let mut leaf = ClosestInLeaf::<T> {
+        let mut leaf = ClosestInLeaf::<T, I> {
+            isa,
             bvh: self,
             pre: T::prepare(ray),
             best: None,
         };
-        traverse4(&self.tree, &wr, t_max, &mut leaf);
+        traverse(isa, &self.tree, &wr, t_max, &mut leaf, stack);
         leaf.best.map(|(slot, u, v)| {
             let (part, prim) = self.locate(self.ids[slot]);
             MeshHit { part, prim, u, v }
         })
     }
 
-    /// Whether anything is hit with `t < t_max`; stops at the first hit found.
-    #[inline]
-    pub fn any<T: TriTest>(&self, ray: &Ray, t_max: f32) -> bool {
+    /// Whether anything is hit with `t < t_max`; stops at the first hit found. `stack`: at
+    /// least `STACK_MAX` entries of scratch space.
+    #[inline(always)]
+    pub fn any<T: TriTest, I: Isa>(
+        &self,
+        isa: I,
+        ray: &Ray,
+        t_max: f32,
+        stack: &mut [Entry],
+    ) -> bool {
         let wr = WideRay::new(ray);
         let mut t = t_max;
-        let leaf = AnyInLeaf::<T> {
+        let leaf = AnyInLeaf::<T, I> {
+            isa,
             bvh: self,
             pre: T::prepare(ray),
         };
-        traverse4(&self.tree, &wr, &mut t, leaf)
+        traverse(isa, &self.tree, &wr, &mut t, leaf, stack)
     }
 
     /// The packets of the leaf whose slots are `first..first + count` (`first` a multiple of 4).
@@ -287,16 +316,18 @@ impl MeshBvh {
 }
 
 /// The closest-hit leaf test: the nearest hit so far as (slot, u, v).
-struct ClosestInLeaf<'a, T: TriTest> {
+struct ClosestInLeaf<'a, T: TriTest, I: Isa> {
+    isa: I,
     bvh: &'a MeshBvh,
     pre: T::Prepared,
     best: Option<(usize, f32, f32)>,
 }
 
-impl<T: TriTest> LeafVisitor for &mut ClosestInLeaf<'_, T> {
+impl<T: TriTest, I: Isa> LeafVisitor for &mut ClosestInLeaf<'_, T, I> {
     #[inline(always)]
     fn visit(&mut self, first: u32, count: u32, t_max: &mut f32) -> bool {
-        if let Some((k, h)) = T::closest(&self.pre, t_max, self.bvh.leaf_packets(first, count)) {
+        let tris = self.bvh.leaf_packets(first, count);
+        if let Some((k, h)) = T::closest(self.isa, &self.pre, t_max, tris) {
             // The slot, not the id: `ids` is read once, for the final hit only.
             self.best = Some((first as usize + k, h.u, h.v));
         }
@@ -305,15 +336,21 @@ impl<T: TriTest> LeafVisitor for &mut ClosestInLeaf<'_, T> {
 }
 
 /// The any-hit leaf test.
-struct AnyInLeaf<'a, T: TriTest> {
+struct AnyInLeaf<'a, T: TriTest, I: Isa> {
+    isa: I,
     bvh: &'a MeshBvh,
     pre: T::Prepared,
 }
 
-impl<T: TriTest> LeafVisitor for AnyInLeaf<'_, T> {
+impl<T: TriTest, I: Isa> LeafVisitor for AnyInLeaf<'_, T, I> {
     #[inline(always)]
     fn visit(&mut self, first: u32, count: u32, t_max: &mut f32) -> bool {
-        T::any(&self.pre, *t_max, self.bvh.leaf_packets(first, count))
+        T::any(
+            self.isa,
+            &self.pre,
+            *t_max,
+            self.bvh.leaf_packets(first, count),
+        )
     }
 }
 

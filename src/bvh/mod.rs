@@ -11,13 +11,16 @@
 mod brute_force;
 mod build;
 mod check;
+mod isa;
 mod mesh_bvh;
 mod node;
 pub mod tally;
+mod traverse;
 mod two_level;
 mod wide;
 
 pub use brute_force::BruteForce;
+pub use isa::Simd;
 pub use node::{MAX_DEPTH, MAX_LEAF};
 pub use two_level::TwoLevel;
 
@@ -165,6 +168,23 @@ impl Accel {
         match self {
             Accel::None(b) => b.stats(),
             Accel::Bvh(b) => b.stats(),
+        }
+    }
+
+    /// The instruction set the queries run on (brute force: always the portable one).
+    pub fn simd(&self) -> Simd {
+        match self {
+            Accel::None(_) => Simd::Portable,
+            Accel::Bvh(b) => b.simd(),
+        }
+    }
+
+    /// Makes the queries run on `simd` (tests and benchmarks compare the paths); `false`, and
+    /// nothing changed, if this CPU cannot run it or the structure has no such path.
+    pub fn force_simd(&mut self, simd: Simd) -> bool {
+        match self {
+            Accel::None(_) => simd == Simd::Portable,
+            Accel::Bvh(b) => b.force_simd(simd),
         }
     }
 

@@ -4,13 +4,18 @@
 //! ray's direction is transformed without renormalising, so `t` means the same point in both
 //! spaces and one `t_max` serves the whole query.
 
+use std::marker::PhantomData;
+
 use glam::{Affine3A, Vec3A};
 use rayon::prelude::*;
 
 use super::build::{build, PrimBox, PrimRef};
+use super::isa::{Isa, Portable, Simd};
 use super::mesh_bvh::{MeshBvh, MollerTrumbore, TriTest, Watertight};
-use super::wide::{collapse, traverse4, Wide, WideNode, WideRay};
+use super::traverse::{traverse, with_stacks, Entry, LeafVisitor, STACK_MAX};
+use super::wide::{collapse, Wide, WideNode, WideRay};
 use super::{AccelStats, Hit, Instance, MeshRef, TriangleTest};
+use crate::geom::avx2::{Avx2, Avx2Kernel};
 use crate::geom::{Aabb, Ray};
 
 /// An instance that survived validation (its mesh exists and has triangles, its transform is
@@ -44,6 +49,8 @@ pub struct TwoLevel {
     /// Leaf order of the top level: indices into `placed`.
     pub(super) top_order: Vec<u32>,
     test: TriangleTest,
+    /// The AVX2 kernels' token when queries run on them (`None`: the portable kernels).
+    avx2: Option<Avx2>,
 }
 
 fn finite_affine(m: &Affine3A) -> bool {
@@ -186,6 +193,7 @@ impl TwoLevel {
             top: collapse(&top.nodes),
             top_order: top.order,
             test,
+            avx2: Avx2::detect(),
         }
     }
 
@@ -203,9 +211,16 @@ impl TwoLevel {
     }
 
     #[inline(always)]
-    fn closest_in<T: TriTest>(&self, p: &Placed, ray: &Ray, t_max: &mut f32) -> Option<Hit> {
+    fn closest_in<T: TriTest, I: Isa>(
+        &self,
+        isa: I,
+        p: &Placed,
+        ray: &Ray,
+        t_max: &mut f32,
+        stack: &mut [Entry],
+    ) -> Option<Hit> {
         let obj = Self::object_ray(p, ray);
-        let h = self.meshes[p.group as usize].closest::<T>(&obj, t_max)?;
+        let h = self.meshes[p.group as usize].closest::<T, I>(isa, &obj, t_max, stack)?;
         let instance = if p.merged {
             self.merged_instances[h.part as usize]
         } else {
@@ -220,49 +235,66 @@ impl TwoLevel {
         })
     }
 
-    fn closest_with<T: TriTest>(&self, ray: &Ray) -> Option<Hit> {
+    /// The closest hit, on `isa`'s kernels, with `stacks` (two `STACK_MAX` halves: the top
+    /// level's and the bottom level's). No closures: everything here is inlined into the
+    /// AVX2 kernel, which a closure's body might not be.
+    #[inline(always)]
+    fn closest_with<T: TriTest, I: Isa>(
+        &self,
+        isa: I,
+        ray: &Ray,
+        stacks: &mut [Entry],
+    ) -> Option<Hit> {
+        let (top_stack, mesh_stack) = stacks.split_at_mut(STACK_MAX);
         let mut t_max = ray.t_max;
-        // One group (the common case: every mesh placed once, unmoved): no top level at all.
+        // One group (the common case: every mesh placed once, unmoved): no top level.
         if let [p] = self.placed.as_slice() {
-            return self.closest_in::<T>(p, ray, &mut t_max);
+            return self.closest_in::<T, I>(isa, p, ray, &mut t_max, mesh_stack);
         }
         let wr = WideRay::new(ray);
-        let mut best = None;
-        traverse4(
-            &self.top,
-            &wr,
-            &mut t_max,
-            |first: u32, count: u32, t_max: &mut f32| {
-                for &k in &self.top_order[first as usize..(first + count) as usize] {
-                    if let Some(h) = self.closest_in::<T>(&self.placed[k as usize], ray, t_max) {
-                        best = Some(h);
-                    }
-                }
-                false
-            },
-        );
-        best
+        let mut leaf = TopClosest::<T, I> {
+            accel: self,
+            isa,
+            ray,
+            stack: mesh_stack,
+            best: None,
+            test: PhantomData,
+        };
+        traverse(isa, &self.top, &wr, &mut t_max, &mut leaf, top_stack);
+        leaf.best
     }
 
-    fn any_with<T: TriTest>(&self, ray: &Ray) -> bool {
-        let any_in = |p: &Placed, t_max: f32| {
-            self.meshes[p.group as usize].any::<T>(&Self::object_ray(p, ray), t_max)
-        };
+    /// Whether anything blocks `ray` inside instance `p`.
+    #[inline(always)]
+    fn any_in<T: TriTest, I: Isa>(
+        &self,
+        isa: I,
+        p: &Placed,
+        ray: &Ray,
+        t_max: f32,
+        stack: &mut [Entry],
+    ) -> bool {
+        let obj = Self::object_ray(p, ray);
+        self.meshes[p.group as usize].any::<T, I>(isa, &obj, t_max, stack)
+    }
+
+    /// The any-hit query, as [`Self::closest_with`].
+    #[inline(always)]
+    fn any_with<T: TriTest, I: Isa>(&self, isa: I, ray: &Ray, stacks: &mut [Entry]) -> bool {
+        let (top_stack, mesh_stack) = stacks.split_at_mut(STACK_MAX);
         if let [p] = self.placed.as_slice() {
-            return any_in(p, ray.t_max);
+            return self.any_in::<T, I>(isa, p, ray, ray.t_max, mesh_stack);
         }
         let wr = WideRay::new(ray);
         let mut t_max = ray.t_max;
-        traverse4(
-            &self.top,
-            &wr,
-            &mut t_max,
-            |first: u32, count: u32, t_max: &mut f32| {
-                self.top_order[first as usize..(first + count) as usize]
-                    .iter()
-                    .any(|&k| any_in(&self.placed[k as usize], *t_max))
-            },
-        )
+        let leaf = TopAny::<T, I> {
+            accel: self,
+            isa,
+            ray,
+            stack: mesh_stack,
+            test: PhantomData,
+        };
+        traverse(isa, &self.top, &wr, &mut t_max, leaf, top_stack)
     }
 
     /// The nearest hit along `ray` before its `t_max` (none for a non-finite ray).
@@ -270,10 +302,20 @@ impl TwoLevel {
         if !(ray.origin.is_finite() && ray.dir.is_finite()) || ray.t_max.is_nan() {
             return None;
         }
-        match self.test {
-            TriangleTest::MollerTrumbore => self.closest_with::<MollerTrumbore>(ray),
-            TriangleTest::Watertight => self.closest_with::<Watertight>(ray),
-        }
+        with_stacks(|stacks| match (self.test, self.avx2) {
+            (TriangleTest::MollerTrumbore, None) => {
+                self.closest_with::<MollerTrumbore, _>(Portable, ray, stacks)
+            }
+            (TriangleTest::Watertight, None) => {
+                self.closest_with::<Watertight, _>(Portable, ray, stacks)
+            }
+            (TriangleTest::MollerTrumbore, Some(avx)) => {
+                avx.run(ClosestOn::<MollerTrumbore>::new(self, ray, stacks))
+            }
+            (TriangleTest::Watertight, Some(avx)) => {
+                avx.run(ClosestOn::<Watertight>::new(self, ray, stacks))
+            }
+        })
     }
 
     /// Whether anything blocks `ray` before its `t_max` (shadow rays).
@@ -281,10 +323,41 @@ impl TwoLevel {
         if !(ray.origin.is_finite() && ray.dir.is_finite()) || ray.t_max.is_nan() {
             return false;
         }
-        match self.test {
-            TriangleTest::MollerTrumbore => self.any_with::<MollerTrumbore>(ray),
-            TriangleTest::Watertight => self.any_with::<Watertight>(ray),
+        with_stacks(|stacks| match (self.test, self.avx2) {
+            (TriangleTest::MollerTrumbore, None) => {
+                self.any_with::<MollerTrumbore, _>(Portable, ray, stacks)
+            }
+            (TriangleTest::Watertight, None) => {
+                self.any_with::<Watertight, _>(Portable, ray, stacks)
+            }
+            (TriangleTest::MollerTrumbore, Some(avx)) => {
+                avx.run(AnyOn::<MollerTrumbore>::new(self, ray, stacks))
+            }
+            (TriangleTest::Watertight, Some(avx)) => {
+                avx.run(AnyOn::<Watertight>::new(self, ray, stacks))
+            }
+        })
+    }
+
+    /// The instruction set queries run on.
+    pub fn simd(&self) -> Simd {
+        if self.avx2.is_some() {
+            Simd::Avx2
+        } else {
+            Simd::Portable
         }
+    }
+
+    /// Makes queries run on `simd`; `false` (and no change) if this CPU cannot run it.
+    pub fn force_simd(&mut self, simd: Simd) -> bool {
+        match simd {
+            Simd::Portable => self.avx2 = None,
+            Simd::Avx2 => match Avx2::detect_cpu() {
+                Some(avx) => self.avx2 = Some(avx),
+                None => return false,
+            },
+        }
+        true
     }
 
     /// Node, leaf and triangle counts and memory, for `--stats`.
@@ -315,5 +388,91 @@ impl TwoLevel {
             s.bytes += m.bytes();
         }
         s
+    }
+}
+
+/// The top level's closest-hit leaf test: each instance's bottom level.
+struct TopClosest<'a, T, I> {
+    accel: &'a TwoLevel,
+    isa: I,
+    ray: &'a Ray,
+    stack: &'a mut [Entry],
+    best: Option<Hit>,
+    test: PhantomData<T>,
+}
+
+impl<T: TriTest, I: Isa> LeafVisitor for &mut TopClosest<'_, T, I> {
+    #[inline(always)]
+    fn visit(&mut self, first: u32, count: u32, t_max: &mut f32) -> bool {
+        let a = self.accel;
+        for &k in &a.top_order[first as usize..(first + count) as usize] {
+            let p = &a.placed[k as usize];
+            if let Some(h) = a.closest_in::<T, I>(self.isa, p, self.ray, t_max, self.stack) {
+                self.best = Some(h);
+            }
+        }
+        false
+    }
+}
+
+/// The top level's any-hit leaf test.
+struct TopAny<'a, T, I> {
+    accel: &'a TwoLevel,
+    isa: I,
+    ray: &'a Ray,
+    stack: &'a mut [Entry],
+    test: PhantomData<T>,
+}
+
+impl<T: TriTest, I: Isa> LeafVisitor for TopAny<'_, T, I> {
+    #[inline(always)]
+    fn visit(&mut self, first: u32, count: u32, t_max: &mut f32) -> bool {
+        let a = self.accel;
+        for &k in &a.top_order[first as usize..(first + count) as usize] {
+            let p = &a.placed[k as usize];
+            if a.any_in::<T, I>(self.isa, p, self.ray, *t_max, self.stack) {
+                return true;
+            }
+        }
+        false
+    }
+}
+
+/// A query to run on the AVX2 kernels ([`Avx2::run`]): closest-hit (`ANY == false`) or
+/// any-hit, with triangle test `T`.
+struct OnAvx2<'a, T, const ANY: bool> {
+    accel: &'a TwoLevel,
+    ray: &'a Ray,
+    stacks: &'a mut [Entry],
+    test: PhantomData<T>,
+}
+
+type ClosestOn<'a, T> = OnAvx2<'a, T, false>;
+type AnyOn<'a, T> = OnAvx2<'a, T, true>;
+
+impl<'a, T, const ANY: bool> OnAvx2<'a, T, ANY> {
+    fn new(accel: &'a TwoLevel, ray: &'a Ray, stacks: &'a mut [Entry]) -> Self {
+        OnAvx2 {
+            accel,
+            ray,
+            stacks,
+            test: PhantomData,
+        }
+    }
+}
+
+impl<T: TriTest> Avx2Kernel for ClosestOn<'_, T> {
+    type Output = Option<Hit>;
+    #[inline(always)]
+    fn call(self, avx: Avx2) -> Option<Hit> {
+        self.accel.closest_with::<T, _>(avx, self.ray, self.stacks)
+    }
+}
+
+impl<T: TriTest> Avx2Kernel for AnyOn<'_, T> {
+    type Output = bool;
+    #[inline(always)]
+    fn call(self, avx: Avx2) -> bool {
+        self.accel.any_with::<T, _>(avx, self.ray, self.stacks)
     }
 }

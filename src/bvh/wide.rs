@@ -1,14 +1,13 @@
 //! The 8-wide BVH that queries run on: the binary SAH tree collapsed so that each node holds
 //! up to eight children's boxes side by side (structure of arrays), which the slab test checks
-//! four lanes at a time (two SSE halves). 256 bytes per node (four cache lines, 64-byte
-//! aligned), depth-first order.
+//! four lanes at a time (two SSE halves; `isa.rs` has the one-register AVX2 form). 256 bytes
+//! per node (four cache lines, 64-byte aligned), depth-first order.
 //!
-//! Stage: made by `collapse` from `build`'s binary [`Node`]s; read by `traverse4`.
+//! Stage: made by `collapse` from `build`'s binary [`Node`]s; read by `traverse.rs`.
 
 use glam::{Vec3, Vec4};
 
-use super::node::{Node, MAX_DEPTH};
-use super::tally;
+use super::node::Node;
 use crate::geom::{Aabb, Ray};
 
 /// Children per node.
@@ -156,11 +155,14 @@ fn emit(bin: &[Node], i: usize, out: &mut Vec<WideNode>) -> u32 {
 pub struct WideRay {
     org: [Vec4; 3],
     inv: [Vec4; 3],
-    near_row: [usize; 3],
+    /// Per axis, the bounds row of the near plane.
+    pub(super) near_row: [usize; 3],
+    /// Per axis, the bounds row of the far plane.
+    pub(super) far_row: [usize; 3],
 }
 
 /// Slack on the exit distance for three roundings (Ize 2013); see `node.rs`.
-const EXIT_SLACK: f32 = 1.0 + 3.0 * f32::EPSILON / (1.0 - 1.5 * f32::EPSILON);
+pub(super) const EXIT_SLACK: f32 = 1.0 + 3.0 * f32::EPSILON / (1.0 - 1.5 * f32::EPSILON);
 
 impl WideRay {
     /// Prepares `ray` for the slab tests, once per query.
@@ -186,7 +188,20 @@ impl WideRay {
                 Vec4::splat(inv(d.z)),
             ],
             near_row: [row(d.x, 0), row(d.y, 1), row(d.z, 2)],
+            far_row: [row(-d.x, 0), row(-d.y, 1), row(-d.z, 2)],
         }
+    }
+
+    /// The origin's coordinate on `axis`.
+    #[inline(always)]
+    pub(super) fn origin(&self, axis: usize) -> f32 {
+        self.org[axis].x
+    }
+
+    /// The (made finite) reciprocal of the direction's coordinate on `axis`.
+    #[inline(always)]
+    pub(super) fn inv_dir(&self, axis: usize) -> f32 {
+        self.inv[axis].x
     }
 
     /// Entry distances of the children and the mask (bit k) of those entered in
@@ -200,8 +215,7 @@ impl WideRay {
             let mut t_near = Vec4::ZERO;
             let mut t_far = Vec4::splat(t_max);
             for axis in 0..3 {
-                let near = self.near_row[axis];
-                let far = if near >= 3 { near - 3 } else { near + 3 };
+                let (near, far) = (self.near_row[axis], self.far_row[axis]);
                 let row = |r: usize| Vec4::from_slice(&n.bounds[r][lanes.clone()]);
                 let tn = (row(near) - self.org[axis]) * self.inv[axis];
                 let tf = (row(far) - self.org[axis]) * self.inv[axis];
@@ -218,112 +232,6 @@ impl WideRay {
     #[inline(always)]
     pub fn still_open(t_entry: f32, t_max: f32) -> bool {
         t_entry <= t_max * EXIT_SLACK
-    }
-}
-
-/// What a traversal does at a leaf: test primitives `first..first + count`, possibly shrink
-/// `t_max`, and return `true` to stop. Closures are visitors; the BVH's own leaf tests are
-/// types whose `visit` is `#[inline(always)]`, so they are compiled into the traversal loop
-/// (a closure's body is left as a call there: measured 6–10% of a trace).
-pub trait LeafVisitor {
-    /// Visits one leaf.
-    fn visit(&mut self, first: u32, count: u32, t_max: &mut f32) -> bool;
-}
-
-impl<F: FnMut(u32, u32, &mut f32) -> bool> LeafVisitor for F {
-    #[inline(always)]
-    fn visit(&mut self, first: u32, count: u32, t_max: &mut f32) -> bool {
-        self(first, count, t_max)
-    }
-}
-
-/// Each wide level may push `WIDTH − 1` entries, and the binary depth bounds the wide depth.
-pub const STACK_MAX: usize = (WIDTH - 1) * MAX_DEPTH + 2;
-
-/// Visits the leaves the ray enters within `(0, *t_max)`, nearer first; `leaf(first, count,
-/// t_max)` tests a leaf's primitives, may shrink `t_max`, and returns `true` to stop. Returns
-/// whether a leaf stopped the traversal. No allocation: a fixed stack, the smallest of three
-/// sizes that fits the tree (zeroing a large stack per ray costs as much as a traversal).
-/// The nodes tested and primitives handed to `leaf` are added to `tally` once, at the end.
-#[inline(always)]
-pub fn traverse4<F: LeafVisitor>(w: &Wide, ray: &WideRay, t_max: &mut f32, leaf: F) -> bool {
-    let mut visits = 0u32;
-    let stopped = if w.stack_need <= 32 {
-        traverse_with::<32, F>(w, ray, t_max, leaf, &mut visits)
-    } else if w.stack_need <= 96 {
-        traverse_with::<96, F>(w, ray, t_max, leaf, &mut visits)
-    } else {
-        traverse_with::<STACK_MAX, F>(w, ray, t_max, leaf, &mut visits)
-    };
-    tally::add(visits);
-    stopped
-}
-
-#[inline(always)]
-fn traverse_with<const N: usize, F: LeafVisitor>(
-    w: &Wide,
-    ray: &WideRay,
-    t_max: &mut f32,
-    mut leaf: F,
-    visits: &mut u32,
-) -> bool {
-    if w.nodes.is_empty() {
-        *visits = visits.wrapping_add(w.root_count);
-        return w.root_count > 0 && leaf.visit(w.root_first, w.root_count, t_max);
-    }
-    debug_assert!(w.stack_need <= N);
-    let mut stack = [(0u32, 0u32, 0.0f32); N];
-    let mut sp = 0usize;
-    let (mut child, mut count) = (0u32, 0u32);
-    loop {
-        if count > 0 {
-            *visits = visits.wrapping_add(count);
-            if leaf.visit(child, count, t_max) {
-                return true;
-            }
-        } else {
-            let node = &w.nodes[child as usize];
-            *visits = visits.wrapping_add(1);
-            let (t, mask) = ray.hit(node, *t_max);
-            if mask != 0 {
-                // Entered children, sorted far to near, so the nearest is visited next and
-                // the others are popped in order of distance.
-                let mut hits = [(0.0f32, 0usize); WIDTH];
-                let mut n = 0;
-                for (k, &tk) in t.iter().enumerate() {
-                    if mask & (1 << k) != 0 {
-                        let mut j = n;
-                        while j > 0 && hits[j - 1].0 < tk {
-                            hits[j] = hits[j - 1];
-                            j -= 1;
-                        }
-                        hits[j] = (tk, k);
-                        n += 1;
-                    }
-                }
-                for &(tk, k) in &hits[..n - 1] {
-                    // `stack_need ≤ N` was checked by the caller: no overflow.
-                    stack[sp] = (node.child[k], node.count[k], tk);
-                    sp += 1;
-                }
-                let k = hits[n - 1].1;
-                child = node.child[k];
-                count = node.count[k];
-                continue;
-            }
-        }
-        loop {
-            if sp == 0 {
-                return false;
-            }
-            sp -= 1;
-            let (c, n, t_entry) = stack[sp];
-            if WideRay::still_open(t_entry, *t_max) {
-                child = c;
-                count = n;
-                break;
-            }
-        }
     }
 }
 

@@ -64,6 +64,9 @@ pub struct WatertightRay {
     pub origin: Vec3A,
     /// The ray's `t_max`, in multiples of its `dir`.
     pub t_max: f32,
+    /// `origin` as an array: indexed by a run-time axis without a branch (indexing a `Vec3A`
+    /// by a variable is a `match`).
+    pub(crate) origin_xyz: [f32; 3],
     shear: Mat3A,
     /// `kx`, `ky`, `kz`: which axes become the sheared x, y and z (for the four-wide test,
     /// which permutes rows instead of multiplying by `shear`).
@@ -116,6 +119,7 @@ impl WatertightRay {
         WatertightRay {
             origin: ray.origin.into(),
             t_max: ray.t_max,
+            origin_xyz: ray.origin.to_array(),
             shear: Mat3A::from_cols(rows[0], rows[1], rows[2]).transpose(),
             axes: [kx, ky, kz],
             shear_factors: [sx, sy, sz],

@@ -1,0 +1,167 @@
+//! The instruction set a query runs on, chosen at run time: the node slab test and the leaf's
+//! watertight triangle test, each in a portable form (SSE: glam's four-lane `Vec4`, NEON
+//! elsewhere) and in an AVX2 form (eight lanes in one register: the whole 8-wide node in one
+//! test, two packets of four triangles at once).
+//!
+//! Stage: queries. `two_level.rs` picks the path once per query ([`Simd`], from CPU detection
+//! at build) and enters it; `traverse.rs` and `mesh_bvh.rs` are generic over [`Isa`], so each
+//! path is one monomorphic loop. Both forms compute the same bits (same operations, same
+//! order, no fused multiply-adds), so which path runs never changes a hit or an image.
+
+use super::wide::{WideNode, WideRay, EXIT_SLACK, WIDTH};
+use crate::geom::avx2::Avx2;
+use crate::geom::triangle::{TriangleHit, WatertightRay};
+use crate::geom::triangle4::{any4, closest4, Tri4};
+use crate::geom::triangle8::{any8, closest8};
+
+/// Which instruction set the BVH's queries run on (`Accel::simd`, `Accel::force_simd`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Simd {
+    /// Four-lane SSE (x86-64's baseline; NEON or scalar elsewhere): runs on every CPU.
+    Portable,
+    /// Eight-lane AVX2, chosen when the CPU has AVX2 and FMA and `SCNC_SIMD=portable` is unset.
+    Avx2,
+}
+
+/// The kernels of one instruction set.
+pub trait Isa: Copy {
+    /// Entry distances of the node's children and the mask (bit k) of those entered within
+    /// `(0, t_max)`.
+    fn slab(self, ray: &WideRay, n: &WideNode, t_max: f32) -> ([f32; WIDTH], u32);
+    /// The closest watertight hit among the packets `tris`, as `triangle4::closest4`.
+    fn closest_tris(
+        self,
+        r: &WatertightRay,
+        t_max: &mut f32,
+        tris: &[Tri4],
+    ) -> Option<(usize, TriangleHit)>;
+    /// Whether any triangle of `tris` is hit, as `triangle4::any4`.
+    fn any_tris(self, r: &WatertightRay, t_max: f32, tris: &[Tri4]) -> bool;
+}
+
+/// The portable kernels: [`WideRay::hit`] and the four-lane triangle test.
+#[derive(Debug, Clone, Copy)]
+pub struct Portable;
+
+impl Isa for Portable {
+    #[inline(always)]
+    fn slab(self, ray: &WideRay, n: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
+        ray.hit(n, t_max)
+    }
+    #[inline(always)]
+    fn closest_tris(
+        self,
+        r: &WatertightRay,
+        t_max: &mut f32,
+        tris: &[Tri4],
+    ) -> Option<(usize, TriangleHit)> {
+        closest4(r, t_max, tris)
+    }
+    #[inline(always)]
+    fn any_tris(self, r: &WatertightRay, t_max: f32, tris: &[Tri4]) -> bool {
+        any4(r, t_max, tris)
+    }
+}
+
+impl Isa for Avx2 {
+    /// [`WideRay::hit`] on all eight lanes at once: the same operations in the same order.
+    #[inline(always)]
+    fn slab(self, ray: &WideRay, n: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
+        let avx = self;
+        let mut t_near = avx.splat(0.0);
+        let mut t_far = avx.splat(t_max);
+        for axis in 0..3 {
+            // No closures here: their bodies might not be inlined into the AVX2 kernel.
+            let org = avx.splat(ray.origin(axis));
+            let inv = avx.splat(ray.inv_dir(axis));
+            let near = avx.mul(avx.sub(avx.load(&n.bounds[ray.near_row[axis]]), org), inv);
+            let far = avx.mul(avx.sub(avx.load(&n.bounds[ray.far_row[axis]]), org), inv);
+            t_near = avx.max(t_near, near);
+            t_far = avx.min(t_far, far);
+        }
+        let entered = avx.le(t_near, avx.mul(t_far, avx.splat(EXIT_SLACK)));
+        (avx.store(t_near), avx.bitmask(entered))
+    }
+    #[inline(always)]
+    fn closest_tris(
+        self,
+        r: &WatertightRay,
+        t_max: &mut f32,
+        tris: &[Tri4],
+    ) -> Option<(usize, TriangleHit)> {
+        closest8(self, r, t_max, tris)
+    }
+    #[inline(always)]
+    fn any_tris(self, r: &WatertightRay, t_max: f32, tris: &[Tri4]) -> bool {
+        any8(self, r, t_max, tris)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::Ray;
+    use glam::Vec3;
+
+    /// A node of eight random boxes (some flat, some empty lanes).
+    fn node(seed: u64) -> WideNode {
+        let mut s = seed;
+        let mut next = move || {
+            s = s.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+            (s >> 40) as f32 / (1u64 << 24) as f32 * 4.0 - 2.0
+        };
+        let mut n = WideNode {
+            bounds: [[0.0; WIDTH]; 6],
+            child: [0; WIDTH],
+            count: [1; WIDTH],
+        };
+        for lane in 0..WIDTH {
+            for axis in 0..3 {
+                let (a, b) = (next(), next());
+                let flat = lane == 3 && axis == 1;
+                n.bounds[axis][lane] = a.min(b);
+                n.bounds[axis + 3][lane] = if flat { a.min(b) } else { a.max(b) };
+            }
+            if lane >= 6 {
+                for axis in 0..3 {
+                    n.bounds[axis][lane] = f32::INFINITY;
+                    n.bounds[axis + 3][lane] = f32::NEG_INFINITY;
+                }
+            }
+        }
+        n
+    }
+
+    #[test]
+    fn avx2_slab_test_gives_the_portable_bits() {
+        let Some(avx) = Avx2::detect_cpu() else {
+            eprintln!("no AVX2 on this CPU: nothing to compare");
+            return;
+        };
+        let mut entered = 0;
+        for case in 0..4_000u64 {
+            let n = node(case);
+            let f = |k: u64| ((case * 7 + k) % 13) as f32 / 3.0 - 2.0;
+            let mut dir = Vec3::new(f(1), f(2), f(3));
+            // Axis-parallel and signed-zero components, where the reciprocal is replaced.
+            match case % 4 {
+                0 => dir.x = 0.0,
+                1 => dir.y = -0.0,
+                _ => {}
+            }
+            let ray = WideRay::new(&Ray::new(Vec3::new(f(4), f(5), f(6)) * 2.0, dir));
+            for t_max in [f32::INFINITY, 1.5] {
+                let (tp, mp) = Portable.slab(&ray, &n, t_max);
+                let (ta, ma) = avx.slab(&ray, &n, t_max);
+                assert_eq!(ma, mp, "case {case}");
+                assert_eq!(ta.map(f32::to_bits), tp.map(f32::to_bits), "case {case}");
+                assert_eq!(ma & 0b1100_0000, 0, "empty lanes are never entered");
+                entered += ma.count_ones();
+            }
+        }
+        assert!(
+            entered > 1_000,
+            "too few boxes entered to test anything: {entered}"
+        );
+    }
+}

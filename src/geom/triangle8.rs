@@ -1,0 +1,325 @@
+//! Eight triangles (two packets of four) against one ray at once, on AVX2: the watertight test
+//! of [`super::triangle4`], operation for operation, on eight lanes.
+//!
+//! Stage: geometry, below the BVH; used by its AVX2 path (`bvh::isa`). Lanes 0–3 hold the first
+//! packet and lanes 4–7 the second (or the first again when a leaf has an odd number of
+//! packets: a lane repeated later is never strictly nearer, so it never wins). The arithmetic
+//! is the four-lane test's (no fused multiply-adds, the same operand order and predicates), so
+//! hits, distances and barycentrics are the same bits; `tests` checks that.
+
+use super::avx2::{Avx2, F8};
+use super::triangle::{gamma, TriangleHit, WatertightRay};
+use super::triangle4::{Tri4, LANES};
+
+/// Lanes per test.
+const LANES8: usize = 2 * LANES;
+
+/// The lanes of two packets that a ray hits within `(0, t_max)`; as `triangle4::Hits4`.
+#[derive(Debug, Clone, Copy)]
+struct Hits8 {
+    mask: u32,
+    t: [f32; LANES8],
+    u: [f32; LANES8],
+    v: [f32; LANES8],
+    ts: [f32; LANES8],
+    ad: [f32; LANES8],
+}
+
+impl Hits8 {
+    /// Lane `k`'s hit if it is also within `(0, t_max)` for this (smaller or equal) `t_max`.
+    #[inline(always)]
+    fn within(&self, k: usize, t_max: f32) -> Option<TriangleHit> {
+        (self.mask & (1 << k) != 0 && self.ts[k] < t_max * self.ad[k] && self.t[k] < t_max).then(
+            || TriangleHit {
+                t: self.t[k],
+                u: self.u[k],
+                v: self.v[k],
+            },
+        )
+    }
+}
+
+/// Vertex `j` of the two packets relative to the ray's origin, sheared: (x, y) across the
+/// ray, z along it. (Helpers are functions, not closures: a closure's body might not be
+/// inlined into the AVX2 kernel, and outside it every intrinsic becomes a call.)
+#[inline(always)]
+fn sheared(avx: Avx2, r: &WatertightRay, lo: &Tri4, hi: &Tri4, j: usize) -> [F8; 3] {
+    let [kx, ky, kz] = r.axes;
+    let (x, y, z) = (
+        relative(avx, r, lo, hi, 3 * j, kx),
+        relative(avx, r, lo, hi, 3 * j, ky),
+        relative(avx, r, lo, hi, 3 * j, kz),
+    );
+    let [sx, sy, sz] = r.shear_factors;
+    [
+        avx.sub(x, avx.mul(avx.splat(sx), z)),
+        avx.sub(y, avx.mul(avx.splat(sy), z)),
+        avx.mul(avx.splat(sz), z),
+    ]
+}
+
+/// Axis `a` of the vertex whose rows start at `row`, minus the origin's.
+#[inline(always)]
+fn relative(avx: Avx2, r: &WatertightRay, lo: &Tri4, hi: &Tri4, row: usize, a: usize) -> F8 {
+    let p = avx.load2(&lo.rows[row + a], &hi.rows[row + a]);
+    avx.sub(p, avx.splat(r.origin_xyz[a]))
+}
+
+/// `p·q − s·t`.
+#[inline(always)]
+fn cross(avx: Avx2, p: F8, q: F8, s: F8, t: F8) -> F8 {
+    avx.sub(avx.mul(p, q), avx.mul(s, t))
+}
+
+/// `max(max(|p|, |q|), |s|)`.
+#[inline(always)]
+fn max_abs(avx: Avx2, p: F8, q: F8, s: F8) -> F8 {
+    avx.max(avx.max(avx.abs(p), avx.abs(q)), avx.abs(s))
+}
+
+/// `(a·b + c·d) + e·f`, rounded after each operation.
+#[inline(always)]
+fn dot3(avx: Avx2, [a, b, c, d, e, f]: [F8; 6]) -> F8 {
+    avx.add(avx.add(avx.mul(a, b), avx.mul(c, d)), avx.mul(e, f))
+}
+
+/// The watertight test of `r` against `lo`'s triangles (lanes 0–3) and `hi`'s (lanes 4–7),
+/// each against `t_max`; `None` when no lane is hit. With `FULL == false` only the mask is
+/// kept (the any-hit query needs nothing else).
+#[inline(always)]
+fn watertight8<const FULL: bool>(
+    avx: Avx2,
+    r: &WatertightRay,
+    t_max: f32,
+    lo: &Tri4,
+    hi: &Tri4,
+) -> Option<Hits8> {
+    let [ax, ay, az] = sheared(avx, r, lo, hi, 0);
+    let [bx, by, bz] = sheared(avx, r, lo, hi, 1);
+    let [cx, cy, cz] = sheared(avx, r, lo, hi, 2);
+    let mut u = cross(avx, cx, by, cy, bx);
+    let mut v = cross(avx, ax, cy, ay, cx);
+    let mut w = cross(avx, bx, ay, by, ax);
+    let zero = avx.splat(0.0);
+    let exact_zero = avx.bitmask(avx.or(avx.or(avx.eq(u, zero), avx.eq(v, zero)), avx.eq(w, zero)));
+    if exact_zero != 0 {
+        let xy = [ax, ay, bx, by, cx, cy];
+        // Plain arrays in and out: the cold path is a call, not compiled for AVX2.
+        let [u2, v2, w2] = reevaluate_in_f64(
+            exact_zero,
+            [avx.store(u), avx.store(v), avx.store(w)],
+            [
+                avx.store(xy[0]),
+                avx.store(xy[1]),
+                avx.store(xy[2]),
+                avx.store(xy[3]),
+                avx.store(xy[4]),
+                avx.store(xy[5]),
+            ],
+        );
+        (u, v, w) = (avx.load(&u2), avx.load(&v2), avx.load(&w2));
+    }
+    let any_neg = avx.or(avx.or(avx.lt(u, zero), avx.lt(v, zero)), avx.lt(w, zero));
+    let any_pos = avx.or(avx.or(avx.gt(u, zero), avx.gt(v, zero)), avx.gt(w, zero));
+    let outside = avx.bitmask(avx.and(any_neg, any_pos));
+    let det = avx.add(avx.add(u, v), w);
+    let usable = avx.and(
+        avx.lt(avx.abs(det), avx.splat(f32::INFINITY)),
+        avx.ne(det, zero),
+    );
+    let t_scaled = dot3(avx, [u, az, v, bz, w, cz]);
+    let sign = avx.select(avx.lt(det, zero), avx.splat(-1.0), avx.splat(1.0));
+    let ts = avx.mul(t_scaled, sign);
+    let ad = avx.mul(det, sign);
+    let t_max8 = avx.splat(t_max);
+    let in_front = avx.and(avx.gt(ts, zero), avx.lt(ts, avx.mul(t_max8, ad)));
+    let candidate = avx.bitmask(avx.and(usable, in_front)) & !outside;
+    if candidate == 0 {
+        return None;
+    }
+    let inv_det = avx.div(avx.splat(1.0), det);
+    let t = avx.mul(t_scaled, inv_det);
+    let in_range = avx.and(avx.gt(t, zero), avx.lt(t, t_max8));
+    // The conservative bound on the rounding error of t (see the one-triangle test).
+    let max_zt = max_abs(avx, az, bz, cz);
+    let max_xt = max_abs(avx, ax, bx, cx);
+    let max_yt = max_abs(avx, ay, by, cy);
+    let delta_z = avx.mul(avx.splat(gamma(3)), max_zt);
+    let max_z_length = avx.mul(max_zt, avx.splat(r.dir_length));
+    let delta_x = avx.mul(avx.splat(gamma(5)), avx.add(max_xt, max_z_length));
+    let delta_y = avx.mul(avx.splat(gamma(5)), avx.add(max_yt, max_z_length));
+    let g2_xt = avx.mul(avx.splat(gamma(2)), max_xt);
+    let delta_e = avx.mul(
+        avx.splat(2.0),
+        dot3(avx, [g2_xt, max_yt, delta_y, max_xt, delta_x, max_yt]),
+    );
+    let max_e = max_abs(avx, u, v, w);
+    let g3_e = avx.mul(avx.splat(gamma(3)), max_e);
+    let delta_t = avx.mul(
+        avx.mul(
+            avx.splat(3.0),
+            dot3(avx, [g3_e, max_zt, delta_e, max_zt, delta_z, max_e]),
+        ),
+        avx.abs(inv_det),
+    );
+    let mask = candidate & avx.bitmask(avx.and(in_range, avx.gt(t, delta_t)));
+    if mask == 0 {
+        return None;
+    }
+    let nothing = [0.0; LANES8];
+    Some(if FULL {
+        Hits8 {
+            mask,
+            t: avx.store(t),
+            u: avx.store(avx.mul(v, inv_det)),
+            v: avx.store(avx.mul(w, inv_det)),
+            ts: avx.store(ts),
+            ad: avx.store(ad),
+        }
+    } else {
+        Hits8 {
+            mask,
+            t: nothing,
+            u: nothing,
+            v: nothing,
+            ts: nothing,
+            ad: nothing,
+        }
+    })
+}
+
+/// The edge functions `uvw` of the lanes in `lanes` recomputed in double precision (exact for
+/// products of floats) from the sheared `[ax, ay, bx, by, cx, cy]`, as the one-triangle test
+/// does when one rounds to exactly 0. Plain arrays: this cold path is not compiled for AVX2.
+#[inline(never)]
+#[cold]
+fn reevaluate_in_f64(
+    lanes: u32,
+    uvw: [[f32; LANES8]; 3],
+    xy: [[f32; LANES8]; 6],
+) -> [[f32; LANES8]; 3] {
+    let [mut u, mut v, mut w] = uvw;
+    let [ax, ay, bx, by, cx, cy] = xy;
+    for k in (0..LANES8).filter(|&k| lanes & (1 << k) != 0) {
+        let f = |a: [f32; LANES8]| f64::from(a[k]);
+        let (ax, ay, bx, by, cx, cy) = (f(ax), f(ay), f(bx), f(by), f(cx), f(cy));
+        u[k] = (cx * by - cy * bx) as f32;
+        v[k] = (ax * cy - ay * cx) as f32;
+        w[k] = (bx * ay - by * ax) as f32;
+    }
+    [u, v, w]
+}
+
+/// [`super::triangle4::closest4`] on AVX2: the closest hit among the packets `tris` within
+/// `(0, *t_max)`, lanes taken in order, a later hit kept only if strictly nearer; shrinks
+/// `*t_max`. Returns the hit's slot (packet · 4 + lane) within `tris`.
+#[inline(always)]
+pub fn closest8(
+    avx: Avx2,
+    r: &WatertightRay,
+    t_max: &mut f32,
+    tris: &[Tri4],
+) -> Option<(usize, TriangleHit)> {
+    let mut best = None;
+    for (p, pair) in tris.chunks(2).enumerate() {
+        let (lo, hi) = (&pair[0], pair.get(1).unwrap_or(&pair[0]));
+        if let Some(hits) = watertight8::<true>(avx, r, *t_max, lo, hi) {
+            let lanes = LANES * pair.len();
+            for k in 0..lanes {
+                if let Some(h) = hits.within(k, *t_max) {
+                    *t_max = h.t;
+                    best = Some((2 * LANES * p + k, h));
+                }
+            }
+        }
+    }
+    best
+}
+
+/// [`super::triangle4::any4`] on AVX2: whether any triangle of `tris` is hit within
+/// `(0, t_max)`.
+#[inline(always)]
+pub fn any8(avx: Avx2, r: &WatertightRay, t_max: f32, tris: &[Tri4]) -> bool {
+    for pair in tris.chunks(2) {
+        let (lo, hi) = (&pair[0], pair.get(1).unwrap_or(&pair[0]));
+        if watertight8::<false>(avx, r, t_max, lo, hi).is_some() {
+            return true;
+        }
+    }
+    false
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::triangle4::{any4, closest4};
+    use crate::geom::Ray;
+    use glam::{Vec3, Vec3A};
+
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self) -> f32 {
+            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+            let mut z = self.0;
+            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+            ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
+        }
+        fn point(&mut self, scale: f32) -> Vec3A {
+            Vec3A::new(self.next(), self.next(), self.next()) * scale - Vec3A::splat(scale / 2.0)
+        }
+    }
+
+    fn key(h: Option<(usize, TriangleHit)>) -> Option<(usize, u32, u32, u32)> {
+        h.map(|(k, h)| (k, h.t.to_bits(), h.u.to_bits(), h.v.to_bits()))
+    }
+
+    #[test]
+    fn eight_lanes_give_the_four_lane_answers_bit_for_bit() {
+        let Some(avx) = Avx2::detect_cpu() else {
+            eprintln!("no AVX2 on this CPU: nothing to compare");
+            return;
+        };
+        let mut rng = Rng(11);
+        let mut hits = 0;
+        for case in 0..20_000 {
+            // Up to three packets (an odd count repeats the last one in the upper lanes),
+            // neighbours sharing edges and vertices, rays aimed at vertices and edges.
+            let n: usize = 1 + case % 11;
+            let mut tris: Vec<[Vec3A; 3]> = (0..n)
+                .map(|_| [rng.point(2.0), rng.point(2.0), rng.point(2.0)])
+                .collect();
+            for k in 1..n {
+                if k % 2 == 1 {
+                    tris[k] = [tris[k - 1][1], tris[k - 1][0], rng.point(2.0)];
+                }
+            }
+            let origin = rng.point(8.0);
+            let pick = case % n;
+            let aim = match case % 3 {
+                0 => tris[pick][0],
+                1 => (tris[pick][0] + tris[pick][1]) * 0.5,
+                _ => rng.point(1.0),
+            };
+            let dir = Vec3::from(aim - origin).normalize_or_zero();
+            let r = WatertightRay::new(&Ray::new(origin.into(), dir));
+            let t_max = if case % 5 == 0 { 3.0 } else { f32::INFINITY };
+            let mut packets = vec![Tri4::EMPTY; n.div_ceil(LANES)];
+            for (k, t) in tris.iter().enumerate() {
+                packets[k / LANES].set(k % LANES, *t);
+            }
+            let (mut t4, mut t8) = (t_max, t_max);
+            let four = closest4(&r, &mut t4, &packets);
+            let eight = closest8(avx, &r, &mut t8, &packets);
+            assert_eq!(key(eight), key(four), "case {case}");
+            assert_eq!(t8.to_bits(), t4.to_bits(), "case {case}");
+            assert_eq!(
+                any8(avx, &r, t_max, &packets),
+                any4(&r, t_max, &packets),
+                "case {case}"
+            );
+            hits += usize::from(four.is_some());
+        }
+        assert!(hits > 5_000, "too few hits to test anything: {hits}");
+    }
+}
