@@ -19,6 +19,11 @@ use crate::ir;
 use crate::source::{FileId, SourceMap, Span};
 use crate::syntax::{self, ExprKind, Stmt};
 
+mod edit;
+mod incremental;
+
+pub use incremental::{Incremental, Reuse};
+
 /// The only language version.
 pub const VERSION: f64 = 1.0;
 /// Deepest chain of nested includes.
@@ -381,12 +386,7 @@ impl<'l> Driver<'l> {
         } else {
             None
         };
-        // Reading order: by file, then position; diagnostics without a place last.
-        diags.sort_by_key(|d| {
-            d.primary
-                .as_ref()
-                .map_or((u32::MAX, u32::MAX), |l| (l.span.file.0, l.span.start))
-        });
+        reading_order(&mut diags);
         let failed = diags.iter().any(Diagnostic::is_error);
         Compiled {
             sources,
@@ -394,6 +394,16 @@ impl<'l> Driver<'l> {
             diagnostics: diags,
         }
     }
+}
+
+/// Sorts diagnostics into reading order: by file, then position; those without a place last
+/// (stable: the order they were found in among equals).
+fn reading_order(diags: &mut [Diagnostic]) {
+    diags.sort_by_key(|d| {
+        d.primary
+            .as_ref()
+            .map_or((u32::MAX, u32::MAX), |l| (l.span.file.0, l.span.start))
+    });
 }
 
 /// Checker codes that are only consequences of statements lost to syntax errors.

@@ -173,3 +173,35 @@ impl FloorCharBoundary for str {
         i
     }
 }
+
+/// How the spans of one file move after an edit replaced its bytes `start..old_end` by
+/// `new_len` others (the incremental compile): spans before the edit stay, spans after it move
+/// by the change in length, and a span that reaches into the edited bytes has no new place.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shift {
+    /// The edited file.
+    pub file: FileId,
+    /// First edited byte (old and new text agree before it).
+    pub start: u32,
+    /// One past the last edited byte of the old text (they agree after it).
+    pub old_end: u32,
+    /// One past the last edited byte of the new text.
+    pub new_end: u32,
+}
+
+impl Shift {
+    /// Moves `span` to where its bytes are in the new text; `false` (span unchanged) when it
+    /// reaches into the edited bytes.
+    pub fn apply(&self, span: &mut Span) -> bool {
+        if span.file != self.file || span.end <= self.start {
+            return true;
+        }
+        if span.start < self.old_end {
+            return false;
+        }
+        // Both are past `old_end`, so neither goes below `new_end`.
+        span.start = span.start - self.old_end + self.new_end;
+        span.end = span.end - self.old_end + self.new_end;
+        true
+    }
+}

@@ -20,6 +20,7 @@ mod mesh;
 mod names;
 mod object;
 mod props;
+mod recheck;
 pub mod reference;
 mod reference_table;
 mod render;
@@ -30,6 +31,7 @@ pub mod value;
 pub mod vocabulary;
 
 pub use eval::FUNCTIONS;
+pub use recheck::{check_tracked, CheckMemo};
 
 use std::collections::HashMap;
 
@@ -66,6 +68,14 @@ pub struct Checker<'s> {
     material_textures: Vec<Vec<usize>>,
     used_materials: Vec<bool>,
     used_meshes: Vec<bool>,
+    /// How many objects name each material and mesh (table indices), for the incremental
+    /// re-check: a change of one object keeps the IR's indices only if no count reaches or
+    /// leaves zero.
+    material_uses: Vec<u32>,
+    mesh_uses: Vec<u32>,
+    /// Table index → index in the IR (`None`: dropped), set by `finish`.
+    material_map: Vec<Option<u32>>,
+    mesh_map: Vec<Option<u32>>,
     /// Index into `cameras` chosen by `render { camera NAME }`.
     active_camera: usize,
 }
@@ -89,6 +99,10 @@ impl<'s> Checker<'s> {
             material_textures: Vec::new(),
             used_materials: Vec::new(),
             used_meshes: Vec::new(),
+            material_uses: Vec::new(),
+            mesh_uses: Vec::new(),
+            material_map: Vec::new(),
+            mesh_map: Vec::new(),
             active_camera: 0,
         }
     }
@@ -174,75 +188,133 @@ pub fn check_with(
     let mut cx = Checker::new(sources);
     cx.frame = frame;
     cx.defines = defines.into_iter().map(|(n, e)| (n, (e, false))).collect();
-    let mut decls: [Vec<&Decl>; 4] = Default::default();
-    let mut renders = Vec::new();
-    let mut cameras = Vec::new();
-    let mut placements = Vec::new();
-    for stmt in statements {
-        match stmt {
-            Stmt::Version { .. } | Stmt::Include { .. } => {}
-            Stmt::Let { name, value, .. } => cx.let_stmt(name, value),
-            Stmt::Camera { name, body, span } => {
-                if cx.declare(Namespace::Camera, &name.name, name.span) {
-                    cameras.push((name, body, *span));
-                }
-            }
-            Stmt::Decl(d) => {
-                let ns = match d.kind {
-                    DeclKind::Material => Namespace::Material,
-                    DeclKind::Texture => Namespace::Texture,
-                    DeclKind::Mesh => Namespace::Mesh,
-                    DeclKind::Light => Namespace::Light,
-                };
-                if cx.declare(ns, &d.name.name, d.name.span) {
-                    decls[ns as usize].push(d);
-                }
-            }
-            Stmt::Object(_) | Stmt::Group(_) => placements.push(stmt),
-            Stmt::Render { body, span } => renders.push((body, *span)),
-        }
-    }
-    for d in &decls[Namespace::Texture as usize] {
-        let t = cx.texture(d);
-        cx.textures.push(t);
-    }
-    for d in &decls[Namespace::Material as usize] {
-        let (m, texs) = cx.material(d);
-        cx.materials.push(m);
-        cx.material_textures.push(texs);
-    }
-    for d in &decls[Namespace::Mesh as usize] {
-        let m = cx.mesh(d);
-        cx.meshes.push(m);
-    }
-    cx.used_materials = vec![false; cx.materials.len()];
-    cx.used_meshes = vec![false; cx.meshes.len()];
-    for d in &decls[Namespace::Light as usize] {
-        cx.light(d);
-    }
-    cx.objects.reserve(object::count_objects(&placements));
-    for stmt in placements {
-        cx.placement(stmt);
-    }
-    for (name, body, span) in cameras {
-        if let Some(c) = cx.camera(name, body, span) {
-            cx.cameras.push(c);
-        }
-    }
-    if let Some((_, span)) = renders.get(1) {
-        let first = renders[0].1;
-        cx.error(
-            Diagnostic::error(Code::CheckDuplicateRender, "more than one `render` block")
-                .at(*span, "second `render` block")
-                .also(first, "first here")
-                .help("merge them into one"),
-        );
-    }
-    cx.unused_defines();
-    let settings = cx.render(renders.first().map(|(b, s)| (*b, *s)));
-    let scene = cx.finish(settings);
+    let scene = cx.run(statements, None);
     let failed = cx.diags.iter().any(Diagnostic::is_error);
     Staged::new(scene.filter(|_| !failed), cx.diags)
+}
+
+/// What checking one top-level statement produced (the incremental re-check's bookkeeping).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct StmtRecord {
+    /// Whether it is a top-level `object` (the only statement the re-check redoes alone).
+    pub object: bool,
+    /// Diagnostics its placement check emitted (0 for statements checked in other phases).
+    pub diags: u32,
+    /// IR objects it placed.
+    pub objects: u32,
+    /// For an `object`: the mesh and the material (table indices) it named, if they resolved.
+    pub mesh: Option<u32>,
+    /// See `mesh`.
+    pub material: Option<u32>,
+}
+
+/// Where the placement phase began, for the incremental re-check: the diagnostics emitted
+/// before it and which declarations something other than an object had used by then.
+pub(crate) struct PlacementStart {
+    pub diags: usize,
+    pub used_meshes: Vec<bool>,
+    pub used_materials: Vec<bool>,
+}
+
+impl Checker<'_> {
+    /// Checks `statements`; the scene even when there were errors (`None` only when the render
+    /// settings failed). With `track`, one record per statement and where placements began.
+    fn run(
+        &mut self,
+        statements: &[Stmt],
+        mut track: Option<(&mut Vec<StmtRecord>, &mut Option<PlacementStart>)>,
+    ) -> Option<ir::SceneDesc> {
+        let cx = self;
+        let mut decls: [Vec<&Decl>; 4] = Default::default();
+        let mut renders = Vec::new();
+        let mut cameras = Vec::new();
+        let mut placements = Vec::new();
+        for (i, stmt) in statements.iter().enumerate() {
+            match stmt {
+                Stmt::Version { .. } | Stmt::Include { .. } => {}
+                Stmt::Let { name, value, .. } => cx.let_stmt(name, value),
+                Stmt::Camera { name, body, span } => {
+                    if cx.declare(Namespace::Camera, &name.name, name.span) {
+                        cameras.push((name, body, *span));
+                    }
+                }
+                Stmt::Decl(d) => {
+                    let ns = match d.kind {
+                        DeclKind::Material => Namespace::Material,
+                        DeclKind::Texture => Namespace::Texture,
+                        DeclKind::Mesh => Namespace::Mesh,
+                        DeclKind::Light => Namespace::Light,
+                    };
+                    if cx.declare(ns, &d.name.name, d.name.span) {
+                        decls[ns as usize].push(d);
+                    }
+                }
+                Stmt::Object(_) | Stmt::Group(_) => placements.push((i, stmt)),
+                Stmt::Render { body, span } => renders.push((body, *span)),
+            }
+        }
+        for d in &decls[Namespace::Texture as usize] {
+            let t = cx.texture(d);
+            cx.textures.push(t);
+        }
+        for d in &decls[Namespace::Material as usize] {
+            let (m, texs) = cx.material(d);
+            cx.materials.push(m);
+            cx.material_textures.push(texs);
+        }
+        for d in &decls[Namespace::Mesh as usize] {
+            let m = cx.mesh(d);
+            cx.meshes.push(m);
+        }
+        cx.used_materials = vec![false; cx.materials.len()];
+        cx.used_meshes = vec![false; cx.meshes.len()];
+        cx.material_uses = vec![0; cx.materials.len()];
+        cx.mesh_uses = vec![0; cx.meshes.len()];
+        for d in &decls[Namespace::Light as usize] {
+            cx.light(d);
+        }
+        if let Some((records, start)) = &mut track {
+            records.clear();
+            records.resize(statements.len(), StmtRecord::default());
+            **start = Some(PlacementStart {
+                diags: cx.diags.len(),
+                used_meshes: cx.used_meshes.clone(),
+                used_materials: cx.used_materials.clone(),
+            });
+        }
+        let stmts: Vec<&Stmt> = placements.iter().map(|(_, s)| *s).collect();
+        cx.objects.reserve(object::count_objects(&stmts));
+        for (i, stmt) in placements {
+            let (diags, objects) = (cx.diags.len(), cx.objects.len());
+            let (mesh, material) = cx.placement(stmt);
+            if let Some(record) = track.as_mut().and_then(|(r, _)| r.get_mut(i)) {
+                *record = StmtRecord {
+                    object: matches!(stmt, Stmt::Object(_)),
+                    diags: (cx.diags.len() - diags) as u32,
+                    objects: (cx.objects.len() - objects) as u32,
+                    mesh: mesh.map(|m| m as u32),
+                    material: material.map(|m| m as u32),
+                };
+            }
+        }
+        for (name, body, span) in cameras {
+            if let Some(c) = cx.camera(name, body, span) {
+                cx.cameras.push(c);
+            }
+        }
+        if let Some((_, span)) = renders.get(1) {
+            let first = renders[0].1;
+            cx.error(
+                Diagnostic::error(Code::CheckDuplicateRender, "more than one `render` block")
+                    .at(*span, "second `render` block")
+                    .also(first, "first here")
+                    .help("merge them into one"),
+            );
+        }
+        cx.unused_defines();
+        let settings = cx.render(renders.first().map(|(b, s)| (*b, *s)));
+        cx.finish(settings)
+    }
 }
 
 impl Checker<'_> {

@@ -156,6 +156,8 @@ impl Checker<'_> {
                 ),
             );
         }
+        self.material_map = material_map;
+        self.mesh_map = mesh_map;
         let render = render?;
         let active_camera = self.active_camera;
         Some(ir::SceneDesc {

@@ -38,15 +38,20 @@ pub(super) fn count_objects(stmts: &[&Stmt]) -> usize {
 }
 
 impl Checker<'_> {
-    pub(super) fn placement(&mut self, stmt: &Stmt) {
+    /// Checks one top-level `object` or `group`; for an `object`, the mesh and material (table
+    /// indices) it names, when they resolve.
+    pub(super) fn placement(&mut self, stmt: &Stmt) -> (Option<usize>, Option<usize>) {
         match stmt {
             Stmt::Object(o) => self.object(o, DMat4::IDENTITY),
-            Stmt::Group(g) => self.group(g, DMat4::IDENTITY),
-            _ => {}
+            Stmt::Group(g) => {
+                self.group(g, DMat4::IDENTITY);
+                (None, None)
+            }
+            _ => (None, None),
         }
     }
 
-    fn object(&mut self, o: &ObjectStmt, parent: DMat4) {
+    fn object(&mut self, o: &ObjectStmt, parent: DMat4) -> (Option<usize>, Option<usize>) {
         let props = self.split(
             &o.body,
             "an object",
@@ -58,6 +63,7 @@ impl Checker<'_> {
         let mesh = self.resolve_name(Namespace::Mesh, &o.mesh.name, o.mesh.span);
         if let Some(m) = mesh {
             self.used_meshes[m] = true;
+            self.mesh_uses[m] += 1;
         }
         let material = match props.get("material") {
             Some(p) => self
@@ -77,6 +83,7 @@ impl Checker<'_> {
         };
         if let Some(m) = material {
             self.used_materials[m] = true;
+            self.material_uses[m] += 1;
         }
         if let (Some(mesh), Some(material), Some(local)) = (mesh, material, local) {
             self.objects.push(ir::Object {
@@ -86,6 +93,7 @@ impl Checker<'_> {
                 span: o.span,
             });
         }
+        (mesh, material)
     }
 
     fn group(&mut self, g: &GroupStmt, parent: DMat4) {
@@ -102,7 +110,7 @@ impl Checker<'_> {
             .unwrap_or(DMat4::IDENTITY);
         let world = parent * local;
         for o in props.objects {
-            self.object(o, world);
+            let _ = self.object(o, world);
         }
         for child in props.groups {
             self.group(child, world);

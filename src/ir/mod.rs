@@ -16,6 +16,7 @@ mod light;
 mod material;
 mod mesh;
 mod render_settings;
+mod shift;
 mod texture;
 
 pub use camera::Camera;

@@ -1,7 +1,10 @@
 //! Language server: the diagnostics of one open document, exactly those of `scnc check` on its
 //! text (compile, then build: a missing OBJ or texture is reported too), as LSP diagnostics with
 //! the same codes, UTF-16 ranges, secondary labels as related information and the help text.
-//! Each carries a link to its code's explanation ([`explain_url`]).
+//! Each carries a link to its code's explanation ([`explain_url`]). The server keeps one
+//! [`Incremental`] front end per open document ([`check_incremental`]), so that as you type in
+//! a large scene only the statements you changed are parsed and checked again (the result is
+//! the full compile's, `tests/incremental.rs`).
 
 use std::path::Path;
 
@@ -13,7 +16,7 @@ use lsp_types::{
 use super::position::LineIndex;
 use crate::assets::Loader;
 use crate::bvh::AccelKind;
-use crate::compile::compile;
+use crate::compile::{Incremental, Overrides};
 use crate::diag::{Code, Diagnostic, Severity, Staged};
 use crate::scene::{self, BuildOptions};
 use crate::source::{SourceMap, Span};
@@ -21,12 +24,22 @@ use crate::source::{SourceMap, Span};
 /// Every diagnostic `scnc check PATH` reports, reading files through `loader`, with the sources
 /// their spans point into.
 pub fn check(path: &Path, loader: &dyn Loader) -> (Vec<Diagnostic>, SourceMap) {
+    check_incremental(&mut Incremental::new(Overrides::default()), path, loader)
+}
+
+/// [`check`] through `front`, which remembers the document's last compile.
+pub fn check_incremental(
+    front: &mut Incremental,
+    path: &Path,
+    loader: &dyn Loader,
+) -> (Vec<Diagnostic>, SourceMap) {
     let mut sources = SourceMap::new();
     let options = BuildOptions {
         accel: AccelKind::None,
         camera: None,
     };
-    let checked: Staged<()> = compile(path, loader, &mut sources)
+    let checked: Staged<()> = front
+        .compile(path, loader, &mut sources)
         .and_then(|desc| scene::build(&desc, loader, &options).map(|_| ()));
     (checked.diagnostics, sources)
 }

@@ -14,7 +14,9 @@
 //! during continuous typing); a run always checks the newest text, so no stale result is ever
 //! published. Every open document is re-checked after any change, so editing an included file
 //! re-checks the files that include it. An open document's text is read instead of the disk
-//! ([`documents::OverlayLoader`]), for the document itself and for includes.
+//! ([`documents::OverlayLoader`]), for the document itself and for includes. Each document
+//! keeps its [`Incremental`] front end, so a check after typing parses and checks again only
+//! the statements that changed.
 
 pub mod assist;
 pub mod blocks;
@@ -34,6 +36,8 @@ pub mod semantic;
 pub mod symbols;
 pub mod workspace;
 
+use std::collections::BTreeMap;
+use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use crossbeam_channel::RecvTimeoutError;
@@ -51,6 +55,7 @@ use lsp_types::{
 use documents::Documents;
 use position::LineIndex;
 
+use crate::compile::{Incremental, Overrides};
 use crate::source::FileId;
 
 /// Quiet time after a change before the documents are checked.
@@ -99,6 +104,7 @@ pub fn serve(connection: &Connection) -> Result<(), LspError> {
     Server {
         connection,
         documents: Documents::default(),
+        fronts: BTreeMap::new(),
         dirty_since: None,
     }
     .run()
@@ -107,6 +113,8 @@ pub fn serve(connection: &Connection) -> Result<(), LspError> {
 struct Server<'c> {
     connection: &'c Connection,
     documents: Documents,
+    /// The incremental front end of each open document, by path (its last compile).
+    fronts: BTreeMap<PathBuf, Incremental>,
     /// When the oldest unchecked change arrived.
     dirty_since: Option<Instant>,
 }
@@ -182,6 +190,9 @@ impl Server<'_> {
                 if let Ok(p) =
                     n.extract::<lsp_types::DidCloseTextDocumentParams>(DidCloseTextDocument::METHOD)
                 {
+                    if let Some(d) = self.documents.get(&p.text_document.uri) {
+                        self.fronts.remove(&d.path);
+                    }
                     self.documents.close(&p.text_document.uri);
                     self.publish(p.text_document.uri, Vec::new(), None)?;
                     self.changed();
@@ -205,7 +216,11 @@ impl Server<'_> {
         let loader = self.documents.loader();
         let mut published = Vec::new();
         for (uri, document) in self.documents.iter() {
-            let (found, sources) = diagnostics::check(&document.path, &loader);
+            let front = self
+                .fronts
+                .entry(document.path.clone())
+                .or_insert_with(|| Incremental::new(Overrides::default()));
+            let (found, sources) = diagnostics::check_incremental(front, &document.path, &loader);
             let lsp = diagnostics::to_lsp(&document.path, &found, &sources);
             published.push((uri.clone(), lsp, document.version));
         }

@@ -65,6 +65,7 @@ fn build_with(
         problems: Vec::new(),
         meshes: Vec::new(),
         mesh_slots: vec![None; desc.meshes.len()],
+        mesh_bounds: Vec::new(),
         origin: DVec3::ZERO,
     };
     let assets_start = Instant::now();
@@ -122,6 +123,9 @@ struct Builder<'a> {
     meshes: Vec<TriMesh>,
     /// Per `ir::MeshId`: not tried yet, or `Some(index into meshes)` / `Some(None)` if it failed.
     mesh_slots: Vec<Option<Option<u32>>>,
+    /// Per loaded mesh: its object-space bounds once computed (`Some(None)`: no positions).
+    /// Many objects place one mesh; its bounds are found once, not once per object.
+    mesh_bounds: Vec<Option<Option<(Vec3, Vec3)>>>,
     /// World position of the render-ready scene's (0, 0, 0) (see `origin`).
     origin: DVec3,
 }
@@ -229,7 +233,13 @@ impl Builder<'_> {
         mut env: Option<Environment>,
         parts: &mut PartTables,
     ) -> Lights {
-        let boxes = world_boxes(&self.meshes, instances);
+        // Only a one-sided area light asks where the geometry is.
+        let one_sided = |l: &ir::Light| matches!(l, ir::Light::Area(a) if !a.two_sided);
+        let boxes = if self.desc.lights.iter().any(one_sided) {
+            world_boxes(&self.meshes, instances)
+        } else {
+            Vec::new()
+        };
         let mut lights = Vec::new();
         for light in &self.desc.lights {
             match light {

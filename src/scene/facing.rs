@@ -22,11 +22,11 @@ pub(super) fn faces_away(light: &[[Vec3; 3]], boxes: &[[Vec3; 8]]) -> bool {
 }
 
 /// World-space bounds of every instance placed so far (the objects, before any emitter).
+/// Each mesh's bounds are found once, however many instances place it.
 pub(super) fn world_boxes(meshes: &[TriMesh], instances: &[SceneInstance]) -> Vec<[Vec3; 8]> {
-    instances
+    let bounds: Vec<(Vec3, Vec3)> = meshes
         .iter()
-        .filter_map(|inst| {
-            let m = &meshes[inst.mesh as usize];
+        .map(|m| {
             let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
             for t in &m.triangles {
                 for &i in t {
@@ -34,6 +34,13 @@ pub(super) fn world_boxes(meshes: &[TriMesh], instances: &[SceneInstance]) -> Ve
                     hi = hi.max(m.positions[i as usize]);
                 }
             }
+            (lo, hi)
+        })
+        .collect();
+    instances
+        .iter()
+        .filter_map(|inst| {
+            let (lo, hi) = bounds[inst.mesh as usize];
             lo.cmple(hi).all().then(|| {
                 std::array::from_fn(|k| {
                     let corner =

@@ -46,6 +46,44 @@ pub(super) fn parse(file: FileId, text: &str) -> Option<(Vec<Stmt>, Vec<Diagnost
     }
 }
 
+/// The statements of `text[start..end]` as a parse of the whole of `text` finds them when it
+/// reaches `start` (a statement's parse reads the text from its start on, and a top-level
+/// statement's start is all the state the parser carries): `None` unless each one parses and
+/// the last one is followed by nothing but whitespace and comments up to `end` exactly, or when
+/// a statement had a diagnostic (the caller then parses the whole file).
+pub(super) fn parse_region(
+    file: FileId,
+    text: &str,
+    start: usize,
+    end: usize,
+) -> Option<Vec<Stmt>> {
+    let mut c = Cursor::new(file, text);
+    c.pos = start;
+    let mut statements = Vec::new();
+    let mut diags = Vec::new();
+    loop {
+        c.skip();
+        if c.pos == end.min(text.len()) {
+            return Some(statements);
+        }
+        if c.pos > end {
+            return None;
+        }
+        let at = c.pos;
+        match c.statement() {
+            Some(s) => statements.push(s),
+            None => {
+                let (s, after) = pest_statement(file, text, at, &mut diags)?;
+                if !diags.is_empty() {
+                    return None;
+                }
+                statements.push(s);
+                c.pos = after;
+            }
+        }
+    }
+}
+
 /// One statement at `start` parsed by pest and converted; its end offset.
 fn pest_statement(
     file: FileId,

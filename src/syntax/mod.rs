@@ -53,6 +53,18 @@ fn parse_recovering(file: FileId, text: &str) -> (SceneFile, Vec<Diagnostic>) {
     parse_chunks(file, text, &scan::scan(text))
 }
 
+/// The statements of `text[start..end]`, where `start` is the start of a top-level statement
+/// (or of the file) and `end` the start of another (or the end of the file), exactly as
+/// [`parse`] of the whole `text` finds them there; `None` when they are not whole statements,
+/// or on any syntax error or diagnostic (the incremental compile then parses the whole file).
+pub fn parse_region(file: FileId, text: &str, start: usize, end: usize) -> Option<Vec<Stmt>> {
+    let region = text.get(start..end)?;
+    if scan::too_deep(region).is_some() {
+        return None;
+    }
+    fast::parse_region(file, text, start, end)
+}
+
 /// The whole file parsed by pest alone, or `None` on a syntax error: the oracle the fast
 /// parser is tested against.
 #[cfg(test)]

@@ -106,7 +106,7 @@ pub fn run(args: &WatchArgs) -> ExitCode {
         output: args.output.clone(),
         camera: args.camera.clone(),
         cache: BuildCache::new(),
-        overrides: args.overrides.overrides(),
+        front: crate::compile::Incremental::new(args.overrides.overrides()),
     };
     let mut job: Option<RenderJob> = None;
     let mut changed = Vec::new();

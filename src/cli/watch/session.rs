@@ -1,7 +1,8 @@
 //! `scnc watch`: one compile of the loop. Reads the scene and its includes and assets through a
 //! recording loader (every path asked for, with the content hash of the bytes it got, or
 //! `None` if missing: that is the next watch set), builds through the [`BuildCache`], and says
-//! what was rebuilt.
+//! what was rebuilt. The front end is incremental: an edit of some `object`s re-parses and
+//! re-checks those alone.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -13,7 +14,7 @@ use super::watcher::{absolute, FileSet};
 use crate::assets::Loader;
 use crate::bvh::AccelKind;
 use crate::cli::targets::{camera_index, output_targets};
-use crate::compile::{compile_with, Overrides};
+use crate::compile::{Incremental, Reuse};
 use crate::diag::Staged;
 use crate::film::WriteSettings;
 use crate::ir::SceneDesc;
@@ -83,8 +84,9 @@ pub struct Session {
     pub camera: Option<String>,
     /// What earlier builds made, for reuse.
     pub cache: BuildCache,
-    /// `--frame F`, `--define NAME=VALUE`.
-    pub overrides: Overrides,
+    /// The front end, with `--frame F` and `--define NAME=VALUE`: after an edit of the scene
+    /// file it parses and checks only what changed when it can (`compile::Incremental`).
+    pub front: Incremental,
 }
 
 impl Session {
@@ -93,9 +95,10 @@ impl Session {
         let loader = RecordingLoader::default();
         let mut sources = SourceMap::new();
         let t = Instant::now();
-        let compiled = compile_with(&self.file, &loader, &mut sources, &self.overrides);
+        let compiled = self.front.compile(&self.file, &loader, &mut sources);
         let mut figures = CompileFigures {
             compile_ms: t.elapsed().as_secs_f64() * 1e3,
+            incremental: self.front.reuse != Reuse::Full,
             ..CompileFigures::default()
         };
         let built = compiled.and_then(|desc| {

@@ -31,6 +31,8 @@ pub enum EventsFormat {
 pub struct CompileFigures {
     /// Wall time of the compile.
     pub compile_ms: f64,
+    /// Whether the compile reused the last one (parsed and checked only what changed).
+    pub incremental: bool,
     /// Wall time of the build.
     pub build_ms: f64,
     /// What the build cache had to rebuild.
@@ -102,6 +104,7 @@ impl Status {
             "event": "compiled",
             "ms": ms(f.compile_ms + f.build_ms),
             "compile_ms": ms(f.compile_ms),
+            "incremental": f.incremental,
             "build_ms": ms(f.build_ms),
             "rebuilt": f.rebuilt,
             "meshes_loaded": f.meshes_loaded,

@@ -40,12 +40,22 @@ impl Builder<'_> {
         world_origin(lo, hi)
     }
 
-    /// Object-space bounds of loaded mesh `mesh` (`None` if it has no positions).
-    fn mesh_bounds(&self, mesh: u32) -> Option<(Vec3, Vec3)> {
-        let positions = &self.meshes.get(mesh as usize)?.positions;
+    /// Object-space bounds of loaded mesh `mesh` (`None` if it has no positions), computed
+    /// once per mesh.
+    fn mesh_bounds(&mut self, mesh: u32) -> Option<(Vec3, Vec3)> {
+        let i = mesh as usize;
+        if let Some(Some(known)) = self.mesh_bounds.get(i) {
+            return *known;
+        }
+        let positions = &self.meshes.get(i)?.positions;
         let lo = positions.iter().fold(Vec3::INFINITY, |a, &p| a.min(p));
         let hi = positions.iter().fold(Vec3::NEG_INFINITY, |a, &p| a.max(p));
-        lo.cmple(hi).all().then_some((lo, hi))
+        let bounds = lo.cmple(hi).all().then_some((lo, hi));
+        if self.mesh_bounds.len() <= i {
+            self.mesh_bounds.resize(i + 1, None);
+        }
+        self.mesh_bounds[i] = Some(bounds);
+        bounds
     }
 
     /// Warns when a placement of loaded mesh `mesh` (IR mesh `id`, by `world_from_object`, at

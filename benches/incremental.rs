@@ -1,0 +1,251 @@
+//! Incremental re-checking benchmark (a program, not a test): `cargo bench --bench incremental
+//! [-- --edits N] [-- --objects N]`.
+//!
+//! The scene of issue 22: 100,000 `object` statements, each with a rotate and a translate, over
+//! three meshes and 100 materials (about 9 MB). Each edit changes one digit of one object's
+//! translate in the middle of the file, as a person nudging one object would.
+//!
+//! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
+//!    each edit (the text served from memory; diagnostics are ready when it returns).
+//! 2. `scnc watch --events json --no-serve` (the release binary, a real process) on the file:
+//!    save → `compiled` event (diagnostics printed) and save → first `pass` event (the preview
+//!    image is written before that event), with the compile, build and pass times it reports.
+//!
+//! Medians (and the slowest) are printed; figures go to docs/watch.md by hand.
+
+use std::io::{BufRead, BufReader};
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::sync::mpsc::channel;
+use std::time::{Duration, Instant};
+
+use scnc::assets::MemLoader;
+use scnc::compile::{compile_with, Incremental, Overrides, Reuse};
+use scnc::scene::{self, BuildCache, BuildOptions};
+use scnc::source::SourceMap;
+use serde_json::Value;
+
+/// The scene's lines; object `i` is line `HEADER + i`.
+fn scene(objects: usize) -> Vec<String> {
+    let mut s = vec![
+        "scnc 1".to_string(),
+        "camera main { eye (500, 80, -300)  target (500, 0, 50)  fov 50deg }".into(),
+        "render { resolution 640 x 360  samples 4 }".into(),
+        "mesh tree = icosphere { radius 1  subdivisions 1 }".into(),
+        "mesh rock = box { size (1, 0.5, 1) }".into(),
+        "mesh post = box { size (0.2, 2, 0.2) }".into(),
+    ];
+    for m in 0..100 {
+        s.push(format!(
+            "material m{m} = phong {{ diffuse rgb(0.{}, 0.3, 0.2)  specular 0.05 }}",
+            m % 10
+        ));
+    }
+    debug_assert_eq!(s.len(), HEADER);
+    s.extend((0..objects).map(|i| object_line(i, 0)));
+    s.push("light sun = point { position (500, 100, 0)  intensity 100000 }".into());
+    s
+}
+
+const HEADER: usize = 106;
+
+/// Object `i`, lifted by `y`.
+fn object_line(i: usize, y: usize) -> String {
+    let meshes = ["tree", "rock", "post"];
+    format!(
+        "object {} {{ material m{}  transform {{ rotate y {}deg  translate ({}.25, {y}, {}.5) }} }}",
+        meshes[i % 3],
+        i % 100,
+        i % 360,
+        i % 1000,
+        i / 1000
+    )
+}
+
+/// Edit `k` of `lines`: one object near the middle (another one each time) is lifted, one
+/// line of text changed. Returns the new text.
+fn edit(lines: &mut [String], objects: usize, k: usize) -> String {
+    let i = objects / 2 + (k * 7919) % (objects / 4);
+    lines[HEADER + i] = object_line(i, 1 + k % 9);
+    let mut text = lines.join("\n");
+    text.push('\n');
+    text
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn max(v: &[f64]) -> f64 {
+    v.iter().copied().fold(0.0, f64::max)
+}
+
+fn front_end(objects: usize, edits: usize) {
+    let mut lines = scene(objects);
+    let original = lines.join("\n") + "\n";
+    let path = Path::new("big.scn");
+    let overrides = Overrides::default();
+    let mut full = Vec::new();
+    for _ in 0..3 {
+        let mut loader = MemLoader::new();
+        loader.insert(path, original.as_str());
+        let t = Instant::now();
+        let r = compile_with(path, &loader, &mut SourceMap::new(), &overrides);
+        full.push(t.elapsed().as_secs_f64() * 1e3);
+        assert!(r.value.is_some(), "the scene compiles");
+    }
+    let mut inc = Incremental::new(overrides.clone());
+    let mut loader = MemLoader::new();
+    loader.insert(path, original.as_str());
+    let t = Instant::now();
+    let _ = inc.compile(path, &loader, &mut SourceMap::new());
+    let first = t.elapsed().as_secs_f64() * 1e3;
+    let mut times = Vec::new();
+    let mut cache = BuildCache::new();
+    let opts = BuildOptions::default();
+    let mut build: [Vec<f64>; 3] = Default::default();
+    for k in 0..edits {
+        let mut loader = MemLoader::new();
+        loader.insert(path, edit(&mut lines, objects, k));
+        let t = Instant::now();
+        let r = inc.compile(path, &loader, &mut SourceMap::new());
+        times.push(t.elapsed().as_secs_f64() * 1e3);
+        let desc = r.value.expect("the edit compiles");
+        let built = scene::build_cached(&desc, &loader, &opts, &mut cache)
+            .value
+            .expect("the edit builds");
+        let t = &built.timings;
+        for (v, d) in build.iter_mut().zip([t.total, t.asset_load, t.accel_build]) {
+            v.push(d.as_secs_f64() * 1e3);
+        }
+        cache.recycle(built);
+        assert!(
+            matches!(inc.reuse, Reuse::Statements { checked: 1, .. }),
+            "edit {k} took {:?}",
+            inc.reuse
+        );
+    }
+    println!(
+        "front end, {} bytes: full compile median {:.1} ms; incremental: first (full, with memo) \
+         {first:.1} ms, one-object edit median {:.1} ms (slowest {:.1} ms, {edits} edits)",
+        original.len(),
+        median(&mut full),
+        median(&mut times.clone()),
+        max(&times)
+    );
+    let [mut total, mut assets, mut accel] = build;
+    println!(
+        "scene::build_cached after each edit: median {:.1} ms (meshes and checks {:.1} ms, \
+         acceleration structure {:.1} ms)",
+        median(&mut total),
+        median(&mut assets),
+        median(&mut accel)
+    );
+}
+
+fn watch(objects: usize, edits: usize) {
+    let mut lines = scene(objects);
+    let original = lines.join("\n") + "\n";
+    let dir = std::env::temp_dir().join(format!("scnc-incr-bench-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let scn = dir.join("big.scn");
+    std::fs::write(&scn, &original).expect("write scene");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_scnc"))
+        .current_dir(&dir)
+        .args([
+            "watch",
+            "big.scn",
+            "--events",
+            "json",
+            "--no-serve",
+            "--no-clear",
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("start scnc watch");
+    let stdout = child.stdout.take().expect("piped");
+    let (tx, rx) = channel();
+    std::thread::spawn(move || {
+        for line in BufReader::new(stdout).lines().map_while(Result::ok) {
+            if let Ok(v) = serde_json::from_str::<Value>(&line) {
+                if tx.send((Instant::now(), v)).is_err() {
+                    return;
+                }
+            }
+        }
+    });
+    let wait = |name: &str, final_only: bool| -> (Instant, Value) {
+        loop {
+            let (t, v) = rx
+                .recv_timeout(Duration::from_secs(120))
+                .expect("scnc watch answers");
+            if v["event"] == "error" {
+                panic!("the scene failed: {v}");
+            }
+            if v["event"] == name && (!final_only || v["final"] == true) {
+                return (t, v);
+            }
+        }
+    };
+    let (_, first) = wait("compiled", false);
+    wait("pass", true);
+    let mut figures: [Vec<f64>; 6] = Default::default();
+    let mut incremental = 0;
+    for k in 0..edits {
+        let text = edit(&mut lines, objects, 1000 + k);
+        let t0 = Instant::now();
+        std::fs::write(&scn, text).expect("save");
+        let (t1, c) = wait("compiled", false);
+        let (t2, p) = wait("pass", false);
+        incremental += usize::from(c["incremental"] == true);
+        let f = [
+            (t1 - t0).as_secs_f64() * 1e3,
+            (t2 - t0).as_secs_f64() * 1e3,
+            c["compile_ms"].as_f64().unwrap_or(0.0),
+            c["build_ms"].as_f64().unwrap_or(0.0),
+            p["ms"].as_f64().unwrap_or(0.0),
+            0.0,
+        ];
+        for (v, x) in figures.iter_mut().zip(f) {
+            v.push(x);
+        }
+        wait("pass", true);
+    }
+    let _ = child.kill();
+    let _ = child.wait();
+    let _ = std::fs::remove_dir_all(&dir);
+    let [mut diag, mut image, mut compile, mut build, mut pass, _] = figures;
+    println!(
+        "scnc watch, first compile {:.0} ms + build {:.0} ms; {edits} one-object edits \
+         ({incremental} incremental): save -> diagnostics (compiled event) median {:.1} ms \
+         (slowest {:.1}), save -> first image median {:.1} ms (slowest {:.1}); of which \
+         compile {:.1} ms, build {:.1} ms, first pass (1 spp, 640x360) {:.1} ms",
+        first["compile_ms"].as_f64().unwrap_or(0.0),
+        first["build_ms"].as_f64().unwrap_or(0.0),
+        median(&mut diag),
+        max(&diag),
+        median(&mut image),
+        max(&image),
+        median(&mut compile),
+        median(&mut build),
+        median(&mut pass)
+    );
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let arg = |name: &str, default: usize| {
+        args.iter()
+            .position(|a| a == name)
+            .and_then(|i| args.get(i + 1))
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(default)
+    };
+    let edits = arg("--edits", 15);
+    let objects = arg("--objects", 100_000);
+    front_end(objects, edits);
+    watch(objects, edits);
+}

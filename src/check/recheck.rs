@@ -1,0 +1,244 @@
+//! Stage 2, check, incrementally: keeps what a full check of a file's statements learnt (the
+//! constants, the declaration tables, the IR, every diagnostic in the order it was found, and
+//! one [`StmtRecord`] per statement) so that after an edit that changed only top-level `object`
+//! statements, those alone are checked again and spliced in (`compile::incremental` decides
+//! when an edit is such an edit; everything else is a full check).
+//!
+//! Why the result is the full check's: an `object` is checked in the placement phase, after
+//! every constant and declaration, reading only constants, the `frame`, the name tables and the
+//! source text, and writing only its diagnostics, its IR object and the use of one mesh and one
+//! material. Its diagnostics and objects sit in one run of the check's order (placements in
+//! statement order), so they are cut out and the new ones put in their place. The IR's indices
+//! of meshes and materials depend only on which are used: when an edit makes one used or
+//! unused (a use count reaches or leaves zero) the re-check declines. All other spans move by
+//! the edit's [`Shift`]; one that reaches into the edited bytes also makes it decline.
+
+use std::ops::Range;
+
+use super::names::Table;
+use super::{Checker, PlacementStart, StmtRecord};
+use crate::diag::Diagnostic;
+use crate::ir;
+use crate::source::{Shift, SourceMap};
+use crate::syntax::Stmt;
+
+/// What a full check of one statement list leaves for re-checking its `object`s.
+pub struct CheckMemo {
+    frame: f64,
+    lets: std::collections::HashMap<String, (super::Value, crate::source::Span)>,
+    poisoned: std::collections::HashSet<String>,
+    defines: std::collections::HashMap<String, (crate::syntax::Expr, bool)>,
+    tables: [Table; 6],
+    material_map: Vec<Option<u32>>,
+    mesh_map: Vec<Option<u32>>,
+    /// Declarations something other than an object had used before the placements.
+    used_before: PlacementStart,
+    material_uses: Vec<u32>,
+    mesh_uses: Vec<u32>,
+    /// One per statement, in statement order.
+    pub records: Vec<StmtRecord>,
+    /// Every diagnostic of the check, in the order it was found.
+    pub diagnostics: Vec<Diagnostic>,
+    /// The scene, also when there were errors (`None` when the render settings failed).
+    pub scene: Option<ir::SceneDesc>,
+}
+
+/// [`super::check_with`], keeping a [`CheckMemo`]: its `scene` (filtered by errors) and its
+/// `diagnostics` are that check's result.
+pub fn check_tracked(
+    statements: &[Stmt],
+    sources: &SourceMap,
+    frame: f64,
+    defines: Vec<(String, crate::syntax::Expr)>,
+) -> CheckMemo {
+    let mut cx = Checker::new(sources);
+    cx.frame = frame;
+    cx.defines = defines.into_iter().map(|(n, e)| (n, (e, false))).collect();
+    let mut records = Vec::new();
+    let mut start = None;
+    let scene = cx.run(statements, Some((&mut records, &mut start)));
+    let used_before = start.unwrap_or(PlacementStart {
+        diags: cx.diags.len(),
+        used_meshes: Vec::new(),
+        used_materials: Vec::new(),
+    });
+    CheckMemo {
+        frame: cx.frame,
+        lets: std::mem::take(&mut cx.lets),
+        poisoned: std::mem::take(&mut cx.poisoned),
+        defines: std::mem::take(&mut cx.defines),
+        tables: std::mem::take(&mut cx.tables),
+        material_map: std::mem::take(&mut cx.material_map),
+        mesh_map: std::mem::take(&mut cx.mesh_map),
+        used_before,
+        material_uses: std::mem::take(&mut cx.material_uses),
+        mesh_uses: std::mem::take(&mut cx.mesh_uses),
+        records,
+        diagnostics: std::mem::take(&mut cx.diags),
+        scene,
+    }
+}
+
+/// The re-check of some `object`s: their diagnostics, IR objects (table indices) and records.
+struct Rechecked {
+    diags: Vec<Diagnostic>,
+    objects: Vec<ir::Object>,
+    records: Vec<StmtRecord>,
+}
+
+impl CheckMemo {
+    /// Replaces the check of the statements `old` (indices into the old list, every one a
+    /// top-level `object`) by that of `new` (every one a top-level `object`), all other spans
+    /// moving by `shift`; `sources` holds the new text. `false` when the result could differ
+    /// from a full check's: the memo is then spoiled, and the caller checks in full.
+    pub fn recheck(
+        &mut self,
+        sources: &SourceMap,
+        old: Range<usize>,
+        new: &[Stmt],
+        shift: &Shift,
+    ) -> bool {
+        let Some(old_records) = self.records.get(old.clone()) else {
+            return false;
+        };
+        if !old_records.iter().all(|r| r.object)
+            || !new.iter().all(|s| matches!(s, Stmt::Object(_)))
+        {
+            return false;
+        }
+        let sum = |rs: &[StmtRecord], f: fn(&StmtRecord) -> u32| -> usize {
+            rs.iter().map(|r| f(r) as usize).sum()
+        };
+        let before = &self.records[..old.start];
+        let diag_at = self.used_before.diags + sum(before, |r| r.diags);
+        let diag_range = diag_at..diag_at + sum(old_records, |r| r.diags);
+        let object_at = sum(before, |r| r.objects);
+        let object_range = object_at..object_at + sum(old_records, |r| r.objects);
+        let removed: Vec<StmtRecord> = old_records.to_vec();
+        let was_used = (self.used_meshes(), self.used_materials());
+        let rechecked = self.check_objects(sources, new);
+        for r in &removed {
+            if let Some(m) = r.mesh {
+                self.mesh_uses[m as usize] -= 1;
+            }
+            if let Some(m) = r.material {
+                self.material_uses[m as usize] -= 1;
+            }
+        }
+        if was_used != (self.used_meshes(), self.used_materials()) {
+            return false;
+        }
+        self.splice(diag_range, object_range, old, rechecked, shift)
+    }
+
+    /// Cuts the old statements' results out, moves every other span, puts the new ones in.
+    fn splice(
+        &mut self,
+        diag_range: Range<usize>,
+        object_range: Range<usize>,
+        old: Range<usize>,
+        rechecked: Rechecked,
+        shift: &Shift,
+    ) -> bool {
+        let Rechecked {
+            diags,
+            mut objects,
+            records,
+        } = rechecked;
+        let mut ok = true;
+        if diag_range.end > self.diagnostics.len() {
+            return false;
+        }
+        self.diagnostics.splice(diag_range.clone(), []);
+        for d in &mut self.diagnostics {
+            ok &= d.shift_spans(shift);
+        }
+        self.diagnostics
+            .splice(diag_range.start..diag_range.start, diags);
+        if let Some(scene) = &mut self.scene {
+            if object_range.end > scene.objects.len() {
+                return false;
+            }
+            scene.objects.splice(object_range.clone(), []);
+            ok &= scene.shift_spans(shift);
+            for o in &mut objects {
+                let mesh = self.mesh_map.get(o.mesh as usize).copied().flatten();
+                let material = self
+                    .material_map
+                    .get(o.material as usize)
+                    .copied()
+                    .flatten();
+                o.mesh = mesh.unwrap_or(0);
+                o.material = material.unwrap_or(0);
+            }
+            scene
+                .objects
+                .splice(object_range.start..object_range.start, objects);
+        }
+        for (_, span) in self.lets.values_mut() {
+            ok &= shift.apply(span);
+        }
+        for t in &mut self.tables {
+            for span in &mut t.spans {
+                ok &= shift.apply(span);
+            }
+        }
+        self.records.splice(old, records);
+        ok
+    }
+
+    /// Checks `new` (top-level `object`s) as the placement phase would, against the memo's
+    /// constants and tables, counting their uses.
+    fn check_objects(&mut self, sources: &SourceMap, new: &[Stmt]) -> Rechecked {
+        let mut cx = Checker::new(sources);
+        cx.frame = self.frame;
+        cx.lets = std::mem::take(&mut self.lets);
+        cx.poisoned = std::mem::take(&mut self.poisoned);
+        cx.defines = std::mem::take(&mut self.defines);
+        cx.tables = std::mem::take(&mut self.tables);
+        cx.used_meshes = vec![false; self.mesh_uses.len()];
+        cx.used_materials = vec![false; self.material_uses.len()];
+        cx.mesh_uses = std::mem::take(&mut self.mesh_uses);
+        cx.material_uses = std::mem::take(&mut self.material_uses);
+        let mut records = Vec::with_capacity(new.len());
+        for stmt in new {
+            let (diags, objects) = (cx.diags.len(), cx.objects.len());
+            let (mesh, material) = cx.placement(stmt);
+            records.push(StmtRecord {
+                object: true,
+                diags: (cx.diags.len() - diags) as u32,
+                objects: (cx.objects.len() - objects) as u32,
+                mesh: mesh.map(|m| m as u32),
+                material: material.map(|m| m as u32),
+            });
+        }
+        self.lets = std::mem::take(&mut cx.lets);
+        self.poisoned = std::mem::take(&mut cx.poisoned);
+        self.defines = std::mem::take(&mut cx.defines);
+        self.tables = std::mem::take(&mut cx.tables);
+        self.mesh_uses = std::mem::take(&mut cx.mesh_uses);
+        self.material_uses = std::mem::take(&mut cx.material_uses);
+        Rechecked {
+            diags: std::mem::take(&mut cx.diags),
+            objects: std::mem::take(&mut cx.objects),
+            records,
+        }
+    }
+
+    /// Which meshes are used (by an object, or by something checked before the objects).
+    fn used_meshes(&self) -> Vec<bool> {
+        used(&self.used_before.used_meshes, &self.mesh_uses)
+    }
+
+    /// Which materials are used (as [`CheckMemo::used_meshes`]).
+    fn used_materials(&self) -> Vec<bool> {
+        used(&self.used_before.used_materials, &self.material_uses)
+    }
+}
+
+fn used(before: &[bool], uses: &[u32]) -> Vec<bool> {
+    uses.iter()
+        .enumerate()
+        .map(|(i, &n)| n > 0 || before.get(i).copied().unwrap_or(false))
+        .collect()
+}

@@ -1,0 +1,193 @@
+//! The incremental compile's view of an edit: which bytes changed (common prefix and suffix of
+//! the old and new text, compared at memcmp speed), which top-level statements must be parsed
+//! again, and, once they are, which of them really changed.
+//!
+//! A top-level statement's parse reads the text from its start on: its own bytes, and past its
+//! end only the blanks and the first token after it (to see that nothing continues it, as
+//! `mesh m = quad` looks for a `{`). So the statements to parse again are those from the one
+//! before the first statement the edit touches (its look past its end may now see other text)
+//! up to the first statement that starts after the edited bytes, which, with all after it,
+//! parses as before, moved. The region is parsed from that statement's start, where a parse of
+//! the whole file arrives too, and must end exactly at the next kept statement's new start.
+
+use std::ops::Range;
+
+use crate::source::{FileId, Shift};
+use crate::syntax::Stmt;
+
+/// The part of the file to parse again after an edit.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Region {
+    /// How spans after the edited bytes move.
+    pub shift: Shift,
+    /// The old statements (indices) the region replaces.
+    pub stmts: Range<usize>,
+    /// The region's bytes in the new text.
+    pub bytes: Range<usize>,
+}
+
+/// The region to parse again when `old` became `new`; `spans` are the old statements' byte
+/// ranges, in order. `None` when the texts are equal.
+pub(super) fn region(file: FileId, old: &str, new: &str, spans: &[(u32, u32)]) -> Option<Region> {
+    let (a, b) = (old.as_bytes(), new.as_bytes());
+    let prefix = common_prefix(a, b);
+    if prefix == a.len() && prefix == b.len() {
+        return None;
+    }
+    let max_suffix = a.len().min(b.len()) - prefix;
+    let suffix = common_suffix(&a[a.len() - max_suffix..], &b[b.len() - max_suffix..]);
+    let shift = Shift {
+        file,
+        start: prefix as u32,
+        old_end: (a.len() - suffix) as u32,
+        new_end: (b.len() - suffix) as u32,
+    };
+    // First statement the edit touches (its end at or past the first edited byte), and the one
+    // before it; first statement that starts after the edited bytes.
+    let touched = spans.partition_point(|&(_, end)| end < shift.start);
+    let first = touched.saturating_sub(1);
+    let after = spans.partition_point(|&(start, _)| start < shift.old_end);
+    let after = after.max(first + 1).min(spans.len());
+    let start = match spans.get(first) {
+        Some(&(s, _)) if s <= shift.start => s as usize,
+        _ => 0,
+    };
+    let end = match spans.get(after) {
+        Some(&(s, _)) => (s - shift.old_end + shift.new_end) as usize,
+        None => b.len(),
+    };
+    Some(Region {
+        shift,
+        stmts: first..after,
+        bytes: start..end,
+    })
+}
+
+/// Which old statements of `region` changed, and what replaced them: the region's statements
+/// as parsed again (`parsed`) less those at its ends that are the old ones (same bytes, same
+/// extent), before or after the edited bytes.
+pub(super) fn changed(
+    region: &Region,
+    spans: &[(u32, u32)],
+    mut parsed: Vec<Stmt>,
+) -> (Range<usize>, Vec<Stmt>) {
+    let shift = &region.shift;
+    let mut old = region.stmts.clone();
+    let mut keep_front = 0;
+    while keep_front < parsed.len() && old.start < old.end {
+        let (s, e) = spans[old.start];
+        let span = parsed[keep_front].span();
+        if e > shift.start || (span.start, span.end) != (s, e) {
+            break;
+        }
+        keep_front += 1;
+        old.start += 1;
+    }
+    let mut keep_back = parsed.len();
+    while keep_back > keep_front && old.start < old.end {
+        let (s, e) = spans[old.end - 1];
+        if s < shift.old_end {
+            break;
+        }
+        let span = parsed[keep_back - 1].span();
+        let moved = (
+            s - shift.old_end + shift.new_end,
+            e - shift.old_end + shift.new_end,
+        );
+        if (span.start, span.end) != moved {
+            break;
+        }
+        keep_back -= 1;
+        old.end -= 1;
+    }
+    parsed.truncate(keep_back);
+    parsed.drain(..keep_front);
+    (old, parsed)
+}
+
+/// Length of the common prefix, compared in 64-byte blocks (memcmp) before the tail.
+fn common_prefix(a: &[u8], b: &[u8]) -> usize {
+    const BLOCK: usize = 64;
+    let n = a.len().min(b.len());
+    let mut i = 0;
+    while i + BLOCK <= n && a[i..i + BLOCK] == b[i..i + BLOCK] {
+        i += BLOCK;
+    }
+    while i < n && a[i] == b[i] {
+        i += 1;
+    }
+    i
+}
+
+/// Length of the common suffix of two slices of equal length.
+fn common_suffix(a: &[u8], b: &[u8]) -> usize {
+    const BLOCK: usize = 64;
+    let n = a.len().min(b.len());
+    let mut k = 0;
+    while k + BLOCK <= n
+        && a[a.len() - k - BLOCK..a.len() - k] == b[b.len() - k - BLOCK..b.len() - k]
+    {
+        k += BLOCK;
+    }
+    while k < n && a[a.len() - k - 1] == b[b.len() - k - 1] {
+        k += 1;
+    }
+    k
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn spans_of(text: &str) -> Vec<(u32, u32)> {
+        let (file, _) = crate::syntax::parse(FileId(0), text).into_parts();
+        file.map(|f| {
+            f.statements
+                .iter()
+                .map(|s| (s.span().start, s.span().end))
+                .collect()
+        })
+        .unwrap_or_default()
+    }
+
+    #[test]
+    fn equal_texts_have_no_region() {
+        assert_eq!(region(FileId(0), "scnc 1\n", "scnc 1\n", &[(0, 6)]), None);
+    }
+
+    #[test]
+    fn an_edit_inside_one_statement_parses_it_and_the_one_before() {
+        let old = "scnc 1\nlet a = 1\nlet b = 2\nlet c = 3\n";
+        let new = "scnc 1\nlet a = 1\nlet b = 42\nlet c = 3\n";
+        let spans = spans_of(old);
+        let r = region(FileId(0), old, new, &spans).expect("an edit");
+        assert_eq!(r.stmts, 1..3);
+        assert_eq!(&new[r.bytes.clone()], "let a = 1\nlet b = 42\n");
+        let parsed = crate::syntax::parse_region(FileId(0), new, r.bytes.start, r.bytes.end)
+            .expect("parses");
+        let (old_range, replaced) = changed(&r, &spans, parsed);
+        assert_eq!(old_range, 2..3);
+        assert_eq!(replaced.len(), 1);
+        assert_eq!(replaced[0].span().start, 17);
+    }
+
+    #[test]
+    fn an_edit_at_the_end_reaches_the_end() {
+        let old = "scnc 1\nlet a = 1\n";
+        let new = "scnc 1\nlet a = 1\nlet b = 2\n";
+        let spans = spans_of(old);
+        let r = region(FileId(0), old, new, &spans).expect("an edit");
+        // The `let`'s span takes the blanks after its value (as pest's), so it is touched too.
+        assert_eq!(spans[1], (7, 17));
+        assert_eq!(r.stmts, 0..2);
+        assert_eq!(r.bytes, 0..new.len());
+    }
+
+    #[test]
+    fn prefix_and_suffix_never_overlap() {
+        assert_eq!(common_prefix(b"aaaa", b"aaaaaa"), 4);
+        let (old, new) = ("scnc 1\nlet a = 1\n", "scnc 1\nlet a = 1\nlet a = 1\n");
+        let r = region(FileId(0), old, new, &spans_of(old)).expect("an edit");
+        assert!(r.shift.start <= r.shift.old_end && r.shift.start <= r.shift.new_end);
+    }
+}

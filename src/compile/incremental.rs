@@ -1,0 +1,242 @@
+//! The front end, incrementally: [`Incremental::compile`] gives exactly what [`super::compile_with`]
+//! gives (the same IR, the same diagnostics with the same spans, codes and messages, in the same
+//! order), parsing and checking again only what an edit changed when it can.
+//!
+//! It keeps the last compile's text, its top-level statements' byte ranges and the checker's
+//! [`CheckMemo`]. After an edit of the scene file it parses only the statements around the
+//! edited bytes ([`super::edit`]) and, when every statement that changed is a top-level
+//! `object`, re-checks those alone ([`CheckMemo::recheck`]) and moves every other span by the
+//! edit. Anything else is a full compile, which is always correct: a scene with includes or any
+//! syntax error or file-level diagnostic, an edit of a declaration, a constant, a camera or the
+//! render block, an edit that makes a mesh or material used or unused, and any edit where a
+//! kept span would reach into the edited bytes. `scnc watch` and `scnc lsp` compile through it;
+//! `tests/incremental.rs` replays seeded edits and compares every result with a fresh compile.
+
+use std::path::Path;
+
+use super::edit::{self, Region};
+use super::{decode, reading_order, Driver, Overrides};
+use crate::assets::Loader;
+use crate::check::{check_tracked, CheckMemo};
+use crate::diag::{Diagnostic, Staged};
+use crate::ir;
+use crate::source::{FileId, SourceMap};
+use crate::syntax::{self, Stmt};
+
+/// How the last [`Incremental::compile`] went.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Reuse {
+    /// Parsed and checked in full (the first compile, or an edit the fast path declines).
+    #[default]
+    Full,
+    /// The text was the same: the last result again.
+    Unchanged,
+    /// Only the edited statements were parsed, and only changed `object`s checked again.
+    Statements {
+        /// Statements parsed again.
+        parsed: usize,
+        /// `object` statements checked again.
+        checked: usize,
+    },
+}
+
+/// A front end that remembers its last compile of one scene file.
+pub struct Incremental {
+    overrides: Overrides,
+    memo: Option<Memo>,
+    /// How the last compile went.
+    pub reuse: Reuse,
+}
+
+/// What a full compile left for the next edit.
+struct Memo {
+    /// The path compiled, as given.
+    path: std::path::PathBuf,
+    /// Its sources: the scene file (file 0) and the `--define` files after it.
+    sources: SourceMap,
+    /// The byte range of every top-level statement of the scene file, in order.
+    spans: Vec<(u32, u32)>,
+    check: CheckMemo,
+}
+
+impl Incremental {
+    /// A front end compiling with `overrides` (`--frame`, `--define`).
+    pub fn new(overrides: Overrides) -> Incremental {
+        Incremental {
+            overrides,
+            memo: None,
+            reuse: Reuse::Full,
+        }
+    }
+
+    /// [`super::compile_with`] of `path`: the same result, incrementally when the last compile
+    /// was of the same path and the edit allows it.
+    pub fn compile(
+        &mut self,
+        path: &Path,
+        loader: &dyn Loader,
+        sources: &mut SourceMap,
+    ) -> Staged<ir::SceneDesc> {
+        let bytes = loader.read(path);
+        if let (Some(mut memo), Ok(bytes)) = (self.memo.take(), &bytes) {
+            if memo.path == path {
+                if let Some(reuse) = memo.edit(bytes) {
+                    *sources = memo.sources.clone();
+                    let result = memo.result();
+                    self.reuse = reuse;
+                    self.memo = Some(memo);
+                    return result;
+                }
+            }
+        }
+        self.reuse = Reuse::Full;
+        let mut d = Driver::new(loader);
+        d.frame = self.overrides.frame;
+        d.pending_defines.clone_from(&self.overrides.defines);
+        let compiled = match bytes {
+            Ok(bytes) => {
+                d.add_root(path, &path.display().to_string(), &bytes);
+                for (name, value) in std::mem::take(&mut d.pending_defines) {
+                    d.add_define(&name, &value);
+                }
+                if !d.trackable() {
+                    d.finish()
+                } else {
+                    let memo = d.into_memo(path);
+                    *sources = memo.sources.clone();
+                    let result = memo.result();
+                    self.memo = Some(memo);
+                    return result;
+                }
+            }
+            // Read again by the driver, which reports why it cannot be.
+            Err(_) => d.compile_root(path),
+        };
+        let (read, staged) = compiled.into_staged();
+        *sources = read;
+        staged
+    }
+}
+
+impl Driver<'_> {
+    /// Whether the files read allow incremental compiles: one scene file (and the
+    /// `--define`s) with no includes and no diagnostic of its own.
+    fn trackable(&self) -> bool {
+        let includes = self
+            .statements
+            .iter()
+            .any(|s| matches!(s, Stmt::Include { .. }));
+        self.diags.is_empty() && !includes
+    }
+
+    /// The full check, keeping a memo of it.
+    fn into_memo(self, path: &Path) -> Memo {
+        let Driver {
+            sources,
+            statements,
+            frame,
+            defines,
+            ..
+        } = self;
+        let spans = statements
+            .iter()
+            .map(|s| (s.span().start, s.span().end))
+            .collect();
+        let check = check_tracked(&statements, &sources, frame, defines);
+        Memo {
+            path: path.to_path_buf(),
+            sources,
+            spans,
+            check,
+        }
+    }
+}
+
+impl Memo {
+    /// The compile's result: the check's diagnostics in reading order, and the scene unless
+    /// one of them is an error.
+    fn result(&self) -> Staged<ir::SceneDesc> {
+        let mut diags: Vec<Diagnostic> = self.check.diagnostics.clone();
+        reading_order(&mut diags);
+        let failed = diags.iter().any(Diagnostic::is_error);
+        let scene = self.check.scene.as_ref().filter(|_| !failed).cloned();
+        Staged::new(scene, diags)
+    }
+
+    /// Brings the memo to the new text `bytes` of the scene file, or `None` when only a full
+    /// compile can (the memo is then spoiled).
+    fn edit(&mut self, bytes: &[u8]) -> Option<Reuse> {
+        let text = decode(bytes).ok()?;
+        if text.trim().is_empty() {
+            return None;
+        }
+        let root = FileId(0);
+        let old = self.sources.get(root).text.clone();
+        let Some(region) = edit::region(root, &old, text, &self.spans) else {
+            return Some(Reuse::Unchanged);
+        };
+        let parsed = syntax::parse_region(root, text, region.bytes.start, region.bytes.end)?;
+        let parsed_count = parsed.len();
+        let (old_range, new) = edit::changed(&region, &self.spans, parsed);
+        // The version header stays the first statement (the driver's check of it is not redone).
+        if old_range.start == 0 && (!new.is_empty() || !old_range.is_empty()) {
+            return None;
+        }
+        let sources = self.new_sources(text);
+        if !self
+            .check
+            .recheck(&sources, old_range.clone(), &new, &region.shift)
+        {
+            return None;
+        }
+        self.move_spans(&region, old_range, &new)?;
+        self.sources = sources;
+        Some(Reuse::Statements {
+            parsed: parsed_count,
+            checked: new.len(),
+        })
+    }
+
+    /// The sources of a compile of `text`: the scene file's entry with the new text, the
+    /// `--define` files as they were.
+    fn new_sources(&self, text: &str) -> SourceMap {
+        let mut sources = SourceMap::new();
+        for (id, f) in self.sources.files() {
+            let content = if id == FileId(0) {
+                std::sync::Arc::<str>::from(text)
+            } else {
+                f.text.clone()
+            };
+            sources.add(f.path.clone(), f.name.clone(), content);
+        }
+        sources
+    }
+
+    /// The statements' byte ranges after the edit: the changed ones replaced, later ones moved.
+    fn move_spans(
+        &mut self,
+        region: &Region,
+        old: std::ops::Range<usize>,
+        new: &[Stmt],
+    ) -> Option<()> {
+        let shift = &region.shift;
+        let replaced = new.iter().map(|s| (s.span().start, s.span().end));
+        let at = old.start;
+        self.spans.splice(old, []);
+        for span in &mut self.spans {
+            let mut s = crate::source::Span {
+                file: shift.file,
+                start: span.0,
+                end: span.1,
+            };
+            if !shift.apply(&mut s) {
+                return None;
+            }
+            *span = (s.start, s.end);
+        }
+        let tail = self.spans.split_off(at);
+        self.spans.extend(replaced);
+        self.spans.extend(tail);
+        Some(())
+    }
+}
