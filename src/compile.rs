@@ -9,6 +9,8 @@
 //! stage, the files it read going into a [`SourceMap`] the caller keeps for reporting (every
 //! later stage's spans point into it). [`compile_file`] and [`compile_source`] bundle the two
 //! into [`Compiled`] for callers that look at one compile on its own (tests, benches).
+//! [`Incremental`] gives the same result again after an edit, parsing and checking only what
+//! changed when it can (`scnc watch`, `scnc lsp`; see `compile/incremental.rs`).
 
 use std::path::{Component, Path, PathBuf};
 

@@ -129,3 +129,43 @@ fn convert(d: &Diagnostic, range: lsp_types::Range, sources: &SourceMap) -> lsp_
         ..lsp_types::Diagnostic::default()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::assets::MemLoader;
+    use crate::compile::Reuse;
+
+    /// As you type in an object, the document's front end re-checks that object alone, and the
+    /// diagnostics are those of a check from scratch.
+    #[test]
+    fn typing_in_an_object_checks_it_alone_with_the_same_diagnostics() {
+        let path = Path::new("typing.scn");
+        let base = "scnc 1\ncamera c { eye (0, 1, -5)  target (0, 0, 0)  fov 40deg }\n\
+                    material m = phong { diffuse #fff }\nmaterial unused = phong { }\n\
+                    mesh b = box { size 1 }\n\
+                    object b { material m  transform { translate (0, 0, 0) } }\n\
+                    object b { material m  transform { translate (1, 0, 0) } }\n";
+        let mut front = Incremental::new(Overrides::default());
+        let mut loader = MemLoader::new();
+        loader.insert(path, base);
+        let _ = check_incremental(&mut front, path, &loader);
+        for typed in [
+            "translate (1, 2, 0)",
+            "translate (1, 2, 0deg)",
+            "translate (1, 2, 3)",
+        ] {
+            let text = base.replacen("translate (1, 0, 0)", typed, 1);
+            loader.insert(path, text);
+            let (got, _) = check_incremental(&mut front, path, &loader);
+            assert!(
+                matches!(front.reuse, Reuse::Statements { checked: 1, .. }),
+                "{typed}: {:?}",
+                front.reuse
+            );
+            let (want, _) = check(path, &loader);
+            assert_eq!(format!("{got:?}"), format!("{want:?}"), "{typed}");
+            assert!(!got.is_empty(), "the unused material is reported");
+        }
+    }
+}
