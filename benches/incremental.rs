@@ -8,7 +8,8 @@
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
 //!    each edit (the text served from memory; diagnostics are ready when it returns).
 //! 2. `scnc watch --events json --no-serve` (the release binary, a real process) on the file:
-//!    save → `compiled` event (diagnostics printed) and save → first `pass` event (the preview
+//!    save → `checked` event (the front end's diagnostics, before the build), save →
+//!    `compiled` event (after the build) and save → first `pass` event (the preview
 //!    image is written before that event), with the compile, build and pass times it reports.
 //!
 //! Medians (and the slowest) are printed; figures go to docs/watch.md by hand.
@@ -198,7 +199,8 @@ fn watch(objects: usize, edits: usize) {
         let text = edit(&mut lines, objects, 1000 + k);
         let t0 = Instant::now();
         std::fs::write(&scn, text).expect("save");
-        let (t1, c) = wait("compiled", false);
+        let (t1, _) = wait("checked", false);
+        let (t3, c) = wait("compiled", false);
         let (t2, p) = wait("pass", false);
         incremental += usize::from(c["incremental"] == true);
         let f = [
@@ -207,7 +209,7 @@ fn watch(objects: usize, edits: usize) {
             c["compile_ms"].as_f64().unwrap_or(0.0),
             c["build_ms"].as_f64().unwrap_or(0.0),
             p["ms"].as_f64().unwrap_or(0.0),
-            0.0,
+            (t3 - t0).as_secs_f64() * 1e3,
         ];
         for (v, x) in figures.iter_mut().zip(f) {
             v.push(x);
@@ -217,16 +219,17 @@ fn watch(objects: usize, edits: usize) {
     let _ = child.kill();
     let _ = child.wait();
     let _ = std::fs::remove_dir_all(&dir);
-    let [mut diag, mut image, mut compile, mut build, mut pass, _] = figures;
+    let [mut diag, mut image, mut compile, mut build, mut pass, mut built] = figures;
     println!(
         "scnc watch, first compile {:.0} ms + build {:.0} ms; {edits} one-object edits \
-         ({incremental} incremental): save -> diagnostics (compiled event) median {:.1} ms \
-         (slowest {:.1}), save -> first image median {:.1} ms (slowest {:.1}); of which \
+         ({incremental} incremental): save -> diagnostics (checked event) median {:.1} ms \
+         (slowest {:.1}), save -> build done (compiled event) median {:.1} ms, save -> first image median {:.1} ms (slowest {:.1}); of which \
          compile {:.1} ms, build {:.1} ms, first pass (1 spp, 640x360) {:.1} ms",
         first["compile_ms"].as_f64().unwrap_or(0.0),
         first["build_ms"].as_f64().unwrap_or(0.0),
         median(&mut diag),
         max(&diag),
+        median(&mut built),
         median(&mut image),
         max(&image),
         median(&mut compile),

@@ -110,11 +110,15 @@ fn a_camera_only_edit_does_not_rebuild_meshes_or_bvh() {
         (Some(0), Some(2))
     );
 
-    // Moving an object rebuilds the BVH but reloads nothing.
+    // Moving an object rebuilds the BVH but reloads nothing; the front end's result (an
+    // incremental re-check of that object) is announced before the build.
     dir.write(
         "scene.scn",
         &scene(1.7).replace("translate (0, 0, 1)", "translate (0, 0, 2)"),
     );
+    let k = w.expect("checked");
+    assert_eq!(k["warnings"], 0, "{k}");
+    assert!(k["compile_ms"].as_f64().is_some(), "{k}");
     let c = w.expect("compiled");
     assert_eq!(c["rebuilt"], serde_json::json!(["bvh"]), "{c}");
 }

@@ -116,7 +116,9 @@ pub fn run(args: &WatchArgs) -> ExitCode {
         }
         session.cache.retain_current(|p| watcher.hash_of(p));
         status.begin(&changed);
-        let outcome = session.compile();
+        let outcome = session.compile(&|figures, diagnostics, sources| {
+            status.checked(figures, diagnostics, sources);
+        });
         watcher.set(outcome.files);
         let diagnostics = outcome.built.diagnostics;
         match outcome.built.value {

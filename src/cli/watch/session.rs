@@ -15,7 +15,7 @@ use crate::assets::Loader;
 use crate::bvh::AccelKind;
 use crate::cli::targets::{camera_index, output_targets};
 use crate::compile::{Incremental, Reuse};
-use crate::diag::Staged;
+use crate::diag::{Diagnostic, Staged};
 use crate::film::WriteSettings;
 use crate::ir::SceneDesc;
 use crate::scene::cache::content_hash;
@@ -90,8 +90,13 @@ pub struct Session {
 }
 
 impl Session {
-    /// Compiles and builds the scene through one recording loader.
-    pub fn compile(&mut self) -> Outcome {
+    /// Compiles and builds the scene through one recording loader. `checked` is called as
+    /// soon as the front end has succeeded (before the build), with its figures and
+    /// diagnostics, so that they reach the user without waiting for the build.
+    pub fn compile(
+        &mut self,
+        checked: &dyn Fn(&CompileFigures, &[Diagnostic], &SourceMap),
+    ) -> Outcome {
         let loader = RecordingLoader::default();
         let mut sources = SourceMap::new();
         let t = Instant::now();
@@ -101,6 +106,9 @@ impl Session {
             incremental: self.front.reuse != Reuse::Full,
             ..CompileFigures::default()
         };
+        if compiled.value.is_some() {
+            checked(&figures, &compiled.diagnostics, &sources);
+        }
         let built = compiled.and_then(|desc| {
             let t = Instant::now();
             let built = self.build(&desc, &loader);

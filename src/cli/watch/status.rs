@@ -1,6 +1,7 @@
 //! `scnc watch`: what the user sees in the terminal, and the machine-readable event stream.
 //!
-//! Every happening is one JSON event (`{"event":"compiled",…}`, `"pass"`, `"error"`,
+//! Every happening is one JSON event (`{"event":"checked",…}` when the front end is done,
+//! `"compiled"` after the build, `"pass"`, `"error"`,
 //! `"watching"`, `"serving"`, `"stopped"`). With `--events json` each is printed as one line on
 //! stdout (tests and tools read them); otherwise a short human status goes to stderr (clearing
 //! the terminal before each compile unless `--no-clear`), and diagnostics print as in
@@ -96,6 +97,21 @@ impl Status {
                 eprintln!("changed: {}", p.display());
             }
         }
+    }
+
+    /// The front end succeeded (the build follows): its time and its warnings. The human
+    /// status prints nothing here: the `compiled` line follows with every warning.
+    pub fn checked(&self, f: &CompileFigures, warnings: &[Diagnostic], sources: &SourceMap) {
+        let doc: Value =
+            serde_json::from_str(&render_json(warnings, sources)).unwrap_or(Value::Null);
+        let event = json!({
+            "event": "checked",
+            "compile_ms": ms(f.compile_ms),
+            "incremental": f.incremental,
+            "warnings": warnings.len(),
+            "diagnostics": doc.get("diagnostics").cloned().unwrap_or(Value::Array(vec![])),
+        });
+        self.emit(event, || {});
     }
 
     /// A compile and build succeeded, with these warnings.
