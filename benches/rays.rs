@@ -346,6 +346,10 @@ fn main() {
             };
         }
     }
+    let simd = Accel::build(&[], &[], AccelKind::Bvh).simd();
+    println!(
+        "instruction set: {simd:?} (chosen at run time; SCNC_SIMD=portable forces the fallback)\n"
+    );
     println!("| scene | test | ray kind | rays | hits (Embree) | scnc Mrays/CPU-s | Embree Mrays/CPU-s | ratio |");
     println!("|---|---|---|---:|---:|---:|---:|---:|");
     let mut builds = Vec::new();

@@ -4,9 +4,11 @@
 //! [`Accel`] is the one entry point the renderer uses. [`AccelKind::None`] tests every triangle
 //! of every instance (the brute-force oracle that accelerated results are tested against);
 //! [`AccelKind::Bvh`] is the fast path: a two-level BVH (one binned-SAH BVH per mesh in object
-//! space, a top-level BVH over instances), collapsed into flat 4-wide nodes tested with one SSE
-//! slab test each, traversed nearest child first with a fixed stack, leaves tested with the
-//! watertight ray–triangle test. See `docs/bvh.md` for the design and measured figures.
+//! space, a top-level BVH over instances), collapsed into flat 8-wide nodes, traversed nearest
+//! child first with a reused per-thread stack, leaves tested with the watertight ray–triangle
+//! test four or eight triangles at a time. The instruction set (portable SSE or AVX2) is chosen
+//! at run time, per CPU ([`Simd`]); both give the same bits. See `docs/bvh.md` for the design
+//! and measured figures.
 
 mod brute_force;
 mod build;
@@ -14,6 +16,7 @@ mod check;
 mod isa;
 mod mesh_bvh;
 mod node;
+mod query;
 pub mod tally;
 mod traverse;
 mod two_level;
@@ -80,7 +83,7 @@ pub struct Hit {
 pub enum AccelKind {
     /// No acceleration structure: every ray tests every triangle.
     None,
-    /// The two-level, 4-wide BVH: the fast path.
+    /// The two-level, 8-wide BVH: the fast path.
     Bvh,
 }
 
@@ -94,12 +97,12 @@ pub enum TriangleTest {
     Watertight,
 }
 
-/// Counts reported by `--stats`. For the BVH, `nodes` counts 4-wide nodes and `leaves` their
+/// Counts reported by `--stats`. For the BVH, `nodes` counts 8-wide nodes and `leaves` their
 /// leaf children, `triangles` counts each mesh once (instances share it), and `bytes` is
 /// everything the structure holds: nodes, leaf-ordered vertices, triangle ids and instances.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct AccelStats {
-    /// 4-wide nodes over both levels; 0 for brute force.
+    /// 8-wide nodes over both levels; 0 for brute force.
     pub nodes: usize,
     /// Non-empty leaf children of those nodes; 0 for brute force.
     pub leaves: usize,

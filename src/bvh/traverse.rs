@@ -125,8 +125,23 @@ fn walk<I: Isa, F: LeafVisitor>(
                     count = node.count[first];
                     continue;
                 }
-                // Several: sorted far to near, the nearest visited next, the others pushed so
-                // that they pop in order of distance (ties keep lane order, nearer lane first).
+                if rest & (rest - 1) == 0 {
+                    // Two: the nearer visited next, the other pushed (on a tie the later lane
+                    // goes first, as the sort below orders them).
+                    let second = rest.trailing_zeros() as usize;
+                    let (near, far) = if t[second] <= t[first] {
+                        (second, first)
+                    } else {
+                        (first, second)
+                    };
+                    stack[sp] = (node.child[far], node.count[far], t[far]);
+                    sp += 1;
+                    child = node.child[near];
+                    count = node.count[near];
+                    continue;
+                }
+                // More: sorted far to near, the nearest visited next, the others pushed so
+                // that they pop in order of distance (on a tie the later lane goes first).
                 let mut hits = [(0.0f32, 0usize); WIDTH];
                 hits[0] = (t[first], first);
                 let mut n = 1;

@@ -12,10 +12,11 @@ use rayon::prelude::*;
 use super::build::{build, PrimBox, PrimRef};
 use super::isa::{Isa, Portable, Simd};
 use super::mesh_bvh::{MeshBvh, MollerTrumbore, TriTest, Watertight};
-use super::traverse::{traverse, with_stacks, Entry, LeafVisitor, STACK_MAX};
+use super::query::{AnyOn, ClosestOn, TopAny, TopClosest};
+use super::traverse::{traverse, with_stacks, Entry, STACK_MAX};
 use super::wide::{collapse, Wide, WideNode, WideRay};
 use super::{AccelStats, Hit, Instance, MeshRef, TriangleTest};
-use crate::geom::avx2::{Avx2, Avx2Kernel};
+use crate::geom::avx2::Avx2;
 use crate::geom::{Aabb, Ray};
 
 /// An instance that survived validation (its mesh exists and has triangles, its transform is
@@ -211,7 +212,7 @@ impl TwoLevel {
     }
 
     #[inline(always)]
-    fn closest_in<T: TriTest, I: Isa>(
+    pub(super) fn closest_in<T: TriTest, I: Isa>(
         &self,
         isa: I,
         p: &Placed,
@@ -239,7 +240,7 @@ impl TwoLevel {
     /// level's and the bottom level's). No closures: everything here is inlined into the
     /// AVX2 kernel, which a closure's body might not be.
     #[inline(always)]
-    fn closest_with<T: TriTest, I: Isa>(
+    pub(super) fn closest_with<T: TriTest, I: Isa>(
         &self,
         isa: I,
         ray: &Ray,
@@ -266,7 +267,7 @@ impl TwoLevel {
 
     /// Whether anything blocks `ray` inside instance `p`.
     #[inline(always)]
-    fn any_in<T: TriTest, I: Isa>(
+    pub(super) fn any_in<T: TriTest, I: Isa>(
         &self,
         isa: I,
         p: &Placed,
@@ -280,7 +281,12 @@ impl TwoLevel {
 
     /// The any-hit query, as [`Self::closest_with`].
     #[inline(always)]
-    fn any_with<T: TriTest, I: Isa>(&self, isa: I, ray: &Ray, stacks: &mut [Entry]) -> bool {
+    pub(super) fn any_with<T: TriTest, I: Isa>(
+        &self,
+        isa: I,
+        ray: &Ray,
+        stacks: &mut [Entry],
+    ) -> bool {
         let (top_stack, mesh_stack) = stacks.split_at_mut(STACK_MAX);
         if let [p] = self.placed.as_slice() {
             return self.any_in::<T, I>(isa, p, ray, ray.t_max, mesh_stack);
@@ -388,91 +394,5 @@ impl TwoLevel {
             s.bytes += m.bytes();
         }
         s
-    }
-}
-
-/// The top level's closest-hit leaf test: each instance's bottom level.
-struct TopClosest<'a, T, I> {
-    accel: &'a TwoLevel,
-    isa: I,
-    ray: &'a Ray,
-    stack: &'a mut [Entry],
-    best: Option<Hit>,
-    test: PhantomData<T>,
-}
-
-impl<T: TriTest, I: Isa> LeafVisitor for &mut TopClosest<'_, T, I> {
-    #[inline(always)]
-    fn visit(&mut self, first: u32, count: u32, t_max: &mut f32) -> bool {
-        let a = self.accel;
-        for &k in &a.top_order[first as usize..(first + count) as usize] {
-            let p = &a.placed[k as usize];
-            if let Some(h) = a.closest_in::<T, I>(self.isa, p, self.ray, t_max, self.stack) {
-                self.best = Some(h);
-            }
-        }
-        false
-    }
-}
-
-/// The top level's any-hit leaf test.
-struct TopAny<'a, T, I> {
-    accel: &'a TwoLevel,
-    isa: I,
-    ray: &'a Ray,
-    stack: &'a mut [Entry],
-    test: PhantomData<T>,
-}
-
-impl<T: TriTest, I: Isa> LeafVisitor for TopAny<'_, T, I> {
-    #[inline(always)]
-    fn visit(&mut self, first: u32, count: u32, t_max: &mut f32) -> bool {
-        let a = self.accel;
-        for &k in &a.top_order[first as usize..(first + count) as usize] {
-            let p = &a.placed[k as usize];
-            if a.any_in::<T, I>(self.isa, p, self.ray, *t_max, self.stack) {
-                return true;
-            }
-        }
-        false
-    }
-}
-
-/// A query to run on the AVX2 kernels ([`Avx2::run`]): closest-hit (`ANY == false`) or
-/// any-hit, with triangle test `T`.
-struct OnAvx2<'a, T, const ANY: bool> {
-    accel: &'a TwoLevel,
-    ray: &'a Ray,
-    stacks: &'a mut [Entry],
-    test: PhantomData<T>,
-}
-
-type ClosestOn<'a, T> = OnAvx2<'a, T, false>;
-type AnyOn<'a, T> = OnAvx2<'a, T, true>;
-
-impl<'a, T, const ANY: bool> OnAvx2<'a, T, ANY> {
-    fn new(accel: &'a TwoLevel, ray: &'a Ray, stacks: &'a mut [Entry]) -> Self {
-        OnAvx2 {
-            accel,
-            ray,
-            stacks,
-            test: PhantomData,
-        }
-    }
-}
-
-impl<T: TriTest> Avx2Kernel for ClosestOn<'_, T> {
-    type Output = Option<Hit>;
-    #[inline(always)]
-    fn call(self, avx: Avx2) -> Option<Hit> {
-        self.accel.closest_with::<T, _>(avx, self.ray, self.stacks)
-    }
-}
-
-impl<T: TriTest> Avx2Kernel for AnyOn<'_, T> {
-    type Output = bool;
-    #[inline(always)]
-    fn call(self, avx: Avx2) -> bool {
-        self.accel.any_with::<T, _>(avx, self.ray, self.stacks)
     }
 }
