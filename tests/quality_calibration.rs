@@ -28,6 +28,8 @@ const SIDE: u32 = 48;
 /// Samples per pixel of each reference (4096 gives the same figures within 0.01, 0.06 on
 /// cornell's report at 2%, at twice the time).
 const REFERENCE_SPP: u32 = 2048;
+/// Seeds of the adaptive renders, whose squared errors are pooled.
+const SEEDS: [u64; 4] = [7, 8, 9, 10];
 const LUMA: Vec3 = Vec3::new(0.2126, 0.7152, 0.0722);
 
 fn example(name: &str) -> Scene {
@@ -61,7 +63,8 @@ fn luminance(f: &Film) -> Vec<f64> {
     f.pixels().iter().map(|p| p.dot(LUMA) as f64).collect()
 }
 
-/// (measured RMS relative error, reported RMS, mean samples) for each target.
+/// (target, measured RMS relative error, reported RMS, mean samples) for each target, pooled
+/// over [`SEEDS`].
 fn calibrate(name: &str) -> Vec<(f64, f64, f64, f64)> {
     let mut scene = example(name);
     let a = luminance(&reference(&mut scene, REFERENCE_SPP, 1_000_003));
@@ -83,35 +86,46 @@ fn calibrate(name: &str) -> Vec<(f64, f64, f64, f64)> {
     [0.10, 0.05, 0.02]
         .iter()
         .map(|&target| {
-            scene.settings.seed = 7;
-            scene.settings.noise = Some(target as f32);
-            scene.settings.max_samples = Some(4096);
-            let r = run(&scene);
-            let img = luminance(&r.film);
-            let measured = (mean_sq(&img, &a) - reference_noise).max(0.0).sqrt();
-            let n = r.stats.noise;
-            (target, measured, n.rms_relative_error, n.mean_samples())
+            // Pooled over a few seeds: on 48×48 one pixel of relative error 1 moves a single
+            // render's RMS by 2.6% of the image, so one seed says more about that pixel's luck
+            // than about the estimator.
+            let (mut measured_sq, mut reported_sq, mut spp) = (0.0, 0.0, 0.0);
+            for seed in SEEDS {
+                scene.settings.seed = seed;
+                scene.settings.noise = Some(target as f32);
+                scene.settings.max_samples = Some(4096);
+                let r = run(&scene);
+                let img = luminance(&r.film);
+                measured_sq += (mean_sq(&img, &a) - reference_noise).max(0.0);
+                let n = r.stats.noise;
+                reported_sq += n.rms_relative_error.powi(2);
+                spp += n.mean_samples();
+            }
+            let k = SEEDS.len() as f64;
+            (
+                target,
+                (measured_sq / k).sqrt(),
+                (reported_sq / k).sqrt(),
+                spp / k,
+            )
         })
         .collect()
 }
 
-/// cornell is measured and printed but not held to the band yet: at 10% and 5% its report is
-/// 0.7× the measured (two dim pixels that stop all black after their first samples carry half
-/// the squared error), at 2% its measured error is 0.43× the target and the report 1.3× (the
-/// per-sample prior over-states its strongly stratified pixels), and all of it moves by ±0.3
-/// with the seed (docs/quality.md). Issue 21 stays open on it.
+/// The issue's band: measured RMS relative error 0.5–1.1× the target, the reported figure
+/// 0.75–1.25× the measured. env and texture_bench are held to it. cornell is not yet: pooled
+/// over the seeds its 10% render is 0.49× the target (its emitter pixels take `8/target`
+/// samples) and its 5% report 0.74× the measured, so it is held to a wider band that still
+/// catches a regression (docs/quality.md); issue 21 stays open on it.
 #[test]
 fn adaptive_sampling_reaches_the_target_and_reports_it() {
     let mut failures = Vec::new();
-    for (target, measured, reported, spp) in calibrate("cornell") {
-        eprintln!(
-            "cornell target {target}: measured {measured:.4} ({:.2}x), reported {reported:.4} \
-             ({:.2}x the measured), {spp:.1} samples/pixel (not asserted, see above)",
-            measured / target,
-            reported / measured
-        );
-    }
-    for name in ["env", "texture_bench"] {
+    let bands = [
+        ("cornell", 0.45..=1.1, 0.7..=1.25),
+        ("env", 0.5..=1.1, 0.75..=1.25),
+        ("texture_bench", 0.5..=1.1, 0.75..=1.25),
+    ];
+    for (name, measured_band, report_band) in bands {
         for (target, measured, reported, spp) in calibrate(name) {
             let ratio = measured / target;
             let report = reported / measured;
@@ -119,10 +133,10 @@ fn adaptive_sampling_reaches_the_target_and_reports_it() {
                 "{name} target {target}: measured {measured:.4} ({ratio:.2}x), reported \
                  {reported:.4} ({report:.2}x the measured), {spp:.1} samples/pixel"
             );
-            if !(0.5..=1.1).contains(&ratio) {
+            if !measured_band.contains(&ratio) {
                 failures.push(format!("{name} {target}: measured {ratio:.2}x the target"));
             }
-            if !(0.75..=1.25).contains(&report) {
+            if !report_band.contains(&report) {
                 failures.push(format!(
                     "{name} {target}: reported {report:.2}x the measured"
                 ));

@@ -166,6 +166,7 @@ pub fn render_window(
         batch_sizes: estimate::batch_sizes(max_samples),
         emitter_min: estimate::emitter_min_samples(target as f64),
         min: estimate::min_samples(target as f64),
+        black_min: estimate::black_min_samples(target as f64),
     });
     let boosted_offsets = match emitter_pixels.factor() {
         _ if adaptive.is_some() => Vec::new(),
@@ -221,6 +222,9 @@ struct Adaptive {
     emitter_min: u32,
     /// The fewest samples any pixel takes (`estimate::min_samples`).
     min: u32,
+    /// The fewest samples a pixel whose samples are all black takes
+    /// (`estimate::black_min_samples`).
+    black_min: u32,
 }
 
 struct Job<'a> {
@@ -362,7 +366,8 @@ impl Job<'_> {
             let samples = taken..taken + size;
             self.progressive_batch(x, y, &sequences, samples, scale, &mut acc, counts);
             taken += size;
-            if taken >= min && acc.relative_error() <= a.target {
+            let black = acc.is_black() && taken < a.black_min;
+            if taken >= min && !black && acc.relative_error() <= a.target {
                 return acc.finish(taken, false);
             }
         }

@@ -7,7 +7,10 @@
 //! Burley 2020), whose point `j` does not depend on the pixel's sample count. Adaptive renders
 //! use them ([`PixelSequences`]: a few independently scrambled replicates, each continued from
 //! batch to batch); fixed-count renders keep the Hammersley sets above, which measured as good
-//! for a known count (docs/speed.md).
+//! for a known count (docs/speed.md). Known flaw of those sets: sample `s`'s sub-pixel position
+//! and its light sample share the index `s` with no per-stream permutation, so a penumbra pixel
+//! converges to a seed-dependent value (docs/quality.md, "The references are progressive
+//! renders"); fixed-count images were kept bit-identical, so it is not fixed here.
 //!
 //! This lives in `render/`, not in `shade::sampling`: it is the render loop's sample sequence
 //! (which pixel, which sample, which stratum of the pixel's set), while the shading layer only

@@ -1,7 +1,8 @@
 //! `scnc bench quality scene.scn [--out DIR] [--resolution WxH] [--reference-spp N]
 //! [--max-spp N] [--threads N]`: the speed/accuracy curve of one scene, measured.
 //!
-//! Renders a high-sample reference (cached in DIR as `.reference-NAME-HASH.exr`, keyed by a
+//! Renders a high-sample reference (the progressive sampler run to `--reference-spp` samples in
+//! every pixel, cached in DIR as `.reference-NAME-HASH.exr`, keyed by a
 //! hash of the scene's source files, its validated IR and the reference settings; the seed
 //! differs from the measured renders' so their noise is independent of the reference's), then
 //! each quality preset, a sweep of fixed sample counts (1, 4, 16, … up to `--max-spp`) and
@@ -125,7 +126,14 @@ fn quality(args: &QualityArgs) -> Result<(), String> {
         key.write(file.text.as_bytes());
     }
     key.write(serde_json::to_string(&desc).unwrap_or_default().as_bytes());
-    key.write(format!("{} {}", args.reference_spp, env!("CARGO_PKG_VERSION")).as_bytes());
+    key.write(
+        format!(
+            "{} {} progressive",
+            args.reference_spp,
+            env!("CARGO_PKG_VERSION")
+        )
+        .as_bytes(),
+    );
     let ref_path = args
         .out
         .join(format!(".reference-{name}-{:016x}.exr", key.0));
@@ -216,9 +224,13 @@ fn reference(scene: &mut Scene, path: &Path, args: &QualityArgs) -> Result<Film,
         }
     }
     let base = scene.settings.clone();
-    scene.settings.samples_per_pixel = args.reference_spp;
+    // The progressive sampler run to the cap in every pixel (a target no pixel reaches), not a
+    // fixed count: a fixed-count render pairs each sub-pixel position with one light sample by
+    // their common index, so its penumbra pixels converge to a seed-dependent value
+    // (docs/quality.md); the progressive replicates converge to the independent-sample value.
     scene.settings.light_samples = 1;
-    scene.settings.noise = None;
+    scene.settings.noise = Some(1e-7);
+    scene.settings.max_samples = Some(args.reference_spp);
     // Independent of every measured render's samples.
     scene.settings.seed = base.seed ^ 0x005e_ed0f_4efe_4ece;
     let options = RenderOptions {
