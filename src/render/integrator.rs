@@ -95,7 +95,7 @@ pub(super) const STREAM_ENVIRONMENT: u64 = 1;
 pub(super) const STREAM_BRDF: u64 = 2;
 const STREAM_LIGHTS: u64 = 3;
 /// The environment's bright set (`render::mis`), far above the per-light streams.
-pub(super) const STREAM_ENVIRONMENT_BRIGHT: u64 = 1 << 40;
+pub(super) const STREAM_ENVIRONMENT_BRIGHT: u64 = (1 << 40) + 1;
 
 /// Radiance arriving at the camera along `ray` (a unit-direction camera ray), textures filtered
 /// over the whole pixel's footprint (a one-sample pixel's).

@@ -7,10 +7,10 @@
 //! Burley 2020), whose point `j` does not depend on the pixel's sample count. Adaptive renders
 //! use them ([`PixelSequences`]: a few independently scrambled replicates, each continued from
 //! batch to batch); fixed-count renders keep the Hammersley sets above, which measured as good
-//! for a known count (docs/speed.md). Known flaw of those sets: sample `s`'s sub-pixel position
-//! and its light sample share the index `s` with no per-stream permutation, so a penumbra pixel
-//! converges to a seed-dependent value (docs/quality.md, "The references are progressive
-//! renders"); fixed-count images were kept bit-identical, so it is not fixed here.
+//! for a known count (docs/speed.md), each stream visiting its set in its own per-pixel order
+//! ([`permute_index`]): before that, sample `s`'s sub-pixel position, light pick and light
+//! point all took index `s`, so a penumbra pixel converged to a seed-dependent value
+//! (docs/quality.md, "The references are progressive renders").
 //!
 //! This lives in `render/`, not in `shade::sampling`: it is the render loop's sample sequence
 //! (which pixel, which sample, which stratum of the pixel's set), while the shading layer only
@@ -194,6 +194,12 @@ impl Sampler {
             return self.point_2d(stream, j);
         }
         let bits = self.pixel_bits(stream);
+        // Each stream visits the set in its own order: without it, sample `s` would take
+        // point `s` of every stream, so its light point would be a fixed function of its
+        // sub-pixel position (and of its light pick), and a penumbra pixel would converge to a
+        // seed-dependent value instead of the pixel's integral (pbrt-v4's padded sampler
+        // permutes each dimension's index the same way).
+        let j = permute_index(j, n, mix64(bits ^ 0x7f4a_7c15_9e37_79b9) as u32);
         let shift = to_unit(bits);
         let x = wrap_unit((j as f32 + 0.5) / n as f32 + shift);
         // The shift uses the top 24 bits, the scramble the low 32: independent.
@@ -210,6 +216,43 @@ impl Sampler {
         let x = owen_scramble(i.reverse_bits(), seeds as u32);
         let y = owen_scramble(sobol_dim1(i), (seeds >> 32) as u32);
         Vec2::new(bits_to_unit(x), bits_to_unit(y))
+    }
+}
+
+/// Element `i` of a pseudo-random permutation of `0..len` keyed by `key` (Kensler 2013,
+/// "Correlated Multi-Jittered Sampling": a hash bijective on the next power of two, cycle-walked
+/// into `0..len`). `len` 0 is treated as 1.
+#[inline]
+fn permute_index(mut i: u32, len: u32, key: u32) -> u32 {
+    let len = len.max(1);
+    let mut w = len - 1;
+    w |= w >> 1;
+    w |= w >> 2;
+    w |= w >> 4;
+    w |= w >> 8;
+    w |= w >> 16;
+    loop {
+        i ^= key;
+        i = i.wrapping_mul(0xe170_893d);
+        i ^= key >> 16;
+        i ^= (i & w) >> 4;
+        i ^= key >> 8;
+        i = i.wrapping_mul(0x0929_eb3f);
+        i ^= key >> 23;
+        i ^= (i & w) >> 1;
+        i = i.wrapping_mul(1 | key >> 27);
+        i = i.wrapping_mul(0x6935_fa69);
+        i ^= (i & w) >> 11;
+        i = i.wrapping_mul(0x74dc_b303);
+        i ^= (i & w) >> 2;
+        i = i.wrapping_mul(0x9e50_1cc3);
+        i ^= (i & w) >> 2;
+        i = i.wrapping_mul(0xc860_a3df);
+        i &= w;
+        i ^= i >> 5;
+        if i < len {
+            return ((u64::from(i) + u64::from(key)) % u64::from(len)) as u32;
+        }
     }
 }
 
@@ -335,6 +378,42 @@ mod tests {
         let a = Sampler::new(0, 0, 0, 1).stratified_2d(0, 0, 1);
         let b = Sampler::new(0, 0, 0, 2).stratified_2d(0, 0, 1);
         assert_ne!(a, b);
+    }
+
+    #[test]
+    fn index_permutations_are_permutations() {
+        for len in [1u32, 2, 3, 7, 16, 17, 100, 1024] {
+            for key in [0u32, 1, 0xdead_beef, u32::MAX] {
+                let mut seen = vec![false; len as usize];
+                for i in 0..len {
+                    let j = permute_index(i, len, key);
+                    assert!(j < len && !seen[j as usize], "len {len} key {key}");
+                    seen[j as usize] = true;
+                }
+            }
+        }
+        assert_eq!(permute_index(0, 0, 5), 0);
+    }
+
+    #[test]
+    fn streams_of_one_pixel_are_not_tied_to_each_other() {
+        // Sample s's points in two streams: their pairs must fill the square (a light point
+        // that is a function of the sub-pixel position never averages to the pixel's integral).
+        // 4096 samples in an 8×8 grid: 64 expected per cell.
+        let count = 4096;
+        for (px, py) in [(0, 0), (17, 3), (200, 411)] {
+            let mut cells = [0u32; 64];
+            for s in 0..count {
+                let sampler = Sampler::for_pixel_sample(1, px, py, s, count);
+                let a = sampler.stratified_2d(0, s, count).x;
+                let b = sampler.stratified_2d(3, s, count).x;
+                cells[(a * 8.0) as usize * 8 + (b * 8.0) as usize] += 1;
+            }
+            assert!(
+                cells.iter().all(|&c| (32..=96).contains(&c)),
+                "pixel ({px}, {py}): {cells:?}"
+            );
+        }
     }
 
     /// Whether the points put exactly one point in every elementary interval of area 1/n
