@@ -125,6 +125,14 @@ impl Shading<'_> {
         s.radiance * f * (cos * w / s.pdf_solid_angle)
     }
 
+    /// The sky's radiance in direction `wi` (unit) and the effective density of the
+    /// environment's light strategies there (both count against a BRDF sample).
+    fn sky_seen(&self, env: &Environment, wi: Vec3) -> (Vec3, f32) {
+        let (radiance, sky, bright) = env.radiance_and_densities_facing(wi, Some(self.ns));
+        let light = if bright > 0.0 { sky.hypot(bright) } else { sky };
+        (radiance, self.scene.lights.pmf_environment() * light)
+    }
+
     /// Whether anything lies along `ray` (any-hit).
     fn blocked_ray(&self, ray: &Ray) -> bool {
         self.scene.accel.as_ref().is_some_and(|a| a.any_hit(ray))
@@ -176,47 +184,46 @@ impl Shading<'_> {
             }
             counts.brdf += 1;
             let ray = Ray::new(origin, wi);
-            // Only the sky can be reached: whether anything is in the way is all that matters,
-            // and an any-hit query stops at the first thing it finds.
-            let sky_only = !lights.has_emitters();
-            let hit = if sky_only {
+            let (radiance, light_density) = if !lights.has_emitters() {
+                // Only the sky can be reached: whether anything is in the way is all that
+                // matters, and an any-hit query stops at the first thing it finds.
+                let Some(e) = env else {
+                    continue;
+                };
                 if self.blocked_ray(&ray) {
                     continue;
                 }
-                None
+                counts.environment += 1;
+                self.sky_seen(e, wi)
             } else {
-                self.scene.accel.as_ref().and_then(|a| a.closest_hit(&ray))
-            };
-            let (radiance, light_density) = match hit {
-                None => match env {
-                    Some(e) => {
-                        counts.environment += 1;
-                        let (radiance, sky, bright) =
-                            e.radiance_and_densities_facing(wi, Some(self.ns));
-                        // Both light strategies of the environment count against this one.
-                        let light = if bright > 0.0 { sky.hypot(bright) } else { sky };
-                        (radiance, lights.pmf_environment() * light)
+                match self.scene.accel.as_ref().and_then(|a| a.closest_hit(&ray)) {
+                    None => match env {
+                        Some(e) => {
+                            counts.environment += 1;
+                            self.sky_seen(e, wi)
+                        }
+                        None => continue,
+                    },
+                    Some(h) => {
+                        let Some(inst) = self.scene.instances.get(h.instance as usize) else {
+                            continue;
+                        };
+                        let Surface::Emitter(i) = inst.surface else {
+                            continue;
+                        };
+                        let Some(Light::Area(light)) = lights.lights.get(i as usize) else {
+                            continue;
+                        };
+                        let p_light = ray.at(h.t);
+                        let mode = self.scene.light_sampling;
+                        let Some(pdf_light) =
+                            light.pdf(self.hit.p, wi, h.prim as usize, p_light, mode)
+                        else {
+                            continue;
+                        };
+                        let pmf = lights.pmf_light(i as usize);
+                        (light.radiance, light.samples as f32 * pmf * pdf_light)
                     }
-                    None => continue,
-                },
-                Some(h) => {
-                    let Some(inst) = self.scene.instances.get(h.instance as usize) else {
-                        continue;
-                    };
-                    let Surface::Emitter(i) = inst.surface else {
-                        continue;
-                    };
-                    let Some(Light::Area(light)) = lights.lights.get(i as usize) else {
-                        continue;
-                    };
-                    let p_light = ray.at(h.t);
-                    let mode = self.scene.light_sampling;
-                    let Some(pdf_light) = light.pdf(self.hit.p, wi, h.prim as usize, p_light, mode)
-                    else {
-                        continue;
-                    };
-                    let pmf = lights.pmf_light(i as usize);
-                    (light.radiance, light.samples as f32 * pmf * pdf_light)
                 }
             };
             let w = match self.strategy {
