@@ -72,6 +72,10 @@ impl Shading<'_> {
     /// small sun, `shade::light::env_bright`), one of that set too, each weighted against the
     /// other and the BRDF by the power heuristic; `Σ L · f · cos θ / pdf · w` (the caller
     /// divides by `pmf`).
+    ///
+    /// Adaptive renders (`sun_apart` false) draw one sample of the two parts' mixture instead:
+    /// with the sun apart their pixels stopped earlier on error estimates below issue 21's
+    /// calibration band (env at 2%: reported 0.64× the measured; docs/speed.md).
     pub(super) fn environment(
         &self,
         env: &Environment,
@@ -82,6 +86,12 @@ impl Shading<'_> {
         counts: &mut RayCounts,
     ) -> Vec3 {
         let u = sampler.stratified_2d(STREAM_ENVIRONMENT, pick, picks);
+        if !self.sun_apart {
+            return match env.sample_facing(u, Some(self.ns)) {
+                Some(s) => self.environment_sample(&s, pmf, 0.0, counts),
+                None => Vec3::ZERO,
+            };
+        }
         let mut sum = Vec3::ZERO;
         if let Some((s, other)) = env.sample_sky_facing(u, Some(self.ns)) {
             sum += self.environment_sample(&s, pmf, other, counts);
@@ -123,6 +133,19 @@ impl Shading<'_> {
             }
         };
         s.radiance * f * (cos * w / s.pdf_solid_angle)
+    }
+
+    /// The sky's radiance in direction `wi` (unit) and the effective density of the
+    /// environment's light strategies there (both count against a BRDF sample).
+    fn sky_seen(&self, env: &Environment, wi: Vec3) -> (Vec3, f32) {
+        let pmf = self.scene.lights.pmf_environment();
+        if !self.sun_apart {
+            let (radiance, pdf) = env.radiance_and_pdf_facing(wi, Some(self.ns));
+            return (radiance, pmf * pdf);
+        }
+        let (radiance, sky, bright) = env.radiance_and_densities_facing(wi, Some(self.ns));
+        let light = if bright > 0.0 { sky.hypot(bright) } else { sky };
+        (radiance, pmf * light)
     }
 
     /// Whether anything lies along `ray` (any-hit).
@@ -176,47 +199,46 @@ impl Shading<'_> {
             }
             counts.brdf += 1;
             let ray = Ray::new(origin, wi);
-            // Only the sky can be reached: whether anything is in the way is all that matters,
-            // and an any-hit query stops at the first thing it finds.
-            let sky_only = !lights.has_emitters();
-            let hit = if sky_only {
+            let (radiance, light_density) = if !lights.has_emitters() {
+                // Only the sky can be reached: whether anything is in the way is all that
+                // matters, and an any-hit query stops at the first thing it finds.
+                let Some(e) = env else {
+                    continue;
+                };
                 if self.blocked_ray(&ray) {
                     continue;
                 }
-                None
+                counts.environment += 1;
+                self.sky_seen(e, wi)
             } else {
-                self.scene.accel.as_ref().and_then(|a| a.closest_hit(&ray))
-            };
-            let (radiance, light_density) = match hit {
-                None => match env {
-                    Some(e) => {
-                        counts.environment += 1;
-                        let (radiance, sky, bright) =
-                            e.radiance_and_densities_facing(wi, Some(self.ns));
-                        // Both light strategies of the environment count against this one.
-                        let light = if bright > 0.0 { sky.hypot(bright) } else { sky };
-                        (radiance, lights.pmf_environment() * light)
+                match self.scene.accel.as_ref().and_then(|a| a.closest_hit(&ray)) {
+                    None => match env {
+                        Some(e) => {
+                            counts.environment += 1;
+                            self.sky_seen(e, wi)
+                        }
+                        None => continue,
+                    },
+                    Some(h) => {
+                        let Some(inst) = self.scene.instances.get(h.instance as usize) else {
+                            continue;
+                        };
+                        let Surface::Emitter(i) = inst.surface else {
+                            continue;
+                        };
+                        let Some(Light::Area(light)) = lights.lights.get(i as usize) else {
+                            continue;
+                        };
+                        let p_light = ray.at(h.t);
+                        let mode = self.scene.light_sampling;
+                        let Some(pdf_light) =
+                            light.pdf(self.hit.p, wi, h.prim as usize, p_light, mode)
+                        else {
+                            continue;
+                        };
+                        let pmf = lights.pmf_light(i as usize);
+                        (light.radiance, light.samples as f32 * pmf * pdf_light)
                     }
-                    None => continue,
-                },
-                Some(h) => {
-                    let Some(inst) = self.scene.instances.get(h.instance as usize) else {
-                        continue;
-                    };
-                    let Surface::Emitter(i) = inst.surface else {
-                        continue;
-                    };
-                    let Some(Light::Area(light)) = lights.lights.get(i as usize) else {
-                        continue;
-                    };
-                    let p_light = ray.at(h.t);
-                    let mode = self.scene.light_sampling;
-                    let Some(pdf_light) = light.pdf(self.hit.p, wi, h.prim as usize, p_light, mode)
-                    else {
-                        continue;
-                    };
-                    let pmf = lights.pmf_light(i as usize);
-                    (light.radiance, light.samples as f32 * pmf * pdf_light)
                 }
             };
             let w = match self.strategy {

@@ -28,6 +28,7 @@ use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
+use super::env_angles::TexelGrid;
 use super::env_bright::BrightTexels;
 use super::env_sampler::{EnvSampler, TexelSample};
 
@@ -44,6 +45,8 @@ pub struct EnvMap {
     texels: Vec<Vec3>,
     cos_rot: f32,
     sin_rot: f32,
+    /// The texel edges' sines and cosines (lookups and samples without libm trigonometry).
+    grid: TexelGrid,
     /// Solid-angle-weighted mean radiance.
     average: Vec3,
     /// The sky's tables (without the bright texels, if any).
@@ -89,6 +92,7 @@ impl EnvMap {
             texels,
             cos_rot: rotation_y_rad.cos(),
             sin_rot: rotation_y_rad.sin(),
+            grid: TexelGrid::new(width, height),
             average: (sum / weight.max(f64::MIN_POSITIVE)).as_vec3(),
             distribution: None,
             bright: None,
@@ -195,17 +199,7 @@ impl EnvMap {
 
     /// The texel (`col`, `row`) world direction `d` (unit) reads, and the map-space sin θ.
     pub fn texel_of(&self, d: Vec3) -> (usize, usize, f32) {
-        let m = self.to_map(d);
-        let cos_theta = m.y.clamp(-1.0, 1.0);
-        let theta = cos_theta.acos();
-        let mut phi = m.z.atan2(m.x);
-        if phi < 0.0 {
-            phi += 2.0 * PI;
-        }
-        let col = ((phi / (2.0 * PI) * self.width as f32) as usize).min(self.width - 1);
-        let row = ((theta / PI * self.height as f32) as usize).min(self.height - 1);
-        let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
-        (col, row, sin_theta)
+        self.grid.texel_of(self.to_map(d))
     }
 
     /// Radiance arriving from world direction `d` (unit): the nearest texel.
@@ -265,14 +259,16 @@ impl EnvMap {
 
     /// The world direction of a drawn point of the map, its texel's radiance and its density.
     fn texel_sample(&self, s: TexelSample) -> Option<EnvSample> {
-        let theta = PI * s.uv.y;
-        let phi = 2.0 * PI * s.uv.x;
-        let (sin_theta, cos_theta) = theta.sin_cos();
-        if sin_theta <= 0.0 || s.pdf_uv <= 0.0 {
+        if s.pdf_uv <= 0.0 {
             return None;
         }
-        let (sin_phi, cos_phi) = phi.sin_cos();
-        let m = Vec3::new(sin_theta * cos_phi, cos_theta, sin_theta * sin_phi);
+        // The point's place inside its texel.
+        let fx = (s.uv.x * self.width as f32 - s.col as f32).clamp(0.0, 1.0);
+        let fy = (s.uv.y * self.height as f32 - s.row as f32).clamp(0.0, 1.0);
+        let m = self.grid.direction(s.col, s.row, fx, fy);
+        if m.y.abs() >= 1.0 {
+            return None;
+        }
         let wi = self.to_world(m).normalize();
         // The Jacobian's sin θ as `pdf_facing` computes it from the direction (`texel_of`), so
         // that both strategies of multiple importance sampling read one density function (near

@@ -19,6 +19,7 @@
 
 pub mod area;
 pub mod emitter_bounds;
+pub mod env_angles;
 pub mod env_bright;
 pub mod env_map;
 pub mod env_sampler;
