@@ -24,7 +24,7 @@
 //! [`build_cached`]: super::build_cached
 
 use std::collections::HashMap;
-use std::hash::{Hash, Hasher};
+use std::hash::Hash;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
@@ -39,13 +39,13 @@ use crate::ir::{self, AssetPath, MeshSource, TextureEncoding};
 use crate::shade::texture::image::ImageData;
 use crate::shade::EnvMap;
 
-/// A hash of file contents (64-bit SipHash with fixed keys: stable within and across runs of
+/// A hash of file contents (64-bit foldhash with a fixed seed: stable within and across runs of
 /// one build of scnc, which is all a cache needs).
 pub fn content_hash(bytes: &[u8]) -> u64 {
-    #[allow(deprecated)] // SipHasher is the std hasher with fixed keys; stable for our purpose.
-    let mut h = std::hash::SipHasher::new();
-    bytes.hash(&mut h);
-    h.finish()
+    // A fixed seed: the same bytes give the same hash in every run (foldhash's quality
+    // variant; it is compared only within one process, never stored).
+    use std::hash::BuildHasher;
+    foldhash::quality::FixedState::with_seed(0x5c4e_c0de_5eed_0001).hash_one(bytes)
 }
 
 /// What a mesh was made from, without its span (moving a declaration is not a change).

@@ -150,9 +150,15 @@ pub fn run(args: &WatchArgs) -> ExitCode {
 /// Blocks until a watched file's content changed (returns those files) or Ctrl-C (`None`).
 fn wait_for_change(rx: &Receiver<Msg>, watcher: &mut FileWatcher) -> Option<Vec<PathBuf>> {
     loop {
-        match rx.recv_timeout(POLL) {
-            Ok(Msg::Quit) | Err(RecvTimeoutError::Disconnected) => return None,
-            Ok(Msg::Paths(paths)) => {
+        let event = match rx.recv_timeout(POLL) {
+            Ok(Msg::Paths(paths)) => Ok((paths, false)),
+            Ok(Msg::Written(paths)) => Ok((paths, true)),
+            Ok(Msg::Quit) => Err(RecvTimeoutError::Disconnected),
+            Err(e) => Err(e),
+        };
+        match event {
+            Err(RecvTimeoutError::Disconnected) => return None,
+            Ok((paths, written)) => {
                 let first: Vec<PathBuf> = paths
                     .into_iter()
                     .filter(|p| watcher.is_watched(p))
@@ -160,7 +166,7 @@ fn wait_for_change(rx: &Receiver<Msg>, watcher: &mut FileWatcher) -> Option<Vec<
                 if first.is_empty() {
                     continue;
                 }
-                let batch = batch::gather(rx, first, batch::QUIET, batch::CAP, |p| {
+                let batch = batch::gather(rx, first, written, batch::QUIET, batch::CAP, |p| {
                     watcher.is_watched(p)
                 });
                 if batch.quit {

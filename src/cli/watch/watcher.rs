@@ -30,8 +30,20 @@ impl FileWatcher {
     pub fn new(tx: Sender<Msg>) -> notify::Result<FileWatcher> {
         let notify = notify::recommended_watcher(move |event: notify::Result<notify::Event>| {
             if let Ok(event) = event {
+                use notify::event::{AccessKind, AccessMode, ModifyKind, RenameMode};
+                use notify::EventKind;
+                let written = matches!(
+                    event.kind,
+                    EventKind::Access(AccessKind::Close(AccessMode::Write))
+                        | EventKind::Modify(ModifyKind::Name(RenameMode::To | RenameMode::Both))
+                );
+                let msg = if written {
+                    Msg::Written(event.paths)
+                } else {
+                    Msg::Paths(event.paths)
+                };
                 // The loop may have ended; then nobody needs the event.
-                let _ = tx.send(Msg::Paths(event.paths));
+                let _ = tx.send(msg);
             }
         })?;
         Ok(FileWatcher {
