@@ -203,8 +203,6 @@ fn shade(
         wo,
         strategy: strategy_at(scene, &phong),
         phong,
-        // Fixed-count renders only: see `render::mis::Shading::environment`.
-        sun_apart: sampler.index().1 > 0,
     };
     mat.ambient + at.lights(sampler, counts) + at.brdf_rays(sampler, counts)
 }
@@ -220,9 +218,6 @@ pub(super) struct Shading<'a> {
     /// The scene's strategy, or light sampling alone where BRDF rays cannot help
     /// ([`strategy_at`]).
     pub(super) strategy: DirectStrategy,
-    /// Whether the environment's bright set (a sun) is sampled apart from the rest of the sky
-    /// (`render::mis`), or both as one mixture.
-    pub(super) sun_apart: bool,
 }
 
 impl Shading<'_> {

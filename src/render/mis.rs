@@ -72,10 +72,6 @@ impl Shading<'_> {
     /// small sun, `shade::light::env_bright`), one of that set too, each weighted against the
     /// other and the BRDF by the power heuristic; `Σ L · f · cos θ / pdf · w` (the caller
     /// divides by `pmf`).
-    ///
-    /// Adaptive renders (`sun_apart` false) draw one sample of the two parts' mixture instead:
-    /// with the sun apart their pixels stopped earlier on error estimates below issue 21's
-    /// calibration band (env at 2%: reported 0.64× the measured; docs/speed.md).
     pub(super) fn environment(
         &self,
         env: &Environment,
@@ -86,12 +82,6 @@ impl Shading<'_> {
         counts: &mut RayCounts,
     ) -> Vec3 {
         let u = sampler.stratified_2d(STREAM_ENVIRONMENT, pick, picks);
-        if !self.sun_apart {
-            return match env.sample_facing(u, Some(self.ns)) {
-                Some(s) => self.environment_sample(&s, pmf, 0.0, counts),
-                None => Vec3::ZERO,
-            };
-        }
         let mut sum = Vec3::ZERO;
         if let Some((s, other)) = env.sample_sky_facing(u, Some(self.ns)) {
             sum += self.environment_sample(&s, pmf, other, counts);
@@ -139,10 +129,6 @@ impl Shading<'_> {
     /// environment's light strategies there (both count against a BRDF sample).
     fn sky_seen(&self, env: &Environment, wi: Vec3) -> (Vec3, f32) {
         let pmf = self.scene.lights.pmf_environment();
-        if !self.sun_apart {
-            let (radiance, pdf) = env.radiance_and_pdf_facing(wi, Some(self.ns));
-            return (radiance, pmf * pdf);
-        }
         let (radiance, sky, bright) = env.radiance_and_densities_facing(wi, Some(self.ns));
         let light = if bright > 0.0 { sky.hypot(bright) } else { sky };
         (radiance, pmf * light)
