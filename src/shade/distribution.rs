@@ -15,17 +15,20 @@ pub struct Distribution1D {
 /// Tables this long get a guide.
 const GUIDED_LEN: usize = 64;
 
+/// A table weight as the samplers count it: itself when positive and finite, else 0 (a NaN or
+/// negative texel must not break a table), in f64 for the sums.
+pub fn clean_weight(w: f32) -> f64 {
+    if w.is_finite() && w > 0.0 {
+        w as f64
+    } else {
+        0.0
+    }
+}
+
 impl Distribution1D {
     /// `None` when there is nothing to pick: no weights, or none positive and finite.
     pub fn new(weights: &[f32]) -> Option<Distribution1D> {
-        let clean = |w: f32| {
-            if w.is_finite() && w > 0.0 {
-                w as f64
-            } else {
-                0.0
-            }
-        };
-        let total: f64 = weights.iter().map(|&w| clean(w)).sum();
+        let total: f64 = weights.iter().map(|&w| clean_weight(w)).sum();
         if total <= 0.0 {
             return None;
         }
@@ -33,13 +36,16 @@ impl Distribution1D {
         let mut acc = 0.0f64;
         cdf.push(0.0);
         for &w in weights {
-            acc += clean(w);
+            acc += clean_weight(w);
             cdf.push((acc / total) as f32);
         }
         if let Some(last) = cdf.last_mut() {
             *last = 1.0;
         }
-        let pmf = weights.iter().map(|&w| (clean(w) / total) as f32).collect();
+        let pmf = weights
+            .iter()
+            .map(|&w| (clean_weight(w) / total) as f32)
+            .collect();
         let n = weights.len();
         let guide = if n >= GUIDED_LEN {
             let g = n / 4;

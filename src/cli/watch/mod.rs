@@ -150,39 +150,34 @@ pub fn run(args: &WatchArgs) -> ExitCode {
 /// Blocks until a watched file's content changed (returns those files) or Ctrl-C (`None`).
 fn wait_for_change(rx: &Receiver<Msg>, watcher: &mut FileWatcher) -> Option<Vec<PathBuf>> {
     loop {
-        let event = match rx.recv_timeout(POLL) {
-            Ok(Msg::Paths(paths)) => Ok((paths, false)),
-            Ok(Msg::Written(paths)) => Ok((paths, true)),
-            Ok(Msg::Quit) => Err(RecvTimeoutError::Disconnected),
-            Err(e) => Err(e),
-        };
-        match event {
-            Err(RecvTimeoutError::Disconnected) => return None,
-            Ok((paths, written)) => {
-                let first: Vec<PathBuf> = paths
-                    .into_iter()
-                    .filter(|p| watcher.is_watched(p))
-                    .collect();
-                if first.is_empty() {
-                    continue;
-                }
-                let batch = batch::gather(rx, first, written, batch::QUIET, batch::CAP, |p| {
-                    watcher.is_watched(p)
-                });
-                if batch.quit {
-                    return None;
-                }
-                let changed = watcher.confirm(&batch.paths);
-                if !changed.is_empty() {
-                    return Some(changed);
-                }
-            }
+        let (paths, written) = match rx.recv_timeout(POLL) {
+            Ok(Msg::Quit) | Err(RecvTimeoutError::Disconnected) => return None,
+            Ok(Msg::Paths(paths)) => (paths, false),
+            Ok(Msg::Written(paths)) => (paths, true),
             Err(RecvTimeoutError::Timeout) => {
                 let changed = watcher.poll();
                 if !changed.is_empty() {
                     return Some(changed);
                 }
+                continue;
             }
+        };
+        let first: Vec<PathBuf> = paths
+            .into_iter()
+            .filter(|p| watcher.is_watched(p))
+            .collect();
+        if first.is_empty() {
+            continue;
+        }
+        let batch = batch::gather(rx, first, written, batch::QUIET, batch::CAP, |p| {
+            watcher.is_watched(p)
+        });
+        if batch.quit {
+            return None;
+        }
+        let changed = watcher.confirm(&batch.paths);
+        if !changed.is_empty() {
+            return Some(changed);
         }
     }
 }

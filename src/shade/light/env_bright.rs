@@ -16,6 +16,7 @@
 use glam::Vec2;
 
 use super::env_sampler::TexelSample;
+use crate::shade::distribution::clean_weight;
 use crate::shade::distribution2d::Distribution2D;
 
 /// A texel joins the set if its weight (luminance × sin θ) is at least this many times the
@@ -46,26 +47,19 @@ impl BrightTexels {
         if width == 0 || weights.len() != width.checked_mul(height)? {
             return None;
         }
-        let clean = |w: f32| {
-            if w.is_finite() && w > 0.0 {
-                w as f64
-            } else {
-                0.0
-            }
-        };
-        let total: f64 = weights.iter().map(|&w| clean(w)).sum();
+        let total: f64 = weights.iter().map(|&w| clean_weight(w)).sum();
         if total <= 0.0 {
             return None;
         }
         let threshold = MIN_CONTRAST * total / weights.len() as f64;
-        let bright = |w: f32| clean(w) >= threshold && clean(w) > 0.0;
+        let bright = |w: f32| clean_weight(w) >= threshold && clean_weight(w) > 0.0;
         let (mut c0, mut r0, mut c1, mut r1) = (usize::MAX, usize::MAX, 0, 0);
         let mut sum = 0.0f64;
         for (i, &w) in weights.iter().enumerate() {
             if bright(w) {
                 let (c, r) = (i % width, i / width);
                 (c0, r0, c1, r1) = (c0.min(c), r0.min(r), c1.max(c), r1.max(r));
-                sum += clean(w);
+                sum += clean_weight(w);
             }
         }
         if sum < MIN_SHARE * total {
