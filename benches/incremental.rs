@@ -14,17 +14,17 @@
 //!
 //! Medians (and the slowest) are printed; figures go to docs/watch.md by hand.
 
-use std::io::{BufRead, BufReader};
 use std::path::Path;
-use std::process::{Command, Stdio};
-use std::sync::mpsc::channel;
 use std::time::{Duration, Instant};
 
 use scnc::assets::MemLoader;
 use scnc::compile::{compile_with, Incremental, Overrides, Reuse};
 use scnc::scene::{self, BuildCache, BuildOptions};
 use scnc::source::SourceMap;
-use serde_json::Value;
+
+#[path = "support/watch_process.rs"]
+mod watch_process;
+use watch_process::WatchProcess;
 
 /// The scene's lines; object `i` is line `HEADER + i`.
 fn scene(objects: usize) -> Vec<String> {
@@ -153,44 +153,8 @@ fn watch(objects: usize, edits: usize) {
     std::fs::create_dir_all(&dir).expect("temp dir");
     let scn = dir.join("big.scn");
     std::fs::write(&scn, &original).expect("write scene");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_scnc"))
-        .current_dir(&dir)
-        .args([
-            "watch",
-            "big.scn",
-            "--events",
-            "json",
-            "--no-serve",
-            "--no-clear",
-        ])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("start scnc watch");
-    let stdout = child.stdout.take().expect("piped");
-    let (tx, rx) = channel();
-    std::thread::spawn(move || {
-        for line in BufReader::new(stdout).lines().map_while(Result::ok) {
-            if let Ok(v) = serde_json::from_str::<Value>(&line) {
-                if tx.send((Instant::now(), v)).is_err() {
-                    return;
-                }
-            }
-        }
-    });
-    let wait = |name: &str, final_only: bool| -> (Instant, Value) {
-        loop {
-            let (t, v) = rx
-                .recv_timeout(Duration::from_secs(120))
-                .expect("scnc watch answers");
-            if v["event"] == "error" {
-                panic!("the scene failed: {v}");
-            }
-            if v["event"] == name && (!final_only || v["final"] == true) {
-                return (t, v);
-            }
-        }
-    };
+    let watch = WatchProcess::start(&dir, "big.scn", Duration::from_secs(120));
+    let wait = |name: &str, final_only: bool| watch.wait(name, final_only);
     let (_, first) = wait("compiled", false);
     wait("pass", true);
     let mut figures: [Vec<f64>; 6] = Default::default();
@@ -216,8 +180,7 @@ fn watch(objects: usize, edits: usize) {
         }
         wait("pass", true);
     }
-    let _ = child.kill();
-    let _ = child.wait();
+    drop(watch);
     let _ = std::fs::remove_dir_all(&dir);
     let [mut diag, mut image, mut compile, mut build, mut pass, mut built] = figures;
     println!(

@@ -10,15 +10,15 @@
 //!
 //! Figures go to docs/watch.md by hand.
 
-use std::io::{BufRead, BufReader};
-use std::process::{Command, Stdio};
-use std::sync::mpsc::channel;
 use std::time::{Duration, Instant};
 
 use scnc::assets::MemLoader;
 use scnc::compile::compile_source;
 use scnc::scene::{self, BuildCache, BuildOptions};
-use serde_json::Value;
+
+#[path = "support/watch_process.rs"]
+mod watch_process;
+use watch_process::WatchProcess;
 
 fn median(v: &mut [f64]) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -34,41 +34,8 @@ fn save_to_image(edits: usize) {
         std::fs::read_to_string(format!("{root}/examples/cornell.scn")).expect("cornell.scn");
     let scn = dir.join("cornell.scn");
     std::fs::write(&scn, &original).expect("write scene");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_scnc"))
-        .current_dir(&dir)
-        .args([
-            "watch",
-            "cornell.scn",
-            "--events",
-            "json",
-            "--no-serve",
-            "--no-clear",
-        ])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("start scnc watch");
-    let stdout = child.stdout.take().expect("piped");
-    let (tx, rx) = channel();
-    std::thread::spawn(move || {
-        for line in BufReader::new(stdout).lines().map_while(Result::ok) {
-            if let Ok(v) = serde_json::from_str::<Value>(&line) {
-                if tx.send((Instant::now(), v)).is_err() {
-                    return;
-                }
-            }
-        }
-    });
-    let wait = |name: &str, final_only: bool| -> (Instant, Value) {
-        loop {
-            let (t, v) = rx
-                .recv_timeout(Duration::from_secs(60))
-                .expect("scnc watch answers");
-            if v["event"] == name && (!final_only || v["final"] == true) {
-                return (t, v);
-            }
-        }
-    };
+    let watch = WatchProcess::start(&dir, "cornell.scn", Duration::from_secs(60));
+    let wait = |name: &str, final_only: bool| watch.wait(name, final_only);
     wait("pass", true);
     let (mut latency, mut compile, mut pass) = (Vec::new(), Vec::new(), Vec::new());
     for i in 0..edits {
@@ -84,8 +51,7 @@ fn save_to_image(edits: usize) {
         // Let the refining passes finish, as a person would between two saves.
         wait("pass", true);
     }
-    let _ = child.kill();
-    let _ = child.wait();
+    drop(watch);
     let _ = std::fs::remove_dir_all(&dir);
     println!(
         "cornell 512x512, {edits} camera edits: save -> first image median {:.1} ms \

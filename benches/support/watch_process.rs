@@ -1,0 +1,81 @@
+//! A `scnc watch --events json` process driven by a benchmark: started in a directory on one
+//! scene file, its JSON event lines read on a thread and timestamped on arrival, so that a
+//! bench can time save → event. Shared by `benches/watch.rs` and `benches/incremental.rs`
+//! (included with `#[path]`; not a bench target of its own).
+
+use std::io::{BufRead, BufReader};
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+use std::sync::mpsc::{channel, Receiver};
+use std::time::{Duration, Instant};
+
+use serde_json::Value;
+
+/// A running `scnc watch`; killed when dropped.
+pub struct WatchProcess {
+    child: Child,
+    events: Receiver<(Instant, Value)>,
+    timeout: Duration,
+}
+
+impl WatchProcess {
+    /// Starts `scnc watch SCENE --events json --no-serve --no-clear` in `dir`. `timeout` bounds
+    /// each wait for an event.
+    pub fn start(dir: &Path, scene: &str, timeout: Duration) -> Self {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_scnc"))
+            .current_dir(dir)
+            .args([
+                "watch",
+                scene,
+                "--events",
+                "json",
+                "--no-serve",
+                "--no-clear",
+            ])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("start scnc watch");
+        let stdout = child.stdout.take().expect("piped");
+        let (tx, events) = channel();
+        std::thread::spawn(move || {
+            for line in BufReader::new(stdout).lines().map_while(Result::ok) {
+                if let Ok(v) = serde_json::from_str::<Value>(&line) {
+                    if tx.send((Instant::now(), v)).is_err() {
+                        return;
+                    }
+                }
+            }
+        });
+        WatchProcess {
+            child,
+            events,
+            timeout,
+        }
+    }
+
+    /// Waits for the next event called `name` (only a final one when `final_only`), skipping
+    /// others, and returns it with its arrival time. Panics on an `error` event or a timeout:
+    /// a benchmark of a failing scene measures nothing.
+    pub fn wait(&self, name: &str, final_only: bool) -> (Instant, Value) {
+        loop {
+            let (t, v) = self
+                .events
+                .recv_timeout(self.timeout)
+                .expect("scnc watch answers");
+            if v["event"] == "error" {
+                panic!("the scene failed: {v}");
+            }
+            if v["event"] == name && (!final_only || v["final"] == true) {
+                return (t, v);
+            }
+        }
+    }
+}
+
+impl Drop for WatchProcess {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
