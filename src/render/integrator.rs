@@ -235,11 +235,16 @@ impl Shading<'_> {
         let picks = self.picks();
         let (s, count) = sampler.index();
         let mut sum = Vec3::ZERO;
+        // One light (cornell's, or a sky alone): every pick is it, no random number needed.
+        let single = lights.single();
         for k in 0..picks {
             // Stratified over all the picks of all the pixel's samples.
             let j = s * picks + k;
-            let u = sampler.stratified_2d(STREAM_PICK, j, count * picks).x;
-            let Some((picked, pmf, _)) = lights.pick(u) else {
+            let picked = single.or_else(|| {
+                let u = sampler.stratified_2d(STREAM_PICK, j, count * picks).x;
+                lights.pick(u).map(|(picked, pmf, _)| (picked, pmf))
+            });
+            let Some((picked, pmf)) = picked else {
                 continue;
             };
             let contribution = match picked {

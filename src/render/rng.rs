@@ -251,6 +251,10 @@ fn permute_index(mut i: u32, len: u32, key: u32) -> u32 {
         i &= w;
         i ^= i >> 5;
         if i < len {
+            // A power-of-two length (every fixed-count render's) needs no division.
+            if len & w == 0 {
+                return i.wrapping_add(key) & w;
+            }
             return ((u64::from(i) + u64::from(key)) % u64::from(len)) as u32;
         }
     }

@@ -110,6 +110,20 @@ impl Lights {
         Some((picked, pmf, rest))
     }
 
+    /// What [`Lights::pick`] chooses for every `u` when the table has one entry (and its
+    /// probability, 1): the caller then need not draw the pick's random number.
+    pub fn single(&self) -> Option<(Picked<'_>, f32)> {
+        let table = self.by_power.as_ref()?;
+        if table.len() != 1 {
+            return None;
+        }
+        let picked = match self.lights.first() {
+            Some(l) => Picked::Light(0, l),
+            None => Picked::Environment(self.environment.as_ref()?),
+        };
+        Some((picked, table.pmf(0)))
+    }
+
     /// Whether any light is an area light (something a BRDF-sampled ray can hit).
     pub fn has_emitters(&self) -> bool {
         self.has_emitters
