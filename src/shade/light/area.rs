@@ -17,7 +17,7 @@
 use glam::{Vec2, Vec3};
 
 use super::spherical;
-use super::spherical_rect::SphericalRect;
+use super::spherical_rect::{RectFrame, SphericalRect};
 use crate::geom::triangle::moller_trumbore;
 use crate::geom::Ray;
 use crate::scene::LightSampling;
@@ -40,9 +40,9 @@ pub struct AreaLight {
     /// Sum of the triangles' areas.
     pub total_area: f32,
     by_area: Distribution1D,
-    /// `Some((corner, ex, ey))` when the mesh is one rectangle (two triangles), which is then
+    /// The frame of the rectangle the mesh is, when it is one (two triangles): it is then
     /// sampled whole as a spherical rectangle (see `spherical_rect`).
-    rect: Option<(Vec3, Vec3, Vec3)>,
+    rect_frame: Option<RectFrame>,
     /// For a rectangle: per triangle, the affine map from the rectangle's parameters (s, t) to
     /// the triangle's barycentrics (b₁, b₂), so a sampled point is rebuilt on its triangle
     /// without a ray–triangle test.
@@ -178,7 +178,7 @@ impl AreaLight {
             radiance,
             two_sided,
             samples: samples.max(1),
-            rect,
+            rect_frame: rect.and_then(|(c, ex, ey)| RectFrame::new(c, ex, ey)),
             rect_barycentrics: Box::new(rect_barycentric_maps(&triangles, rect)),
             normals,
             triangles,
@@ -199,6 +199,11 @@ impl AreaLight {
     /// (see the module doc). `None` when it sends nothing to `p` (`p` behind a one-sided
     /// emitter, a degenerate configuration): a zero sample, no shadow ray.
     pub fn sample(&self, p: Vec3, u: Vec2, mode: LightSampling) -> Option<AreaSample> {
+        // Behind a one-sided rectangle (cornell's ceiling, above its light): nothing, and no
+        // set-up to pay for first.
+        if self.rect_frame.is_some() && !self.rect_front_faces(p) {
+            return None;
+        }
         if let Some(rect) = self.rect_in_range(p, mode) {
             return self.sample_rect(p, &rect, u);
         }
@@ -270,8 +275,10 @@ impl AreaLight {
     /// whole by solid angle (a rectangle, solid angle sampling, Ω in the range where f32 is
     /// reliable). The one rule [`AreaLight::sample`] and [`AreaLight::pdf`] share.
     fn rect_in_range(&self, p: Vec3, mode: LightSampling) -> Option<SphericalRect> {
-        let (corner, ex, ey) = self.rect.filter(|_| mode == LightSampling::SolidAngle)?;
-        let rect = SphericalRect::new(p, corner, ex, ey)?;
+        let frame = self
+            .rect_frame
+            .filter(|_| mode == LightSampling::SolidAngle)?;
+        let rect = SphericalRect::seen_from(p, &frame)?;
         let range = spherical::MIN_SOLID_ANGLE..=spherical::MAX_SOLID_ANGLE;
         range.contains(&rect.solid_angle()).then_some(rect)
     }
@@ -279,7 +286,7 @@ impl AreaLight {
     /// A direction uniform over the spherical rectangle `rect` (`pdf = 1 / Ω`). `None` for
     /// the back of a one-sided emitter, or a direction that rounds off both triangles.
     fn sample_rect(&self, p: Vec3, rect: &SphericalRect, u: Vec2) -> Option<AreaSample> {
-        if !self.two_sided && self.normals[0].dot(p - self.triangles[0][0]) <= 0.0 {
+        if !self.rect_front_faces(p) {
             return None;
         }
         let sample = rect.sample(u);
@@ -297,6 +304,14 @@ impl AreaLight {
             radiance: self.radiance,
             inv_pdf_solid_angle: rect.solid_angle(),
         })
+    }
+
+    /// Whether a rectangle light sends anything to `p`: it is two-sided, or `p` is in front.
+    fn rect_front_faces(&self, p: Vec3) -> bool {
+        match (self.normals.first(), self.triangles.first()) {
+            (Some(n), Some(t)) => self.two_sided || n.dot(p - t[0]) > 0.0,
+            _ => false,
+        }
     }
 
     /// The radiance a point of this light with unit front normal `ng` emits in direction `w`:
@@ -443,7 +458,7 @@ mod tests {
         let (a, b, q) = (c + ex, c + ey, c + ex + ey);
         let light =
             AreaLight::new(Vec3::ONE, true, 1, vec![[c, a, b], [b, a, q]]).expect("has area");
-        assert!(light.rect.is_some());
+        assert!(light.rect_frame.is_some());
         let p = Vec3::new(0.2, 0.0, 0.1);
         let omega = SphericalRect::new(p, c, ex, ey)
             .expect("visible")
@@ -477,6 +492,15 @@ mod tests {
             assert!((pdf * s.inv_pdf_solid_angle - 1.0).abs() < 1e-6);
         }
         assert!(on[0] > 0 && on[1] > 0, "{on:?}");
+        // One-sided (front towards −y, the winding's normal): nothing reaches a point above it.
+        let one_sided =
+            AreaLight::new(Vec3::ONE, false, 1, vec![[c, a, b], [b, a, q]]).expect("has area");
+        let above = Vec3::new(0.2, 2.0, 0.1);
+        let u = Vec2::splat(0.5);
+        assert!(one_sided
+            .sample(above, u, LightSampling::SolidAngle)
+            .is_none());
+        assert!(one_sided.sample(p, u, LightSampling::SolidAngle).is_some());
         // Not a rectangle: a parallelogram with a 60° corner.
         let skew = vec![
             [c, a, c + ey + 0.2 * ex],
@@ -484,7 +508,7 @@ mod tests {
         ];
         assert!(AreaLight::new(Vec3::ONE, true, 1, skew)
             .expect("has area")
-            .rect
+            .rect_frame
             .is_none());
     }
 }

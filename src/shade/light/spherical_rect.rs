@@ -69,16 +69,61 @@ fn turn(a: DVec2, b: DVec2) -> DVec2 {
     DVec2::new(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x)
 }
 
-impl SphericalRect {
-    /// The rectangle `corner + s·ex + t·ey` (s, t ∈ [0, 1], `ex ⊥ ey`) seen from `p`. `None`
-    /// when an edge is degenerate, `p` lies in its plane, or the solid angle is not positive.
-    pub fn new(p: Vec3, corner: Vec3, ex: Vec3, ey: Vec3) -> Option<SphericalRect> {
+/// What a rectangle's set-up needs that does not depend on the shading point (its edges'
+/// lengths and unit directions), computed once per light instead of once per sample.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RectFrame {
+    corner: Vec3,
+    x: Vec3,
+    y: Vec3,
+    z: Vec3,
+    exl: f32,
+    eyl: f32,
+    inv_width: f32,
+    inv_height: f32,
+}
+
+impl RectFrame {
+    /// The rectangle `corner + s·ex + t·ey` (s, t ∈ [0, 1], `ex ⊥ ey`). `None` when an edge is
+    /// degenerate.
+    pub fn new(corner: Vec3, ex: Vec3, ey: Vec3) -> Option<RectFrame> {
         let (exl, eyl) = (ex.length(), ey.length());
         if !(exl > 0.0 && eyl > 0.0) {
             return None;
         }
         let (x, y) = (ex / exl, ey / eyl);
-        let mut z = x.cross(y);
+        Some(RectFrame {
+            corner,
+            x,
+            y,
+            z: x.cross(y),
+            exl,
+            eyl,
+            inv_width: 1.0 / exl,
+            inv_height: 1.0 / eyl,
+        })
+    }
+}
+
+impl SphericalRect {
+    /// The rectangle `corner + s·ex + t·ey` (s, t ∈ [0, 1], `ex ⊥ ey`) seen from `p`. `None`
+    /// when an edge is degenerate, `p` lies in its plane, or the solid angle is not positive.
+    pub fn new(p: Vec3, corner: Vec3, ex: Vec3, ey: Vec3) -> Option<SphericalRect> {
+        SphericalRect::seen_from(p, &RectFrame::new(corner, ex, ey)?)
+    }
+
+    /// [`SphericalRect::new`] of a rectangle whose frame is already known.
+    pub fn seen_from(p: Vec3, frame: &RectFrame) -> Option<SphericalRect> {
+        let RectFrame {
+            corner,
+            x,
+            y,
+            mut z,
+            exl,
+            eyl,
+            inv_width,
+            inv_height,
+        } = *frame;
         let d = corner - p;
         let mut z0 = d.dot(z);
         if z0 > 0.0 {
@@ -132,8 +177,8 @@ impl SphericalRect {
             x1,
             y0,
             y1,
-            inv_width: 1.0 / exl,
-            inv_height: 1.0 / eyl,
+            inv_width,
+            inv_height,
             b0: (-dy0 / l0) as f32,
             b1: (dy1 / l2) as f32,
             one_minus_b0_sq: (zz / (l0 * l0)) as f32,
