@@ -21,6 +21,8 @@ use crate::ir;
 use crate::source::{FileId, SourceMap, Span};
 use crate::syntax::{self, ExprKind, Stmt};
 
+#[cfg(test)]
+mod early_tests;
 mod edit;
 mod incremental;
 
@@ -78,8 +80,7 @@ pub fn compile_with(
     sources: &mut SourceMap,
     overrides: &Overrides,
 ) -> Staged<ir::SceneDesc> {
-    let mut d = Driver::new(loader);
-    d.frame = overrides.frame;
+    let mut d = Driver::checking(loader, overrides.frame);
     d.pending_defines.clone_from(&overrides.defines);
     let (read, staged) = d.compile_root(path).into_staged();
     *sources = read;
@@ -88,7 +89,7 @@ pub fn compile_with(
 
 /// Compiles the scene file at `path`, reading it and its includes through `loader`.
 pub fn compile_file(path: &Path, loader: &dyn Loader) -> Compiled {
-    Driver::new(loader).compile_root(path)
+    Driver::checking(loader, 0.0).compile_root(path)
 }
 
 /// The statements of the scene file at `path` and of its includes, expanded as [`compile`]
@@ -127,7 +128,7 @@ impl Driver<'_> {
 /// Compiles `text` as if it were the file `name` (includes resolve relative to `name`'s
 /// directory through `loader`).
 pub fn compile_source(name: &str, text: &str, loader: &dyn Loader) -> Compiled {
-    let mut d = Driver::new(loader);
+    let mut d = Driver::checking(loader, 0.0);
     d.add_root(Path::new(name), name, text.as_bytes());
     d.finish()
 }
@@ -145,6 +146,12 @@ struct Driver<'l> {
     pending_defines: Vec<(String, String)>,
     /// `--define`s parsed: the name and the value's expression.
     defines: Vec<(String, syntax::Expr)>,
+    /// Top-level `object`s are checked as they are parsed (`check::PreCheck`) while this is
+    /// set: only until a file has a syntax error or any other diagnostic, which makes the
+    /// driver start over without it (`restarted`).
+    pre: Option<check::PreCheck>,
+    /// The pre-check gave up part-way (statements it saw are lost): the compile starts over.
+    aborted: bool,
 }
 
 impl<'l> Driver<'l> {
@@ -158,7 +165,17 @@ impl<'l> Driver<'l> {
             frame: 0.0,
             pending_defines: Vec::new(),
             defines: Vec::new(),
+            pre: None,
+            aborted: false,
         }
+    }
+
+    /// A driver that checks top-level `object`s while parsing (a compile, not an index).
+    fn checking(loader: &'l dyn Loader, frame: f64) -> Driver<'l> {
+        let mut d = Driver::new(loader);
+        d.frame = frame;
+        d.pre = Some(check::PreCheck::new(frame));
+        d
     }
 
     /// Parses `--define NAME=VALUE` as the source `let NAME = VALUE`.
@@ -183,6 +200,48 @@ impl<'l> Driver<'l> {
 
     fn add_root(&mut self, path: &Path, name: &str, bytes: &[u8]) {
         self.add_file(normalise(path), name, bytes, None);
+        if self.pre.is_some() && (self.aborted || !self.diags.is_empty()) {
+            // Some file had a diagnostic: parse everything again the plain way, which reports
+            // every diagnostic in its usual order and keeps every statement for the check.
+            let mut again = Driver::new(self.loader);
+            again.frame = self.frame;
+            again.pending_defines = std::mem::take(&mut self.pending_defines);
+            again.add_file(normalise(path), name, bytes, None);
+            *self = again;
+        }
+    }
+
+    /// Parses the file `id` statement by statement, handing each to the pre-check and
+    /// expanding includes as they come; sets `aborted` on any diagnostic.
+    fn add_streamed(&mut self, id: FileId, text: &str) {
+        if let Some(pre) = &mut self.pre {
+            pre.reserve(memchr::memmem::find_iter(text.as_bytes(), b"object").count());
+        }
+        let mut first = true;
+        let ok = syntax::parse_each(id, text, &mut |stmt| {
+            if self.aborted {
+                return;
+            }
+            if first {
+                first = false;
+                self.check_version(id, text, std::slice::from_ref(&stmt));
+            } else if matches!(stmt, Stmt::Version { .. }) {
+                self.aborted = true;
+            }
+            if let Stmt::Include { path, .. } = &stmt {
+                self.include(id, path);
+            }
+            let kept = match &mut self.pre {
+                Some(pre) => pre.offer(&self.sources, stmt),
+                None => Some(stmt),
+            };
+            self.statements.extend(kept);
+            self.aborted |= !self.diags.is_empty();
+        });
+        if first {
+            self.check_version(id, text, &[]);
+        }
+        self.aborted |= !ok || !self.diags.is_empty();
     }
 
     /// Decodes, parses and expands one file. `from` is the include literal that named it.
@@ -214,6 +273,12 @@ impl<'l> Driver<'l> {
                     .at(span, "file is empty")
                     .help("start the file with the version header `scnc 1`"),
             );
+            return;
+        }
+        if self.pre.is_some() {
+            self.stack.push((path, from));
+            self.add_streamed(id, &text);
+            self.stack.pop();
             return;
         }
         let (file, diags) = syntax::parse(id, &text).into_parts();
@@ -371,12 +436,15 @@ impl<'l> Driver<'l> {
             statements,
             frame: self_frame,
             defines,
+            pre,
             ..
         } = self;
+        let placed = pre.map(check::PreCheck::into_placed).unwrap_or_default();
         let parse_failed = diags.iter().any(Diagnostic::is_error);
         let scene = if sources.files().next().is_some() {
             let (scene, check_diags) =
-                check::check_with(&statements, &sources, self_frame, defines).into_parts();
+                check::check_placed(&statements, placed, &sources, self_frame, defines)
+                    .into_parts();
             // When parsing failed, statements are missing: suppress checker errors that only
             // say something is missing, unknown or unused, which would be noise.
             diags.extend(

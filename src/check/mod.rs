@@ -11,6 +11,7 @@
 pub mod array;
 mod camera;
 mod define;
+mod early;
 mod eval;
 mod icosphere;
 mod inline_mesh;
@@ -30,6 +31,7 @@ mod typed;
 pub mod value;
 pub mod vocabulary;
 
+pub use early::{Placed, PreCheck};
 pub use eval::FUNCTIONS;
 pub use recheck::{check_tracked, CheckMemo};
 
@@ -185,10 +187,23 @@ pub fn check_with(
     frame: f64,
     defines: Vec<(String, crate::syntax::Expr)>,
 ) -> Staged<ir::SceneDesc> {
+    check_placed(statements, Placed::default(), sources, frame, defines)
+}
+
+/// [`check_with`] of the statements `statements` and `placed` together: `placed` holds the
+/// top-level `object`s a [`PreCheck`] took while parsing (their places among all statements),
+/// `statements` every other statement in order.
+pub fn check_placed(
+    statements: &[Stmt],
+    placed: Placed,
+    sources: &SourceMap,
+    frame: f64,
+    defines: Vec<(String, crate::syntax::Expr)>,
+) -> Staged<ir::SceneDesc> {
     let mut cx = Checker::new(sources);
     cx.frame = frame;
     cx.defines = defines.into_iter().map(|(n, e)| (n, (e, false))).collect();
-    let scene = cx.run(statements, None);
+    let scene = cx.run(statements, placed, None);
     let failed = cx.diags.iter().any(Diagnostic::is_error);
     Staged::new(scene.filter(|_| !failed), cx.diags)
 }
@@ -222,6 +237,7 @@ impl Checker<'_> {
     fn run(
         &mut self,
         statements: &[Stmt],
+        placed: Placed,
         mut track: Option<(&mut Vec<StmtRecord>, &mut Option<PlacementStart>)>,
     ) -> Option<ir::SceneDesc> {
         let cx = self;
@@ -229,7 +245,9 @@ impl Checker<'_> {
         let mut renders = Vec::new();
         let mut cameras = Vec::new();
         let mut placements = Vec::new();
-        for (i, stmt) in statements.iter().enumerate() {
+        let total = statements.len() + placed.len();
+        let indices = early::kept_indices(&placed, total);
+        for (i, stmt) in indices.zip(statements) {
             match stmt {
                 Stmt::Version { .. } | Stmt::Include { .. } => {}
                 Stmt::Let { name, value, .. } => cx.let_stmt(name, value),
@@ -275,28 +293,15 @@ impl Checker<'_> {
         }
         if let Some((records, start)) = &mut track {
             records.clear();
-            records.resize(statements.len(), StmtRecord::default());
+            records.resize(total, StmtRecord::default());
             **start = Some(PlacementStart {
                 diags: cx.diags.len(),
                 used_meshes: cx.used_meshes.clone(),
                 used_materials: cx.used_materials.clone(),
             });
         }
-        let stmts: Vec<&Stmt> = placements.iter().map(|(_, s)| *s).collect();
-        cx.objects.reserve(object::count_objects(&stmts));
-        for (i, stmt) in placements {
-            let (diags, objects) = (cx.diags.len(), cx.objects.len());
-            let (mesh, material) = cx.placement(stmt);
-            if let Some(record) = track.as_mut().and_then(|(r, _)| r.get_mut(i)) {
-                *record = StmtRecord {
-                    object: matches!(stmt, Stmt::Object(_)),
-                    diags: (cx.diags.len() - diags) as u32,
-                    objects: (cx.objects.len() - objects) as u32,
-                    mesh: mesh.map(|m| m as u32),
-                    material: material.map(|m| m as u32),
-                };
-            }
-        }
+        let records = track.as_mut().map(|(r, _)| &mut **r);
+        cx.placements(placements, placed, records);
         for (name, body, span) in cameras {
             if let Some(c) = cx.camera(name, body, span) {
                 cx.cameras.push(c);

@@ -52,6 +52,32 @@ impl Checker<'_> {
     }
 
     fn object(&mut self, o: &ObjectStmt, parent: DMat4) -> (Option<usize>, Option<usize>) {
+        let (mesh, material, object) = self.object_parts(o, parent);
+        self.use_object(mesh, material);
+        self.objects.extend(object);
+        (mesh, material)
+    }
+
+    /// Counts a use of the mesh and the material an object named.
+    pub(super) fn use_object(&mut self, mesh: Option<usize>, material: Option<usize>) {
+        // The lists are empty in a pre-check (`early.rs`), which counts nothing.
+        if let Some(m) = mesh.filter(|&m| m < self.mesh_uses.len()) {
+            self.used_meshes[m] = true;
+            self.mesh_uses[m] += 1;
+        }
+        if let Some(m) = material.filter(|&m| m < self.material_uses.len()) {
+            self.used_materials[m] = true;
+            self.material_uses[m] += 1;
+        }
+    }
+
+    /// One `object` checked, without counting its uses: the mesh and the material (table
+    /// indices) it names, when they resolve, and its IR object when nothing failed.
+    pub(super) fn object_parts(
+        &mut self,
+        o: &ObjectStmt,
+        parent: DMat4,
+    ) -> (Option<usize>, Option<usize>, Option<ir::Object>) {
         let props = self.split(
             &o.body,
             "an object",
@@ -61,10 +87,6 @@ impl Checker<'_> {
         );
         let local = self.transforms(&props.transforms, "an object");
         let mesh = self.resolve_name(Namespace::Mesh, &o.mesh.name, o.mesh.span);
-        if let Some(m) = mesh {
-            self.used_meshes[m] = true;
-            self.mesh_uses[m] += 1;
-        }
         let material = match props.get("material") {
             Some(p) => self
                 .one(p, "material NAME")
@@ -81,19 +103,16 @@ impl Checker<'_> {
                 None
             }
         };
-        if let Some(m) = material {
-            self.used_materials[m] = true;
-            self.material_uses[m] += 1;
-        }
-        if let (Some(mesh), Some(material), Some(local)) = (mesh, material, local) {
-            self.objects.push(ir::Object {
+        let object = match (mesh, material, local) {
+            (Some(mesh), Some(material), Some(local)) => Some(ir::Object {
                 mesh: mesh as u32,
                 material: material as u32,
                 world_from_object: parent * local,
                 span: o.span,
-            });
-        }
-        (mesh, material)
+            }),
+            _ => None,
+        };
+        (mesh, material, object)
     }
 
     fn group(&mut self, g: &GroupStmt, parent: DMat4) {

@@ -43,10 +43,11 @@ pub struct CheckMemo {
     pub scene: Option<ir::SceneDesc>,
 }
 
-/// [`super::check_with`], keeping a [`CheckMemo`]: its `scene` (filtered by errors) and its
+/// [`super::check_placed`], keeping a [`CheckMemo`]: its `scene` (filtered by errors) and its
 /// `diagnostics` are that check's result.
 pub fn check_tracked(
     statements: &[Stmt],
+    placed: super::Placed,
     sources: &SourceMap,
     frame: f64,
     defines: Vec<(String, crate::syntax::Expr)>,
@@ -56,7 +57,7 @@ pub fn check_tracked(
     cx.defines = defines.into_iter().map(|(n, e)| (n, (e, false))).collect();
     let mut records = Vec::new();
     let mut start = None;
-    let scene = cx.run(statements, Some((&mut records, &mut start)));
+    let scene = cx.run(statements, placed, Some((&mut records, &mut start)));
     let used_before = start.unwrap_or(PlacementStart {
         diags: cx.diags.len(),
         used_meshes: Vec::new(),

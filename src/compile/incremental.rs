@@ -17,7 +17,7 @@ use std::path::Path;
 use super::edit::{self, Region};
 use super::{decode, reading_order, Driver, Overrides};
 use crate::assets::Loader;
-use crate::check::{check_tracked, CheckMemo};
+use crate::check::{check_tracked, CheckMemo, Placed, PreCheck};
 use crate::diag::{Diagnostic, Staged};
 use crate::ir;
 use crate::source::{FileId, SourceMap};
@@ -90,8 +90,7 @@ impl Incremental {
             }
         }
         self.reuse = Reuse::Full;
-        let mut d = Driver::new(loader);
-        d.frame = self.overrides.frame;
+        let mut d = Driver::checking(loader, self.overrides.frame);
         d.pending_defines.clone_from(&self.overrides.defines);
         let compiled = match bytes {
             Ok(bytes) => {
@@ -136,13 +135,12 @@ impl Driver<'_> {
             statements,
             frame,
             defines,
+            pre,
             ..
         } = self;
-        let spans = statements
-            .iter()
-            .map(|s| (s.span().start, s.span().end))
-            .collect();
-        let check = check_tracked(&statements, &sources, frame, defines);
+        let placed = pre.map(PreCheck::into_placed).unwrap_or_default();
+        let spans = statement_spans(&statements, &placed);
+        let check = check_tracked(&statements, placed, &sources, frame, defines);
         Memo {
             path: path.to_path_buf(),
             sources,
@@ -150,6 +148,21 @@ impl Driver<'_> {
             check,
         }
     }
+}
+
+/// The byte range of every top-level statement, those `placed` included, in order.
+fn statement_spans(statements: &[Stmt], placed: &Placed) -> Vec<(u32, u32)> {
+    let mut spans = Vec::with_capacity(statements.len() + placed.len());
+    let mut kept = statements.iter().map(|s| s.span());
+    let mut early = placed.places().peekable();
+    for i in 0..statements.len() + placed.len() {
+        let span = match early.next_if(|&(at, _)| at == i) {
+            Some((_, span)) => Some(span),
+            None => kept.next(),
+        };
+        spans.extend(span.map(|s| (s.start, s.end)));
+    }
+    spans
 }
 
 impl Memo {

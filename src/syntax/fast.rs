@@ -26,20 +26,31 @@ use crate::source::FileId;
 
 /// Parses a whole file; `None` when it has a syntax error (pest failed on a statement).
 pub(super) fn parse(file: FileId, text: &str) -> Option<(Vec<Stmt>, Vec<Diagnostic>)> {
-    let mut c = Cursor::new(file, text);
     let mut statements = Vec::new();
+    let diags = parse_each(file, text, &mut |s| statements.push(s))?;
+    Some((statements, diags))
+}
+
+/// [`parse`], handing each statement to `each` as soon as it is parsed instead of gathering
+/// them. On `None` (a syntax error) the statements before it were handed out already.
+pub(super) fn parse_each(
+    file: FileId,
+    text: &str,
+    each: &mut dyn FnMut(Stmt),
+) -> Option<Vec<Diagnostic>> {
+    let mut c = Cursor::new(file, text);
     let mut diags = Vec::new();
     loop {
         c.skip();
         if c.pos >= text.len() {
-            return Some((statements, diags));
+            return Some(diags);
         }
         let start = c.pos;
         match c.statement() {
-            Some(s) => statements.push(s),
+            Some(s) => each(s),
             None => {
                 let (s, end) = pest_statement(file, text, start, &mut diags)?;
-                statements.push(s);
+                each(s);
                 c.pos = end;
             }
         }

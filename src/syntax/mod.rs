@@ -53,6 +53,17 @@ fn parse_recovering(file: FileId, text: &str) -> (SceneFile, Vec<Diagnostic>) {
     parse_chunks(file, text, &scan::scan(text))
 }
 
+/// [`parse`] for a file without syntax errors or diagnostics, handing each statement to `each`
+/// as soon as it is parsed (so that the caller may lower it and drop its AST at once). `false`
+/// when the file has any syntax error or diagnostic: some statements may have been handed out
+/// already, and the caller must start over with [`parse`] (which reports them).
+pub fn parse_each(file: FileId, text: &str, each: &mut dyn FnMut(Stmt)) -> bool {
+    if scan::too_deep(text).is_some() {
+        return false;
+    }
+    fast::parse_each(file, text, each).is_some_and(|diags| diags.is_empty())
+}
+
 /// The statements of `text[start..end]`, where `start` is the start of a top-level statement
 /// (or of the file) and `end` the start of another (or the end of the file), exactly as
 /// [`parse`] of the whole `text` finds them there; `None` when they are not whole statements,
