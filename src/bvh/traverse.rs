@@ -109,12 +109,16 @@ fn walk<I: Isa, F: LeafVisitor>(
     loop {
         if count > 0 {
             *visits = visits.wrapping_add(count);
+            #[cfg(feature = "bvh-counters")]
+            tally::counters::add(1, 1);
             if leaf.visit(child, count, t_max) {
                 return true;
             }
         } else {
             let node = &w.nodes[child as usize];
             *visits = visits.wrapping_add(1);
+            #[cfg(feature = "bvh-counters")]
+            tally::counters::add(0, 1);
             let (t, mask) = isa.slab(ray, node, *t_max);
             if mask != 0 {
                 let first = mask.trailing_zeros() as usize % WIDTH;
