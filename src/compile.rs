@@ -215,7 +215,8 @@ impl<'l> Driver<'l> {
     /// expanding includes as they come; sets `aborted` on any diagnostic.
     fn add_streamed(&mut self, id: FileId, text: &str) {
         if let Some(pre) = &mut self.pre {
-            pre.reserve(memchr::memmem::find_iter(text.as_bytes(), b"object").count());
+            let count = |word: &[u8]| memchr::memmem::find_iter(text.as_bytes(), word).count();
+            pre.reserve(count(b"object"), count(b"\nmaterial"));
         }
         let mut first = true;
         let ok = syntax::parse_each(id, text, &mut |stmt| {

@@ -311,6 +311,8 @@ impl MeshBvh {
     #[inline(always)]
     fn leaf_packets(&self, first: u32, count: u32) -> &[Tri4] {
         let p = first as usize / LANES;
+        #[cfg(feature = "bvh-counters")]
+        super::tally::counters::add(2, (count as usize).div_ceil(LANES) as u64);
         &self.tris[p..p + (count as usize).div_ceil(LANES)]
     }
 }

@@ -22,3 +22,29 @@ pub fn visits() -> u64 {
 pub(super) fn add(n: u32) {
     VISITS.with(|v| v.set(v.get().wrapping_add(u64::from(n))));
 }
+
+/// Finer counts for studying traversal (the `bvh-counters` feature; compiled out otherwise):
+/// wide nodes tested, leaves entered and packets of four triangles tested, per thread.
+#[cfg(feature = "bvh-counters")]
+pub mod counters {
+    use std::cell::Cell;
+
+    thread_local! {
+        static COUNTS: Cell<[u64; 3]> = const { Cell::new([0; 3]) };
+    }
+
+    /// (wide nodes tested, leaves entered, packets tested) on this thread so far.
+    pub fn read() -> [u64; 3] {
+        COUNTS.with(Cell::get)
+    }
+
+    /// Adds to counter `k` (0 nodes, 1 leaves, 2 packets).
+    #[inline(always)]
+    pub(crate) fn add(k: usize, n: u64) {
+        COUNTS.with(|c| {
+            let mut v = c.get();
+            v[k] += n;
+            c.set(v);
+        });
+    }
+}

@@ -109,15 +109,19 @@ fn walk<I: Isa, F: LeafVisitor>(
     loop {
         if count > 0 {
             *visits = visits.wrapping_add(count);
+            #[cfg(feature = "bvh-counters")]
+            tally::counters::add(1, 1);
             if leaf.visit(child, count, t_max) {
                 return true;
             }
         } else {
             let node = &w.nodes[child as usize];
             *visits = visits.wrapping_add(1);
+            #[cfg(feature = "bvh-counters")]
+            tally::counters::add(0, 1);
             let (t, mask) = isa.slab(ray, node, *t_max);
             if mask != 0 {
-                let first = mask.trailing_zeros() as usize;
+                let first = mask.trailing_zeros() as usize % WIDTH;
                 let rest = mask & (mask - 1);
                 if rest == 0 {
                     // One child entered (the common case deep in the tree): no ordering.
@@ -128,7 +132,7 @@ fn walk<I: Isa, F: LeafVisitor>(
                 if rest & (rest - 1) == 0 {
                     // Two: the nearer visited next, the other pushed (on a tie the later lane
                     // goes first, as the sort below orders them).
-                    let second = rest.trailing_zeros() as usize;
+                    let second = rest.trailing_zeros() as usize % WIDTH;
                     let (near, far) = if t[second] <= t[first] {
                         (second, first)
                     } else {
@@ -147,7 +151,7 @@ fn walk<I: Isa, F: LeafVisitor>(
                 let mut n = 1;
                 let mut bits = rest;
                 while bits != 0 {
-                    let k = bits.trailing_zeros() as usize;
+                    let k = bits.trailing_zeros() as usize % WIDTH;
                     bits &= bits - 1;
                     let tk = t[k];
                     let mut j = n;

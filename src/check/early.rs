@@ -31,6 +31,19 @@ pub struct Placed {
     group_names: Vec<Span>,
     /// The placed `group` statements' spans, in order.
     group_spans: Vec<Span>,
+    /// Materials lowered while parsing, in order.
+    materials: Vec<PlacedMaterial>,
+}
+
+/// A `material` declaration lowered while parsing.
+#[derive(Debug)]
+pub(super) struct PlacedMaterial {
+    /// Its index among all top-level statements.
+    pub at: u32,
+    /// The whole statement.
+    pub span: Span,
+    /// The material (`name` and `span` are the declared name's, as in the check's table).
+    pub material: ir::Material,
 }
 
 /// One statement of [`Placed`].
@@ -45,29 +58,41 @@ struct PlacedStmt {
 }
 
 impl Placed {
-    /// How many statements were placed.
+    /// How many statements were placed (or lowered).
     pub fn len(&self) -> usize {
-        self.stmts.len()
+        self.stmts.len() + self.materials.len()
     }
 
     /// Whether none was.
     pub fn is_empty(&self) -> bool {
-        self.stmts.is_empty()
+        self.len() == 0
     }
 
-    /// The index among all statements of each placed one, and its span.
-    pub fn places(&self) -> impl Iterator<Item = (usize, Span)> + '_ {
+    /// The index among all statements of each placed (or lowered) one, and its span, in order.
+    pub fn places(&self) -> Vec<(usize, Span)> {
         let (mut objects, mut groups) = (0, 0);
-        self.stmts.iter().filter_map(move |p| {
-            let span = if p.names == 0 {
-                self.objects.get(objects)?.span
-            } else {
-                groups += 1;
-                *self.group_spans.get(groups - 1)?
-            };
-            objects += p.objects as usize;
-            Some((p.at as usize, span))
-        })
+        let mut places: Vec<(usize, Span)> = self
+            .stmts
+            .iter()
+            .filter_map(|p| {
+                let span = if p.names == 0 {
+                    self.objects.get(objects)?.span
+                } else {
+                    groups += 1;
+                    *self.group_spans.get(groups - 1)?
+                };
+                objects += p.objects as usize;
+                Some((p.at as usize, span))
+            })
+            .collect();
+        places.extend(self.materials.iter().map(|m| (m.at as usize, m.span)));
+        places.sort_unstable_by_key(|&(at, _)| at);
+        places
+    }
+
+    /// The materials lowered while parsing; the rest.
+    pub(super) fn take_materials(mut self) -> (Vec<PlacedMaterial>, Placed) {
+        (std::mem::take(&mut self.materials), self)
     }
 }
 
@@ -93,8 +118,9 @@ impl PreCheck {
 
     /// Room for `n` more placed objects (the driver counts `object` words in each file, so
     /// the list is allocated once instead of doubling).
-    pub fn reserve(&mut self, n: usize) {
-        self.placed.objects.reserve_exact(n);
+    pub fn reserve(&mut self, objects: usize, materials: usize) {
+        self.placed.objects.reserve_exact(objects);
+        self.placed.materials.reserve_exact(materials);
     }
 
     /// Takes the next top-level statement: `None` when it was placed (its AST is dropped),
@@ -103,12 +129,28 @@ impl PreCheck {
         let index = self.offered as u32;
         self.offered += 1;
         match &stmt {
-            Stmt::Decl(d) if matches!(d.kind, DeclKind::Material | DeclKind::Mesh) => {
-                let ns = match d.kind {
-                    DeclKind::Material => Namespace::Material,
-                    _ => Namespace::Mesh,
+            Stmt::Decl(d) if d.kind == DeclKind::Material => {
+                let table = &mut self.tables[Namespace::Material as usize];
+                if table.declare(&d.name.name, d.name.span).is_some() {
+                    return Some(stmt);
+                }
+                let mut cx = Checker::new(sources);
+                cx.frame = self.frame;
+                let (material, textures) = cx.material(d);
+                return match material {
+                    Some(material) if cx.diags.is_empty() && textures.is_empty() => {
+                        let span = stmt.span();
+                        let at = index;
+                        self.placed
+                            .materials
+                            .push(PlacedMaterial { at, span, material });
+                        None
+                    }
+                    _ => Some(stmt),
                 };
-                let _ = self.tables[ns as usize].declare(&d.name.name, d.name.span);
+            }
+            Stmt::Decl(d) if d.kind == DeclKind::Mesh => {
+                let _ = self.tables[Namespace::Mesh as usize].declare(&d.name.name, d.name.span);
                 return Some(stmt);
             }
             Stmt::Object(_) | Stmt::Group(_) => {}
@@ -149,8 +191,12 @@ impl PreCheck {
 
 /// The index among all `total` statements of each statement not placed (ascending).
 pub(super) fn kept_indices(placed: &Placed, total: usize) -> impl Iterator<Item = usize> + '_ {
-    let mut next = placed.stmts.iter().peekable();
-    (0..total).filter(move |&i| next.next_if(|p| p.at as usize == i).is_none())
+    let mut stmts = placed.stmts.iter().map(|p| p.at).peekable();
+    let mut materials = placed.materials.iter().map(|m| m.at).peekable();
+    (0..total).filter(move |&i| {
+        let i = i as u32;
+        stmts.next_if_eq(&i).is_none() & materials.next_if_eq(&i).is_none()
+    })
 }
 
 /// The placed statements not yet put into the placement phase.

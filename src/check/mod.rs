@@ -241,13 +241,20 @@ impl Checker<'_> {
         mut track: Option<(&mut Vec<StmtRecord>, &mut Option<PlacementStart>)>,
     ) -> Option<ir::SceneDesc> {
         let cx = self;
-        let mut decls: [Vec<&Decl>; 4] = Default::default();
+        // `None`: the next material lowered while parsing (`lowered`).
+        let mut decls: [Vec<Option<&Decl>>; 4] = Default::default();
         let mut renders = Vec::new();
         let mut cameras = Vec::new();
         let mut placements = Vec::new();
         let total = statements.len() + placed.len();
-        let indices = early::kept_indices(&placed, total);
-        for (i, stmt) in indices.zip(statements) {
+        let indices: Vec<usize> = early::kept_indices(&placed, total).collect();
+        let (lowered, placed) = placed.take_materials();
+        let mut next_lowered = lowered.iter().peekable();
+        for (i, stmt) in indices.into_iter().zip(statements) {
+            while let Some(m) = next_lowered.next_if(|m| (m.at as usize) < i) {
+                cx.declare(Namespace::Material, &m.material.name, m.material.span);
+                decls[Namespace::Material as usize].push(None);
+            }
             match stmt {
                 Stmt::Version { .. } | Stmt::Include { .. } => {}
                 Stmt::Let { name, value, .. } => cx.let_stmt(name, value),
@@ -264,23 +271,34 @@ impl Checker<'_> {
                         DeclKind::Light => Namespace::Light,
                     };
                     if cx.declare(ns, &d.name.name, d.name.span) {
-                        decls[ns as usize].push(d);
+                        decls[ns as usize].push(Some(d));
                     }
                 }
                 Stmt::Object(_) | Stmt::Group(_) => placements.push((i, stmt)),
                 Stmt::Render { body, span } => renders.push((body, *span)),
             }
         }
-        for d in &decls[Namespace::Texture as usize] {
+        for m in next_lowered {
+            cx.declare(Namespace::Material, &m.material.name, m.material.span);
+            decls[Namespace::Material as usize].push(None);
+        }
+        for d in decls[Namespace::Texture as usize].iter().flatten() {
             let t = cx.texture(d);
             cx.textures.push(t);
         }
+        let mut lowered = lowered.into_iter();
+        cx.materials
+            .reserve_exact(decls[Namespace::Material as usize].len());
         for d in &decls[Namespace::Material as usize] {
-            let (m, texs) = cx.material(d);
+            let (m, texs) = match d {
+                Some(d) => cx.material(d),
+                None => (lowered.next().map(|m| m.material), Vec::new()),
+            };
             cx.materials.push(m);
             cx.material_textures.push(texs);
         }
-        for d in &decls[Namespace::Mesh as usize] {
+        drop(lowered);
+        for d in decls[Namespace::Mesh as usize].iter().flatten() {
             let m = cx.mesh(d);
             cx.meshes.push(m);
         }
@@ -288,7 +306,7 @@ impl Checker<'_> {
         cx.used_meshes = vec![false; cx.meshes.len()];
         cx.material_uses = vec![0; cx.materials.len()];
         cx.mesh_uses = vec![0; cx.meshes.len()];
-        for d in &decls[Namespace::Light as usize] {
+        for d in decls[Namespace::Light as usize].iter().flatten() {
             cx.light(d);
         }
         if let Some((records, start)) = &mut track {

@@ -32,7 +32,15 @@ fn assert_same(name: &str, text: &str, loader: &dyn Loader) {
 const MIXED: &str = "scnc 1
 camera c { eye (0, 1, -5)  target (0, 0, 0) }
 material red = phong { diffuse 0.5 }
+texture board = checker { even #e8e8e8  odd #303030  scale 8 }
+material checked = phong { diffuse board }
+material red = phong { diffuse 0.3 }
+material bright = phong { diffuse 2 }
+material konst = phong { specular k }
 mesh ball = sphere
+object ball { material checked }
+object ball { material bright }
+object ball { material konst }
 object ball { material red  transform { rotate y 30deg  translate (1, 0, 0) } }
 object ball { material later }
 object ball { material red  transform { translate (k, 0, 0) } }
@@ -62,7 +70,7 @@ fn placements_checked_while_parsing_change_nothing() {
         .pre
         .map(crate::check::PreCheck::into_placed)
         .unwrap_or_default();
-    assert_eq!((placed.len(), d.statements.len()), (5, 15));
+    assert_eq!((placed.len(), d.statements.len()), (11, 17));
     // Cut after every line: forward references, errors and unused declarations vary.
     let lines: Vec<&str> = MIXED.lines().collect();
     for n in 1..lines.len() {

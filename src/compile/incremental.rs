@@ -154,7 +154,7 @@ impl Driver<'_> {
 fn statement_spans(statements: &[Stmt], placed: &Placed) -> Vec<(u32, u32)> {
     let mut spans = Vec::with_capacity(statements.len() + placed.len());
     let mut kept = statements.iter().map(|s| s.span());
-    let mut early = placed.places().peekable();
+    let mut early = placed.places().into_iter().peekable();
     for i in 0..statements.len() + placed.len() {
         let span = match early.next_if(|&(at, _)| at == i) {
             Some((_, span)) => Some(span),

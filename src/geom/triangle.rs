@@ -67,7 +67,6 @@ pub struct WatertightRay {
     /// `origin` as an array: indexed by a run-time axis without a branch (indexing a `Vec3A`
     /// by a variable is a `match`).
     pub(crate) origin_xyz: [f32; 3],
-    shear: Mat3A,
     /// `kx`, `ky`, `kz`: which axes become the sheared x, y and z (for the four-wide test,
     /// which permutes rows instead of multiplying by `shear`).
     pub(crate) axes: [usize; 3],
@@ -82,7 +81,6 @@ impl WatertightRay {
     /// Precomputes the axis permutation and shear for `ray`.
     #[inline]
     pub fn new(ray: &Ray) -> WatertightRay {
-        const AXES: [Vec3A; 3] = [Vec3A::X, Vec3A::Y, Vec3A::Z];
         let d = ray.dir;
         let a = d.abs();
         let kz = if a.x >= a.y && a.x >= a.z {
@@ -101,12 +99,6 @@ impl WatertightRay {
         };
         let dv = [d.x, d.y, d.z];
         let (sx, sy, sz) = (dv[kx] / dz, dv[ky] / dz, 1.0 / dz);
-        // Rows e_kx − Sx·e_kz, e_ky − Sy·e_kz, Sz·e_kz (their zero entries stay exact zeros).
-        let rows = [
-            AXES[kx] - sx * AXES[kz],
-            AXES[ky] - sy * AXES[kz],
-            sz * AXES[kz],
-        ];
         // Camera, shadow and BRDF rays are unit length up to rounding; keeping exactly 1 for
         // them keeps pbrt's bound (and every image) bit for bit. Object-space rays of scaled
         // instances are not: their `t` is in units of a `dir` that may be 1e-6 or 1e6 long.
@@ -120,11 +112,26 @@ impl WatertightRay {
             origin: ray.origin.into(),
             t_max: ray.t_max,
             origin_xyz: ray.origin.to_array(),
-            shear: Mat3A::from_cols(rows[0], rows[1], rows[2]).transpose(),
             axes: [kx, ky, kz],
             shear_factors: [sx, sy, sz],
             dir_length,
         }
+    }
+
+    /// The shear as one matrix, for the one-triangle test: rows `e_kx − Sx·e_kz`,
+    /// `e_ky − Sy·e_kz`, `Sz·e_kz` (their zero entries stay exact zeros). Built on demand: the
+    /// BVH's packet tests permute rows instead, and building it for every ray was about 5% of
+    /// a primary ray's instructions.
+    fn shear(&self) -> Mat3A {
+        const AXES: [Vec3A; 3] = [Vec3A::X, Vec3A::Y, Vec3A::Z];
+        let [kx, ky, kz] = self.axes;
+        let [sx, sy, sz] = self.shear_factors;
+        let rows = [
+            AXES[kx] - sx * AXES[kz],
+            AXES[ky] - sy * AXES[kz],
+            sz * AXES[kz],
+        ];
+        Mat3A::from_cols(rows[0], rows[1], rows[2]).transpose()
     }
 }
 
@@ -140,9 +147,10 @@ pub fn watertight(r: &WatertightRay, p0: Vec3, p1: Vec3, p2: Vec3) -> Option<Tri
 pub fn watertight_a(r: &WatertightRay, p0: Vec3A, p1: Vec3A, p2: Vec3A) -> Option<TriangleHit> {
     // Vertices relative to the origin, in the sheared space: (x, y) in the plane across the
     // ray, z scaled so that the ray runs from z = 0 to z = t.
-    let a = r.shear * (p0 - r.origin);
-    let b = r.shear * (p1 - r.origin);
-    let c = r.shear * (p2 - r.origin);
+    let shear = r.shear();
+    let a = shear * (p0 - r.origin);
+    let b = shear * (p1 - r.origin);
+    let c = shear * (p2 - r.origin);
     let mut u = c.x * b.y - c.y * b.x;
     let mut v = a.x * c.y - a.y * c.x;
     let mut w = b.x * a.y - b.y * a.x;

@@ -191,7 +191,11 @@ pub fn closest4(r: &WatertightRay, t_max: &mut f32, tris: &[Tri4]) -> Option<(us
     let mut best = None;
     for (p, tri) in tris.iter().enumerate() {
         if let Some(hits) = watertight4(r, *t_max, tri) {
-            for k in 0..LANES {
+            // Only the hit lanes, in order.
+            let mut lanes = hits.mask;
+            while lanes != 0 {
+                let k = lanes.trailing_zeros() as usize % LANES;
+                lanes &= lanes - 1;
                 if let Some(h) = hits.within(k, *t_max) {
                     *t_max = h.t;
                     best = Some((p * LANES + k, h));

@@ -224,8 +224,11 @@ pub fn closest8(
     for (p, pair) in tris.chunks(2).enumerate() {
         let (lo, hi) = (&pair[0], pair.get(1).unwrap_or(&pair[0]));
         if let Some(hits) = watertight8::<true>(avx, r, *t_max, lo, hi) {
-            let lanes = LANES * pair.len();
-            for k in 0..lanes {
+            // Only the hit lanes, in order (a repeated odd packet's upper lanes left out).
+            let mut lanes = hits.mask & ((1 << (LANES * pair.len())) - 1);
+            while lanes != 0 {
+                let k = lanes.trailing_zeros() as usize % LANES8;
+                lanes &= lanes - 1;
                 if let Some(h) = hits.within(k, *t_max) {
                     *t_max = h.t;
                     best = Some((2 * LANES * p + k, h));

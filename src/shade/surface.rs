@@ -9,7 +9,7 @@
 //! at 1e5 gets offsets around 1e-2 and one at 1e-4 around 1e-11: no self-intersection (acne) in
 //! the first, no leaking through thin contacts in the second (tests in `tests/render_robust.rs`).
 
-use glam::{Vec2, Vec3, Vec3A};
+use glam::{Affine3A, Vec2, Vec3, Vec3A};
 
 use crate::bvh::Hit;
 use crate::scene::{Scene, Surface};
@@ -94,27 +94,33 @@ pub fn surface_hit(scene: &Scene, hit: &Hit) -> Option<SurfaceHit> {
     let mesh = scene.meshes.get(inst.mesh as usize)?;
     let tri = *mesh.triangles.get(hit.prim as usize)?;
     let obj = tri.map(|i| mesh.positions[i as usize]);
-    let world = obj.map(|p| inst.world_from_object.transform_point3(p));
+    let m = inst.world_from_object;
+    let (world, transform_error) = if m == Affine3A::IDENTITY {
+        // What the general path computes, without its products: `1·x + 0·y + 0·z + 0` is
+        // `x + 0` for finite coordinates (a −0 becomes +0 either way), and `|M|·|q| + |t|` is
+        // `|q|`. Unplaced meshes (all of cornell's) are the common case.
+        let world = obj.map(|q| q + Vec3::ZERO);
+        (
+            world,
+            obj.iter().map(|q| q.abs()).fold(Vec3::ZERO, Vec3::max),
+        )
+    } else {
+        let abs_m = glam::Mat3A::from_cols(
+            m.matrix3.x_axis.abs(),
+            m.matrix3.y_axis.abs(),
+            m.matrix3.z_axis.abs(),
+        );
+        let error = obj
+            .iter()
+            .map(|&q| Vec3::from(abs_m * Vec3A::from(q).abs() + m.translation.abs()))
+            .fold(Vec3::ZERO, Vec3::max);
+        (obj.map(|p| m.transform_point3(p)), error)
+    };
     let b = [1.0 - hit.u - hit.v, hit.u, hit.v];
     let p = b[0] * world[0] + b[1] * world[1] + b[2] * world[2];
     let abs_sum = (b[0] * world[0]).abs() + (b[1] * world[1]).abs() + (b[2] * world[2]).abs();
-    let m = inst.world_from_object;
-    let transform_error = obj
-        .iter()
-        .map(|&q| {
-            let lin = Vec3A::from(q).abs();
-            let abs_m = glam::Mat3A::from_cols(
-                m.matrix3.x_axis.abs(),
-                m.matrix3.y_axis.abs(),
-                m.matrix3.z_axis.abs(),
-            );
-            Vec3::from(abs_m * lin + m.translation.abs())
-        })
-        .fold(Vec3::ZERO, Vec3::max);
     let p_error = gamma(7) * abs_sum + gamma(3) * transform_error;
-    let ng = (world[1] - world[0])
-        .cross(world[2] - world[0])
-        .normalize_or_zero();
+    let ng = face_normal(world);
     let mut bulge = [Vec3::ZERO; 2];
     let ns = if mesh.normals.is_empty() {
         ng
@@ -146,6 +152,36 @@ pub fn surface_hit(scene: &Scene, hit: &Hit) -> Option<SurfaceHit> {
         bulge,
         hit: *hit,
     })
+}
+
+/// The unit face normal `(p1 − p0) × (p2 − p0)` of a world-space triangle (zero if degenerate).
+#[inline]
+fn face_normal(world: [Vec3; 3]) -> Vec3 {
+    (world[1] - world[0])
+        .cross(world[2] - world[0])
+        .normalize_or_zero()
+}
+
+/// For a hit on an emitter, the light's index and the triangle's unit face normal
+/// ([`SurfaceHit::ng`], the same bits): all a camera ray that sees a light needs, without the
+/// rest of [`surface_hit`]. `None` for any other hit.
+pub fn emitter_hit(scene: &Scene, hit: &Hit) -> Option<(u32, Vec3)> {
+    let inst = scene.instances.get(hit.instance as usize)?;
+    let mesh = scene.meshes.get(inst.mesh as usize)?;
+    let Surface::Emitter(light) = scene.surface_of(inst, mesh, hit.prim) else {
+        return None;
+    };
+    let tri = *mesh.triangles.get(hit.prim as usize)?;
+    let m = inst.world_from_object;
+    let world = tri.map(|i| {
+        let q = mesh.positions[i as usize];
+        if m == Affine3A::IDENTITY {
+            q + Vec3::ZERO
+        } else {
+            m.transform_point3(q)
+        }
+    });
+    Some((light, face_normal(world)))
 }
 
 /// A point off the surface at `p` (error bound `p_error`, unit normal `n`), on the side that
