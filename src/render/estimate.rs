@@ -18,13 +18,15 @@
 //! [`PRIOR_FULL_SAMPLES`] samples, [`prior_dof`]). Relative error is
 //! that of the luminance, divided by the mean luminance floored at [`REL_FLOOR`]; a term
 //! `REL_FLOOR / n` keeps pixels whose samples all agree so far sampling until `n ≥ 1/target`,
-//! and a pixel whose samples are all black takes at least `3/target` ([`black_min_samples`]).
+//! a pixel whose samples are all black takes at least `3/target` ([`black_min_samples`]), and
+//! one an area light's outline crosses samples until it has seen the light or could not miss
+//! it (`render::emitter_coverage`).
 //!
 //! A pixel takes a first batch of [`FIRST_BATCH`] samples (a flat, directly lit pixel may stop
 //! there), then batches of [`BATCH`], and stops after the first batch at which its relative
 //! error is at most the target or its count reached `max_samples`. Every decision uses the
-//! pixel's own samples only (and a geometric mark, `render::emitter_pixels`), so the image does
-//! not depend on threads or tiles.
+//! pixel's own samples only (and the light's projected outline, `render::emitter_coverage`),
+//! so the image does not depend on threads or tiles.
 
 use glam::{DVec3, Vec3};
 
@@ -51,20 +53,6 @@ pub const PRIOR_FULL_SAMPLES: f64 = 64.0;
 pub fn prior_dof(n: f64) -> f64 {
     PRIOR_DOF * (PRIOR_FULL_SAMPLES / n.max(1.0)).sqrt().min(1.0)
 }
-/// A pixel that may see an area light takes at least this many samples over the target
-/// ([`emitter_min_samples`]).
-pub const EMITTER_MIN_PER_TARGET: f64 = 8.0;
-
-/// The fewest samples an adaptive pixel that may see an area light takes at `target`: the
-/// light's edge can cross it as a sliver a few percent of its area wide, bright enough to
-/// matter, which its first samples can all miss (then they agree, and the pixel would stop
-/// dark beside the light); a `1/target`-proportional count sees such slivers.
-pub fn emitter_min_samples(target: f64) -> u32 {
-    (EMITTER_MIN_PER_TARGET / target.max(1e-6))
-        .ceil()
-        .min(u32::MAX as f64) as u32
-}
-
 /// A pixel whose samples are all black so far takes at least this many samples over the
 /// target ([`black_min_samples`]).
 pub const BLACK_MIN_PER_TARGET: f64 = 3.0;
@@ -118,6 +106,8 @@ pub struct Accumulator {
     /// Luminance sum and sample count of each replicate (adaptive renders only).
     replicate_luma: [f64; REPLICATES as usize],
     replicate_n: [u32; REPLICATES as usize],
+    /// The brightest sample's luminance (adaptive renders only).
+    brightest: f64,
 }
 
 impl Accumulator {
@@ -136,6 +126,7 @@ impl Accumulator {
     /// Adds one sample of replicate `replicate` (`rng::PixelSequences::replicate`).
     pub fn add_replicate(&mut self, l: Vec3, replicate: usize) {
         let y = self.add(l);
+        self.brightest = self.brightest.max(y);
         if let (Some(sum), Some(n)) = (
             self.replicate_luma.get_mut(replicate),
             self.replicate_n.get_mut(replicate),
@@ -170,6 +161,16 @@ impl Accumulator {
     /// Whether every sample so far is black (zero luminance, so zero radiance).
     pub fn is_black(&self) -> bool {
         self.luma_sum <= 0.0
+    }
+
+    /// The brightest sample's luminance so far (adaptive samples only).
+    pub fn brightest(&self) -> f64 {
+        self.brightest
+    }
+
+    /// Mean luminance of the samples so far (0 before the first).
+    pub fn mean_luminance(&self) -> f64 {
+        self.luma_sum / self.n.max(1) as f64
     }
 
     /// Samples added so far (finite ones only).
@@ -422,7 +423,6 @@ mod tests {
         assert_eq!(batch_sizes(8), vec![8]);
         assert_eq!(batch_sizes(9), vec![8, 16]);
         assert_eq!(batch_sizes(4096).iter().sum::<u32>(), 4104);
-        assert_eq!(emitter_min_samples(0.1), 80);
         assert_eq!(black_min_samples(0.1), 30);
         assert!(b.is_black() && !a.is_black());
     }
