@@ -11,9 +11,9 @@
 //! light can cover (an upper bound: occluders are ignored). Until a sample has seen the light,
 //! such a pixel takes at least `6/c` samples ([`EXPECTED_HITS`]: it cannot miss a share `c` that
 //! often by chance), unless `c` times the light's luminance is already within the target of the
-//! pixel's mean ([`SliverRule`]). This replaces the flat `8/target` minimum emitter pixels
-//! took before: the light's interior pixels (covered whole, their first sample sees it) now
-//! stop like any other.
+//! pixel's mean ([`SliverRule`]). The flat `8/target` minimum of emitter pixels
+//! (`estimate::emitter_min_samples`) stays beside it: it guards the light edge's absolute
+//! error, this rule the slivers that minimum is too small to find.
 //!
 //! Decided from geometry and the pixel's own samples only, so the image does not depend on
 //! threads or tiles; fixed-count renders never build it.

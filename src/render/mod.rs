@@ -167,6 +167,7 @@ pub fn render_window(
         target: target as f64,
         coverage: EmitterCoverage::find(scene, &camera, &emitter_pixels),
         batch_sizes: estimate::batch_sizes(max_samples),
+        emitter_min: estimate::emitter_min_samples(target as f64),
         min: estimate::min_samples(target as f64),
         black_min: estimate::black_min_samples(target as f64),
     });
@@ -219,6 +220,9 @@ struct Adaptive {
     target: f64,
     /// Samples of each batch, in order (`estimate::batch_sizes`).
     batch_sizes: Vec<u32>,
+    /// The fewest samples a pixel that may see an area light takes
+    /// (`estimate::emitter_min_samples`).
+    emitter_min: u32,
     /// The fewest samples any pixel takes (`estimate::min_samples`).
     min: u32,
     /// The fewest samples a pixel whose samples are all black takes
@@ -356,6 +360,10 @@ impl Job<'_> {
             return acc.finish(offsets.len() as u32, false);
         };
         let sequences = rng::PixelSequences::new(self.scene.settings.seed, x, y);
+        let min = match self.emitter_pixels.factor_at(x, y) {
+            1 => a.min,
+            _ => a.emitter_min.max(a.min),
+        };
         let sliver = a.coverage.at(x, y).map(|(share, luminance)| SliverRule {
             share: share as f64,
             luminance: luminance as f64,
@@ -370,7 +378,7 @@ impl Job<'_> {
             let black = acc.is_black() && taken < a.black_min;
             let unseen = sliver
                 .is_some_and(|r| r.holds(taken, acc.mean_luminance(), acc.brightest(), a.target));
-            if taken >= a.min && !black && !unseen && acc.relative_error() <= a.target {
+            if taken >= min && !black && !unseen && acc.relative_error() <= a.target {
                 return acc.finish(taken, false);
             }
         }
