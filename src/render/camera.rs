@@ -38,6 +38,11 @@ impl PinholeCamera {
         }
     }
 
+    /// The eye (the centre of projection), world space.
+    pub fn eye(&self) -> Vec3 {
+        self.eye
+    }
+
     /// The ray through film position `film_px` (pixels, from the top-left corner); its
     /// direction is unit length so that `t` is a distance.
     pub fn ray(&self, film_px: Vec2) -> Ray {

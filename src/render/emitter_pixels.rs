@@ -15,8 +15,8 @@
 //! The choice depends only on the scene's geometry and the camera, never on a sample: every
 //! pixel's estimate stays an unbiased mean of its own samples, tiles and thread counts give the
 //! same bits, and a pixel that sees no emitter is rendered exactly as before. Adaptive renders
-//! (`noise`) use the same mark for a minimum sample count instead (`estimate::
-//! emitter_min_samples`: a sliver of the light's edge that a pixel's first samples all miss
+//! (`noise`) measure, within the same mark, how much of each pixel the light covers
+//! (`emitter_coverage`: a sliver of the light's edge that a pixel's first samples all miss
 //! would otherwise stop it dark); one-sample renders stay point-sampled.
 
 use glam::Vec3;

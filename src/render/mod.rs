@@ -15,6 +15,7 @@
 
 pub mod balance;
 pub mod camera;
+pub mod emitter_coverage;
 pub mod emitter_pixels;
 pub mod estimate;
 pub mod integrator;
@@ -30,6 +31,7 @@ use glam::Vec2;
 use rayon::prelude::*;
 
 use self::camera::PinholeCamera;
+use self::emitter_coverage::{EmitterCoverage, SliverRule};
 use self::emitter_pixels::EmitterPixels;
 use self::estimate::{Accumulator, NoiseStats, PixelEstimate};
 use self::integrator::{radiance_scaled, RayCounts};
@@ -156,13 +158,14 @@ pub fn render_window(
         .unwrap_or(crate::ir::DEFAULT_MAX_SAMPLES);
     let camera = PinholeCamera::new(&scene.camera, settings.width, settings.height);
     // Pixels that may see an area light: a fixed-count render takes more samples there, an
-    // adaptive one a minimum count (both decided from geometry alone).
+    // adaptive one measures how much of each the light covers (both from geometry alone).
     let emitter_pixels = match settings.noise {
         None => EmitterPixels::find(scene, &camera, side),
         Some(_) => EmitterPixels::find(scene, &camera, estimate::BATCH),
     };
     let adaptive = settings.noise.map(|target| Adaptive {
         target: target as f64,
+        coverage: EmitterCoverage::find(scene, &camera, &emitter_pixels),
         batch_sizes: estimate::batch_sizes(max_samples),
         emitter_min: estimate::emitter_min_samples(target as f64),
         min: estimate::min_samples(target as f64),
@@ -225,6 +228,8 @@ struct Adaptive {
     /// The fewest samples a pixel whose samples are all black takes
     /// (`estimate::black_min_samples`).
     black_min: u32,
+    /// How much of each pixel area lights can cover ([`SliverRule`]).
+    coverage: EmitterCoverage,
 }
 
 struct Job<'a> {
@@ -359,6 +364,10 @@ impl Job<'_> {
             1 => a.min,
             _ => a.emitter_min.max(a.min),
         };
+        let sliver = a.coverage.at(x, y).map(|(share, luminance)| SliverRule {
+            share: share as f64,
+            luminance: luminance as f64,
+        });
         let mut taken = 0;
         for &size in &a.batch_sizes {
             // Textures are filtered for the samples the pixel will have by this batch's end.
@@ -367,7 +376,9 @@ impl Job<'_> {
             self.progressive_batch(x, y, &sequences, samples, scale, &mut acc, counts);
             taken += size;
             let black = acc.is_black() && taken < a.black_min;
-            if taken >= min && !black && acc.relative_error() <= a.target {
+            let unseen = sliver
+                .is_some_and(|r| r.holds(taken, acc.mean_luminance(), acc.brightest(), a.target));
+            if taken >= min && !black && !unseen && acc.relative_error() <= a.target {
                 return acc.finish(taken, false);
             }
         }
