@@ -1,5 +1,5 @@
 //! Incremental re-checking benchmark (a program, not a test): `cargo bench --bench incremental
-//! [-- --edits N] [-- --objects N]`.
+//! [-- --edits N] [-- --objects N] [-- --no-watch]`.
 //!
 //! The scene of issue 22: 100,000 `object` statements, each with a rotate and a translate, over
 //! three meshes and 100 materials (about 9 MB). Each edit changes one digit of one object's
@@ -14,7 +14,12 @@
 //!
 //! Medians (and the slowest) are printed; figures go to docs/watch.md by hand.
 
+// A global allocator needs `unsafe impl`; it only forwards to the system allocator.
+#![allow(unsafe_code)]
+
+use std::alloc::{GlobalAlloc, Layout, System};
 use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 use scnc::assets::MemLoader;
@@ -25,6 +30,46 @@ use scnc::source::SourceMap;
 #[path = "support/watch_process.rs"]
 mod watch_process;
 use watch_process::WatchProcess;
+
+/// Counts the heap in use and its peak, for the memo's own size.
+struct Counting;
+
+static CURRENT: AtomicUsize = AtomicUsize::new(0);
+static PEAK: AtomicUsize = AtomicUsize::new(0);
+
+// SAFETY: forwards every call to `System` unchanged; only updates counters.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        let p = System.alloc(layout);
+        if !p.is_null() {
+            let now = CURRENT.fetch_add(layout.size(), Ordering::Relaxed) + layout.size();
+            PEAK.fetch_max(now, Ordering::Relaxed);
+        }
+        p
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        System.dealloc(ptr, layout);
+        CURRENT.fetch_sub(layout.size(), Ordering::Relaxed);
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        let p = System.realloc(ptr, layout, new_size);
+        if !p.is_null() {
+            if new_size >= layout.size() {
+                let grow = new_size - layout.size();
+                let now = CURRENT.fetch_add(grow, Ordering::Relaxed) + grow;
+                PEAK.fetch_max(now, Ordering::Relaxed);
+            } else {
+                CURRENT.fetch_sub(layout.size() - new_size, Ordering::Relaxed);
+            }
+        }
+        p
+    }
+}
+
+#[global_allocator]
+static ALLOC: Counting = Counting;
 
 /// The scene's lines; object `i` is line `HEADER + i`.
 fn scene(objects: usize) -> Vec<String> {
@@ -96,12 +141,30 @@ fn front_end(objects: usize, edits: usize) {
         full.push(t.elapsed().as_secs_f64() * 1e3);
         assert!(r.value.is_some(), "the scene compiles");
     }
-    let mut inc = Incremental::new(overrides.clone());
     let mut loader = MemLoader::new();
     loader.insert(path, original.as_str());
+    // The memo's own heap: what the incremental front end keeps between compiles (the text,
+    // statement spans, constants, name tables, per-statement records, diagnostics and the IR),
+    // measured with the compile's result dropped; and the peak while it compiles the first time.
+    let base = CURRENT.load(Ordering::Relaxed);
+    PEAK.store(base, Ordering::Relaxed);
+    let mut inc = Incremental::new(overrides.clone());
     let t = Instant::now();
-    let _ = inc.compile(path, &loader, &mut SourceMap::new());
+    let r = inc.compile(path, &loader, &mut SourceMap::new());
     let first = t.elapsed().as_secs_f64() * 1e3;
+    drop(r);
+    let (memo, peak) = (
+        CURRENT.load(Ordering::Relaxed).saturating_sub(base),
+        PEAK.load(Ordering::Relaxed) - base,
+    );
+    println!(
+        "incremental memo after the first compile: {:.1} MB = {:.2} x source; peak during it \
+         {:.1} MB = {:.2} x source",
+        memo as f64 / 1e6,
+        memo as f64 / original.len() as f64,
+        peak as f64 / 1e6,
+        peak as f64 / original.len() as f64
+    );
     let mut times = Vec::new();
     let mut cache = BuildCache::new();
     let opts = BuildOptions::default();
@@ -213,5 +276,7 @@ fn main() {
     let edits = arg("--edits", 15);
     let objects = arg("--objects", 100_000);
     front_end(objects, edits);
-    watch(objects, edits);
+    if !args.iter().any(|a| a == "--no-watch") {
+        watch(objects, edits);
+    }
 }

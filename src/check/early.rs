@@ -1,17 +1,21 @@
-//! Stage 2, check, while parsing: top-level `object` statements checked as soon as they are
-//! parsed, so that their AST never accumulates (a generated scene of 80,000 placements would
-//! otherwise hold ≈ 1 KB of AST per placement until the placement phase; docs/frontend-bench.md).
+//! Stage 2, check, while parsing: top-level `object`s, `group`s and `material`s checked as
+//! soon as they are parsed, so that their AST never accumulates (a generated scene of 80,000
+//! placements otherwise held ≈ 1 KB of AST per placement until the placement phase, which runs
+//! last; docs/frontend-bench.md).
 //!
-//! The driver offers every top-level statement, in the order the full check will see them, to
-//! a [`PreCheck`]. It records the material and mesh names declared so far (as the check's
-//! tables will: first declaration wins, in statement order) and checks each `object` against
-//! them with no constants at all. An `object` whose check emits no diagnostic at all named only
-//! declarations written before it and no constant (an unknown name is a diagnostic), so its
-//! result is exactly what the placement phase would compute: it is kept as [`Placed`] (its IR
-//! object, table indices) and its AST dropped. Any other statement goes on to the check as
-//! before (an `object` that uses a constant or a later declaration, or has an error: its
-//! diagnostics are the full check's). The placement phase then takes the placed objects in
-//! statement order among the others (`Checker::run`).
+//! The driver offers every top-level statement, in the order the full check will see them
+//! (includes expanded in place), to a [`PreCheck`]. It records the material, mesh and group
+//! names declared so far as the check's tables will (first declaration wins, statement order)
+//! and checks each `object` and `group` with the placement phase's own code against them, with
+//! no constants at all. One whose check emits no diagnostic named only declarations written
+//! before it and no constant (an unknown name is a diagnostic), so its result is exactly what
+//! the placement phase would compute: it is kept in [`Placed`] (its IR objects with table
+//! indices, the group names it declared) and its AST dropped. A `material` that is the first of
+//! its name and lowers with no diagnostic and no texture is kept as its IR material likewise.
+//! Every other statement goes on to the check as before (a forward reference, a constant, an
+//! error: their diagnostics are the full check's). The check then declares the kept names and
+//! takes the kept results in statement order among the others (`Checker::run`,
+//! [`Checker::placements`]).
 
 use super::names::{Namespace, Table};
 use super::object::count_objects;
