@@ -183,6 +183,9 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> usize {
     let mut text = base_scene();
     let mut inc = Incremental::new(overrides.clone());
     let mut fast = 0;
+    // Every other step holds its scene across the next edit, as `scnc watch` may: the memo
+    // then edits a copy (`Arc::make_mut`), and the held scene must not change.
+    let mut held: Option<(std::sync::Arc<scnc::ir::SceneDesc>, String)> = None;
     for step in 0..edits {
         let mut loader = MemLoader::new();
         loader.insert(path, text.clone());
@@ -199,15 +202,24 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> usize {
             "{label}: diagnostics differ on\n{text}"
         );
         assert_eq!(
-            serde_json::to_string(&got.value).expect("IR serialises"),
-            serde_json::to_string(&want.value).expect("IR serialises"),
+            serde_json::to_string(&got.value.as_deref()).expect("IR serialises"),
+            serde_json::to_string(&want.value.as_ref()).expect("IR serialises"),
             "{label}: IR differs on\n{text}"
         );
         assert_eq!(
-            format!("{:?}", got.value),
-            format!("{:?}", want.value),
+            format!("{:?}", got.value.as_deref()),
+            format!("{:?}", want.value.as_ref()),
             "{label}: IR differs (all bits) on\n{text}"
         );
+        if let Some((scene, debug)) = held.take() {
+            assert_eq!(format!("{scene:?}"), debug, "{label}: a held scene changed");
+        }
+        if step % 2 == 0 {
+            held = got.value.map(|s| {
+                let debug = format!("{s:?}");
+                (s, debug)
+            });
+        }
         if matches!(inc.reuse, Reuse::Statements { .. }) {
             fast += 1;
         }

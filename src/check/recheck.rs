@@ -14,6 +14,7 @@
 //! the edit's [`Shift`]; one that reaches into the edited bytes also makes it decline.
 
 use std::ops::Range;
+use std::sync::Arc;
 
 use super::names::Table;
 use super::{Checker, PlacementStart, StmtRecord};
@@ -40,7 +41,9 @@ pub struct CheckMemo {
     /// Every diagnostic of the check, in the order it was found.
     pub diagnostics: Vec<Diagnostic>,
     /// The scene, also when there were errors (`None` when the render settings failed).
-    pub scene: Option<ir::SceneDesc>,
+    /// Shared with the compile's result, so that the memo and the scene a caller holds are
+    /// one copy; an edit clones it only while a caller still holds the previous one.
+    pub scene: Option<Arc<ir::SceneDesc>>,
 }
 
 /// [`super::check_placed`], keeping a [`CheckMemo`]: its `scene` (filtered by errors) and its
@@ -76,7 +79,7 @@ pub fn check_tracked(
         mesh_uses: std::mem::take(&mut cx.mesh_uses),
         records,
         diagnostics: std::mem::take(&mut cx.diags),
-        scene,
+        scene: scene.map(Arc::new),
     }
 }
 
@@ -160,6 +163,7 @@ impl CheckMemo {
             if object_range.end > scene.objects.len() {
                 return false;
             }
+            let scene = Arc::make_mut(scene);
             scene.objects.splice(object_range.clone(), []);
             ok &= scene.shift_spans(shift);
             for o in &mut objects {

@@ -13,6 +13,7 @@
 //! `tests/incremental.rs` replays seeded edits and compares every result with a fresh compile.
 
 use std::path::Path;
+use std::sync::Arc;
 
 use super::edit::{self, Region};
 use super::{decode, reading_order, Driver, Overrides};
@@ -70,13 +71,15 @@ impl Incremental {
     }
 
     /// [`super::compile_with`] of `path`: the same result, incrementally when the last compile
-    /// was of the same path and the edit allows it.
+    /// was of the same path and the edit allows it. The scene is shared with the memo (one
+    /// copy, not two, while the caller holds it); dropping it before the next edit spares that
+    /// edit a copy of the scene.
     pub fn compile(
         &mut self,
         path: &Path,
         loader: &dyn Loader,
         sources: &mut SourceMap,
-    ) -> Staged<ir::SceneDesc> {
+    ) -> Staged<Arc<ir::SceneDesc>> {
         let bytes = loader.read(path);
         if let (Some(mut memo), Ok(bytes)) = (self.memo.take(), &bytes) {
             if memo.path == path {
@@ -113,7 +116,7 @@ impl Incremental {
         };
         let (read, staged) = compiled.into_staged();
         *sources = read;
-        staged
+        staged.map(Arc::new)
     }
 }
 
@@ -168,7 +171,7 @@ fn statement_spans(statements: &[Stmt], placed: &Placed) -> Vec<(u32, u32)> {
 impl Memo {
     /// The compile's result: the check's diagnostics in reading order, and the scene unless
     /// one of them is an error.
-    fn result(&self) -> Staged<ir::SceneDesc> {
+    fn result(&self) -> Staged<Arc<ir::SceneDesc>> {
         let mut diags: Vec<Diagnostic> = self.check.diagnostics.clone();
         reading_order(&mut diags);
         let failed = diags.iter().any(Diagnostic::is_error);
