@@ -58,13 +58,13 @@ impl Tri4 {
 pub struct Hits4 {
     /// Bit `k` set: lane `k` is hit within the `t_max` given to [`watertight4`].
     pub mask: u32,
-    pub(crate) t: [f32; LANES],
-    pub(crate) u: [f32; LANES],
-    pub(crate) v: [f32; LANES],
+    t: [f32; LANES],
+    u: [f32; LANES],
+    v: [f32; LANES],
     /// The sheared distance with the determinant's sign taken out, and `|det|`: the test
     /// compares `ts < t_max · ad` before dividing, as the one-triangle test does.
-    pub(crate) ts: [f32; LANES],
-    pub(crate) ad: [f32; LANES],
+    ts: [f32; LANES],
+    ad: [f32; LANES],
 }
 
 impl Hits4 {

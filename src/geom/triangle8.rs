@@ -9,7 +9,7 @@
 
 use super::avx2::{Avx2, F8};
 use super::triangle::{gamma, TriangleHit, WatertightRay};
-use super::triangle4::{watertight4, Tri4, LANES};
+use super::triangle4::{Tri4, LANES};
 
 /// Lanes per test.
 const LANES8: usize = 2 * LANES;
@@ -103,13 +103,6 @@ fn watertight8<const FULL: bool>(
     let zero = avx.splat(0.0);
     let exact_zero = avx.bitmask(avx.or(avx.or(avx.eq(u, zero), avx.eq(v, zero)), avx.eq(w, zero)));
     if exact_zero != 0 {
-        if !FULL {
-            // Rare: the whole test again on the four-lane path, which re-evaluates such lanes
-            // in f64; nothing is live across this call. (The closest-hit form keeps the
-            // in-place re-evaluation: returning a whole `Hits8` from a call made its hot path
-            // keep the hits in memory, +9 instructions per primary ray.)
-            return watertight_pair_cold(r, t_max, lo, hi);
-        }
         let xy = [ax, ay, bx, by, cx, cy];
         // Plain arrays in and out: the cold path is a call, not compiled for AVX2.
         let [u2, v2, w2] = reevaluate_in_f64(
@@ -215,39 +208,6 @@ fn reevaluate_in_f64(
         w[k] = (bx * ay - by * ax) as f32;
     }
     [u, v, w]
-}
-
-/// [`watertight8`] when an edge function of some lane rounds to exactly 0: each packet
-/// through the four-lane test (the same operations, so the same bits), which re-evaluates
-/// those lanes in double precision. Cold, out of line and taking everything by reference, so
-/// that nothing of the AVX2 kernel is live across the call (used by the any-hit form only).
-#[inline(never)]
-#[cold]
-fn watertight_pair_cold(r: &WatertightRay, t_max: f32, lo: &Tri4, hi: &Tri4) -> Option<Hits8> {
-    let (a, b) = (watertight4(r, t_max, lo), watertight4(r, t_max, hi));
-    let mask = a.as_ref().map_or(0, |h| h.mask) | b.as_ref().map_or(0, |h| h.mask) << LANES;
-    if mask == 0 {
-        return None;
-    }
-    let mut out = Hits8 {
-        mask,
-        t: [0.0; LANES8],
-        u: [0.0; LANES8],
-        v: [0.0; LANES8],
-        ts: [0.0; LANES8],
-        ad: [0.0; LANES8],
-    };
-    for (half, h) in [a, b].iter().enumerate() {
-        if let Some(h) = h {
-            let lanes = LANES * half..LANES * (half + 1);
-            out.t[lanes.clone()].copy_from_slice(&h.t);
-            out.u[lanes.clone()].copy_from_slice(&h.u);
-            out.v[lanes.clone()].copy_from_slice(&h.v);
-            out.ts[lanes.clone()].copy_from_slice(&h.ts);
-            out.ad[lanes].copy_from_slice(&h.ad);
-        }
-    }
-    Some(out)
 }
 
 /// [`super::triangle4::closest4`] on AVX2: the closest hit among the packets `tris` within
