@@ -25,10 +25,8 @@ use glam::{Vec2, Vec3};
 use super::camera::PinholeCamera;
 use super::emitter_pixels::EmitterPixels;
 use crate::scene::Scene;
+use crate::shade::light::env_map::luminance;
 use crate::shade::Light;
-
-/// Rec. 709 luminance weights (linear RGB).
-const LUMA: Vec3 = Vec3::new(0.2126, 0.7152, 0.0722);
 
 /// Per pixel a light covers: the share of its area area lights can cover, and the dimmest such
 /// light's luminance. Empty when no pixel is marked by [`EmitterPixels`] (whose budget keeps
@@ -55,7 +53,7 @@ impl EmitterCoverage {
         };
         for light in &scene.lights.lights {
             let Light::Area(area) = light else { continue };
-            let luminance = area.radiance.dot(LUMA);
+            let luminance = luminance(area.radiance);
             for (triangle, normal) in area.triangles.iter().zip(&area.normals) {
                 let facing = (camera.eye() - triangle[0]).dot(*normal) > 0.0;
                 if !(facing || area.two_sided) {
