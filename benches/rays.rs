@@ -24,6 +24,7 @@ use std::time::Instant;
 use glam::{Affine3A, DVec3, Vec3};
 use scnc::bvh::{Accel, AccelKind, Hit, Instance, MeshRef, TriangleTest};
 use scnc::geom::Ray;
+use scnc::testing::SplitMix64;
 
 struct Obj {
     positions: Vec<Vec3>,
@@ -63,15 +64,8 @@ fn load_obj(path: &Path) -> Result<Obj, String> {
     Ok(obj)
 }
 
-fn splitmix64(mut x: u64) -> u64 {
-    x = x.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    x = (x ^ (x >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    x = (x ^ (x >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    x ^ (x >> 31)
-}
-
 fn rnd(ray: u64, dim: u64) -> f64 {
-    (splitmix64(ray * 4 + dim) >> 40) as f64 * (1.0 / 16_777_216.0)
+    (SplitMix64(ray * 4 + dim).next_u64() >> 40) as f64 * (1.0 / 16_777_216.0)
 }
 
 /// CPU seconds of the calling thread (wall seconds if the clock is unavailable): the thread

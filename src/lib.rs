@@ -48,3 +48,5 @@ pub mod scene;
 pub mod shade;
 pub mod source;
 pub mod syntax;
+#[doc(hidden)]
+pub mod testing;

@@ -33,22 +33,14 @@ use scnc::ir::{InlineMesh, Mesh, MeshSource};
 use scnc::scene::Scene;
 use scnc::shade::surface::{offset_origin, surface_hit};
 
-/// splitmix64: a seeded stream with no dependency.
-struct Rng(u64);
-impl Rng {
-    fn f32(&mut self) -> f32 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn in_ball(&mut self, r: f32) -> Vec3 {
-        loop {
-            let v = Vec3::new(self.f32(), self.f32(), self.f32()) * 2.0 - 1.0;
-            if v.length_squared() <= 1.0 {
-                return v * r;
-            }
+use scnc::testing::SplitMix64 as Rng;
+
+/// A point uniform in the ball of radius `r` about the origin.
+fn in_ball(rng: &mut Rng, r: f32) -> Vec3 {
+    loop {
+        let v = Vec3::new(rng.unit_f32(), rng.unit_f32(), rng.unit_f32()) * 2.0 - 1.0;
+        if v.length_squared() <= 1.0 {
+            return v * r;
         }
     }
 }
@@ -144,7 +136,7 @@ fn rays_at_shared_edges_and_vertices_never_escape_a_closed_icosphere() {
         }
         let (mut escaped, mut mt_missed, mut wt_missed) = (0, 0, 0);
         for &target in &targets {
-            let origin = offset + rng.in_ball(0.3 * scale);
+            let origin = offset + in_ball(&mut rng, 0.3 * scale);
             let ray = Ray::new(origin, target - origin);
             for scene in [&in_world, &placed] {
                 let accel = scene.accel.as_ref().expect("the sphere has triangles");
@@ -402,8 +394,8 @@ fn degenerate_triangles_are_dropped_counted_and_do_not_poison_the_bvh() {
     );
     let mut rng = Rng(3);
     for _ in 0..2000 {
-        let o = rng.in_ball(4.0);
-        let ray = Ray::new(o, rng.in_ball(1.0) - o);
+        let o = in_ball(&mut rng, 4.0);
+        let ray = Ray::new(o, in_ball(&mut rng, 1.0) - o);
         let (a, b) = (accel.closest_hit(&ray), oracle.closest_hit(&ray));
         assert_eq!(a.map(|h| h.prim), b.map(|h| h.prim), "{ray:?}");
         if let (Some(a), Some(b)) = (a, b) {

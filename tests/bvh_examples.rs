@@ -12,26 +12,20 @@ use scnc::compile::compile_file;
 use scnc::geom::{Aabb, Ray};
 use scnc::scene::{build, BuildOptions, Scene};
 
-struct Rng(u64);
+use scnc::testing::SplitMix64 as Rng;
 
-impl Rng {
-    fn f32(&mut self) -> f32 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn in_box(&mut self, b: &Aabb) -> Vec3 {
-        let t = Vec3::new(self.f32(), self.f32(), self.f32());
-        b.min + t * (b.max - b.min)
-    }
-    fn dir(&mut self) -> Vec3 {
-        loop {
-            let v = Vec3::new(self.f32(), self.f32(), self.f32()) * 2.0 - 1.0;
-            if (1e-4..=1.0).contains(&v.length_squared()) {
-                return v.normalize();
-            }
+/// A point uniform in the box.
+fn in_box(rng: &mut Rng, b: &Aabb) -> Vec3 {
+    let t = Vec3::new(rng.unit_f32(), rng.unit_f32(), rng.unit_f32());
+    b.min + t * (b.max - b.min)
+}
+
+/// A uniform direction (rejection from the unit ball).
+fn dir(rng: &mut Rng) -> Vec3 {
+    loop {
+        let v = Vec3::new(rng.unit_f32(), rng.unit_f32(), rng.unit_f32()) * 2.0 - 1.0;
+        if (1e-4..=1.0).contains(&v.length_squared()) {
+            return v.normalize();
         }
     }
 }
@@ -89,8 +83,8 @@ fn bvh_equals_brute_force_on_every_example() {
         let mut rng = Rng(0x5eed ^ rays as u64);
         let (mut hits, mut tolerated) = (0, 0);
         for _ in 0..rays {
-            let origin = rng.in_box(&grown);
-            let ray = Ray::new(origin, rng.dir());
+            let origin = in_box(&mut rng, &grown);
+            let ray = Ray::new(origin, dir(&mut rng));
             let (a, b) = (bvh.closest_hit(&ray), oracle.closest_hit(&ray));
             match (a, b) {
                 (Some(a), Some(b)) => {
@@ -114,7 +108,7 @@ fn bvh_equals_brute_force_on_every_example() {
                 }
             }
             // Any-hit on a segment to a random point agrees with the oracle's closest hit.
-            let target = rng.in_box(&bounds);
+            let target = in_box(&mut rng, &bounds);
             let seg = Ray::segment(origin, target - origin, 1.0);
             let closest = oracle.closest_hit(&seg);
             if bvh.any_hit(&seg) != closest.is_some() {

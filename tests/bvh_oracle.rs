@@ -11,32 +11,14 @@ use glam::{Affine3A, Quat, Vec3};
 use scnc::bvh::{Accel, AccelKind, Hit, Instance, MeshRef, Simd, TriangleTest};
 use scnc::geom::Ray;
 
-/// splitmix64: a tiny deterministic generator, so the test needs no dependency.
-struct Rng(u64);
+use scnc::testing::SplitMix64 as Rng;
 
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn f32(&mut self) -> f32 {
-        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.f32()
-    }
-    fn vec3(&mut self, lo: f32, hi: f32) -> Vec3 {
-        Vec3::new(self.range(lo, hi), self.range(lo, hi), self.range(lo, hi))
-    }
-    fn dir(&mut self) -> Vec3 {
-        loop {
-            let v = self.vec3(-1.0, 1.0);
-            if v.length_squared() > 1e-4 && v.length_squared() <= 1.0 {
-                return v.normalize();
-            }
+/// A uniform direction (rejection from the unit ball).
+fn dir(rng: &mut Rng) -> Vec3 {
+    loop {
+        let v = rng.vec3(-1.0, 1.0);
+        if v.length_squared() > 1e-4 && v.length_squared() <= 1.0 {
+            return v.normalize();
         }
     }
 }
@@ -82,7 +64,7 @@ fn grid(rng: &mut Rng, n: u32) -> Mesh {
                 2.0 * i as f32 / n as f32 - 1.0,
                 2.0 * j as f32 / n as f32 - 1.0,
             );
-            positions.push(Vec3::new(x, 0.1 * rng.range(-1.0, 1.0), z));
+            positions.push(Vec3::new(x, 0.1 * rng.range_f32(-1.0, 1.0), z));
         }
     }
     let mut triangles = Vec::new();
@@ -100,12 +82,12 @@ fn grid(rng: &mut Rng, n: u32) -> Mesh {
 }
 
 fn random_instance(rng: &mut Rng, mesh: u32) -> Instance {
-    let axis = rng.dir();
-    let rot = Quat::from_axis_angle(axis, rng.range(0.0, std::f32::consts::TAU));
+    let axis = dir(rng);
+    let rot = Quat::from_axis_angle(axis, rng.range_f32(0.0, std::f32::consts::TAU));
     let scale = Vec3::new(
-        rng.range(0.3, 2.0),
-        rng.range(0.3, 2.0),
-        rng.range(0.3, 2.0),
+        rng.range_f32(0.3, 2.0),
+        rng.range_f32(0.3, 2.0),
+        rng.range_f32(0.3, 2.0),
     );
     let t = rng.vec3(-3.0, 3.0);
     Instance::new(
@@ -116,10 +98,10 @@ fn random_instance(rng: &mut Rng, mesh: u32) -> Instance {
 
 /// A point on a random triangle of the scene, in world space.
 fn random_surface_point(rng: &mut Rng, meshes: &[Mesh], instances: &[Instance]) -> Vec3 {
-    let inst = &instances[(rng.next_u64() % instances.len() as u64) as usize];
+    let inst = &instances[rng.below(instances.len())];
     let mesh = &meshes[inst.mesh as usize];
-    let t = mesh.triangles[(rng.next_u64() % mesh.triangles.len() as u64) as usize];
-    let (mut u, mut v) = (rng.f32(), rng.f32());
+    let t = mesh.triangles[rng.below(mesh.triangles.len())];
+    let (mut u, mut v) = (rng.unit_f32(), rng.unit_f32());
     if u + v > 1.0 {
         (u, v) = (1.0 - u, 1.0 - v);
     }
@@ -131,14 +113,14 @@ fn random_surface_point(rng: &mut Rng, meshes: &[Mesh], instances: &[Instance]) 
 fn random_ray(rng: &mut Rng, extent: f32, segment: bool, aim: Vec3) -> Ray {
     let origin = rng.vec3(-extent, extent);
     // Half the rays aim at a surface point (so they mostly hit), half anywhere.
-    let target = if rng.f32() < 0.5 {
+    let target = if rng.unit_f32() < 0.5 {
         aim
     } else {
         rng.vec3(-extent / 2.0, extent / 2.0)
     };
-    let dir = (target - origin) * rng.range(0.2, 3.0);
+    let dir = (target - origin) * rng.range_f32(0.2, 3.0);
     if segment {
-        Ray::segment(origin, dir, rng.range(0.0, 1.5))
+        Ray::segment(origin, dir, rng.range_f32(0.0, 1.5))
     } else {
         Ray::new(origin, dir)
     }
@@ -370,9 +352,9 @@ fn every_instruction_set_gives_the_same_bits() {
             for i in 0..6000 {
                 // Every third ray aimed at a vertex: ties between the triangles around it.
                 let aim = if i % 3 == 0 {
-                    let p = &inst[(rng.next_u64() % inst.len() as u64) as usize];
+                    let p = &inst[rng.below(inst.len())];
                     let m = &meshes[p.mesh as usize];
-                    let v = m.positions[(rng.next_u64() % m.positions.len() as u64) as usize];
+                    let v = m.positions[rng.below(m.positions.len())];
                     p.world_from_object.transform_point3(v)
                 } else {
                     random_surface_point(&mut rng, &meshes, inst)

@@ -262,21 +262,7 @@ mod agreement_tests {
     //! cracks on shared edges and vertices.
     use super::*;
 
-    /// splitmix64, so the test needs no dependency.
-    struct Rng(u64);
-    impl Rng {
-        fn f32(&mut self) -> f32 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
-        }
-        fn vec3(&mut self, lo: f32, hi: f32) -> Vec3 {
-            let mut c = || lo + (hi - lo) * self.f32();
-            Vec3::new(c(), c(), c())
-        }
-    }
+    use crate::testing::SplitMix64 as Rng;
 
     #[test]
     fn agrees_with_moller_trumbore_away_from_edges() {
@@ -290,13 +276,13 @@ mod agreement_tests {
             );
             let origin = rng.vec3(-4.0, 4.0);
             // Aim at a point with known barycentrics (inside or outside the triangle).
-            let (u, v) = (rng.f32() * 1.6 - 0.3, rng.f32() * 1.6 - 0.3);
+            let (u, v) = (rng.unit_f32() * 1.6 - 0.3, rng.unit_f32() * 1.6 - 0.3);
             let w = 1.0 - u - v;
             if u.abs().min(v.abs()).min(w.abs()) < 1e-3 {
                 continue;
             }
             let target = p0 + u * (p1 - p0) + v * (p2 - p0);
-            let dir = (target - origin) * (0.5 + rng.f32());
+            let dir = (target - origin) * (0.5 + rng.unit_f32());
             let normal = (p1 - p0).cross(p2 - p0).normalize();
             // Grazing rays make t ill-conditioned for any method; keep |cos| ≥ 0.05.
             if normal.dot(dir.normalize()).abs() < 0.05 {
@@ -326,7 +312,7 @@ mod agreement_tests {
         let mut pts = vec![Vec3::ZERO; (n + 1) * (n + 1)];
         for j in 0..=n {
             for i in 0..=n {
-                let h = 0.03 * rng.f32();
+                let h = 0.03 * rng.unit_f32();
                 pts[j * (n + 1) + i] = Vec3::new(i as f32 / 3.0 - 2.0, h, j as f32 / 7.0 - 0.9);
             }
         }
@@ -342,7 +328,7 @@ mod agreement_tests {
         let rim: Vec<Vec3> = (0..16)
             .map(|k| {
                 let a = k as f32 * std::f32::consts::TAU / 16.0;
-                Vec3::new(a.cos() * 1.7, 0.1 * rng.f32(), a.sin() * 0.9)
+                Vec3::new(a.cos() * 1.7, 0.1 * rng.unit_f32(), a.sin() * 0.9)
             })
             .collect();
         let fan = (0..16)

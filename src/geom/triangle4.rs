@@ -225,19 +225,12 @@ mod tests {
     use crate::geom::Ray;
     use glam::Vec3;
 
-    /// A small deterministic generator (SplitMix64), so the test needs no crate.
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> f32 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
-        }
-        fn point(&mut self, scale: f32) -> Vec3A {
-            Vec3A::new(self.next(), self.next(), self.next()) * scale - Vec3A::splat(scale / 2.0)
-        }
+    use crate::testing::SplitMix64 as Rng;
+
+    /// A point in the cube of side `scale` around the origin.
+    fn point(rng: &mut Rng, scale: f32) -> Vec3A {
+        let (x, y, z) = (rng.unit_f32(), rng.unit_f32(), rng.unit_f32());
+        Vec3A::new(x, y, z) * scale - Vec3A::splat(scale / 2.0)
     }
 
     /// The one-triangle test run lane by lane, with the t_max shrinking after each hit.
@@ -279,17 +272,23 @@ mod tests {
             // Triangles near the origin, some sharing an edge (lanes 0 and 1), some padded.
             let n: usize = 1 + case % 7;
             let mut tris: Vec<[Vec3A; 3]> = (0..n)
-                .map(|_| [rng.point(2.0), rng.point(2.0), rng.point(2.0)])
+                .map(|_| {
+                    [
+                        point(&mut rng, 2.0),
+                        point(&mut rng, 2.0),
+                        point(&mut rng, 2.0),
+                    ]
+                })
                 .collect();
             if n >= 2 {
-                tris[1] = [tris[0][1], tris[0][0], rng.point(2.0)];
+                tris[1] = [tris[0][1], tris[0][0], point(&mut rng, 2.0)];
             }
-            let origin = rng.point(8.0);
+            let origin = point(&mut rng, 8.0);
             // Aim at a vertex, an edge midpoint or a random point, so edge cases are common.
             let aim = match case % 3 {
                 0 => tris[0][0],
                 1 => (tris[0][0] + tris[0][1]) * 0.5,
-                _ => rng.point(1.0),
+                _ => point(&mut rng, 1.0),
             };
             let dir = Vec3::from(aim - origin);
             let ray = Ray::new(origin.into(), dir.normalize_or_zero());

@@ -259,18 +259,12 @@ mod tests {
     use crate::geom::Ray;
     use glam::{Vec3, Vec3A};
 
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> f32 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
-        }
-        fn point(&mut self, scale: f32) -> Vec3A {
-            Vec3A::new(self.next(), self.next(), self.next()) * scale - Vec3A::splat(scale / 2.0)
-        }
+    use crate::testing::SplitMix64 as Rng;
+
+    /// A point in the cube of side `scale` around the origin.
+    fn point(rng: &mut Rng, scale: f32) -> Vec3A {
+        let (x, y, z) = (rng.unit_f32(), rng.unit_f32(), rng.unit_f32());
+        Vec3A::new(x, y, z) * scale - Vec3A::splat(scale / 2.0)
     }
 
     fn key(h: Option<(usize, TriangleHit)>) -> Option<(usize, u32, u32, u32)> {
@@ -290,19 +284,25 @@ mod tests {
             // neighbours sharing edges and vertices, rays aimed at vertices and edges.
             let n: usize = 1 + case % 11;
             let mut tris: Vec<[Vec3A; 3]> = (0..n)
-                .map(|_| [rng.point(2.0), rng.point(2.0), rng.point(2.0)])
+                .map(|_| {
+                    [
+                        point(&mut rng, 2.0),
+                        point(&mut rng, 2.0),
+                        point(&mut rng, 2.0),
+                    ]
+                })
                 .collect();
             for k in 1..n {
                 if k % 2 == 1 {
-                    tris[k] = [tris[k - 1][1], tris[k - 1][0], rng.point(2.0)];
+                    tris[k] = [tris[k - 1][1], tris[k - 1][0], point(&mut rng, 2.0)];
                 }
             }
-            let origin = rng.point(8.0);
+            let origin = point(&mut rng, 8.0);
             let pick = case % n;
             let aim = match case % 3 {
                 0 => tris[pick][0],
                 1 => (tris[pick][0] + tris[pick][1]) * 0.5,
-                _ => rng.point(1.0),
+                _ => point(&mut rng, 1.0),
             };
             let dir = Vec3::from(aim - origin).normalize_or_zero();
             let r = WatertightRay::new(&Ray::new(origin.into(), dir));

@@ -153,35 +153,21 @@ const TOKENS: &[&str] = &[
     "()",
 ];
 
-/// A small deterministic generator (xorshift64*), so failures reproduce.
-struct Rng(u64);
+use crate::testing::SplitMix64 as Rng;
 
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+/// A character boundary of `text`.
+fn boundary(rng: &mut Rng, text: &str) -> usize {
+    let mut i = rng.below(text.len() + 1);
+    while !text.is_char_boundary(i) {
+        i -= 1;
     }
-
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-
-    /// A character boundary of `text`.
-    fn boundary(&mut self, text: &str) -> usize {
-        let mut i = self.below(text.len() + 1);
-        while !text.is_char_boundary(i) {
-            i -= 1;
-        }
-        i
-    }
+    i
 }
 
 fn mutate(rng: &mut Rng, text: &str) -> String {
     let mut out = text.to_string();
     for _ in 0..1 + rng.below(3) {
-        let at = rng.boundary(&out);
+        let at = boundary(rng, &out);
         match rng.below(3) {
             0 => out.insert_str(at, TOKENS[rng.below(TOKENS.len())]),
             1 => {
@@ -192,7 +178,7 @@ fn mutate(rng: &mut Rng, text: &str) -> String {
                 out.replace_range(at..end, "");
             }
             _ => {
-                let from = rng.boundary(&out);
+                let from = boundary(rng, &out);
                 let mut end = (from + rng.below(24)).min(out.len());
                 while !out.is_char_boundary(end) {
                     end += 1;
