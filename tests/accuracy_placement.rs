@@ -17,6 +17,7 @@
 //! `cargo test --release --test accuracy_placement -- --nocapture` prints the grid quoted in
 //! docs/accuracy.md.
 
+use scnc::shade::color::luminance;
 use std::sync::atomic::AtomicBool;
 
 use glam::{DMat4, DVec3, Vec3};
@@ -83,7 +84,7 @@ fn render_desc(desc: &SceneDesc) -> Film {
 /// (relative change of the mean luminance, fraction of pixels off by more than 10%, any
 /// non-finite pixel).
 fn compare(reference: &Film, film: &Film) -> (f64, f64, bool) {
-    let luma = |c: Vec3| f64::from(c.dot(Vec3::new(0.2126, 0.7152, 0.0722)));
+    let luma = |c: Vec3| f64::from(luminance(c));
     let (mut sum_ref, mut sum, mut off) = (0.0, 0.0, 0usize);
     let mut nonfinite = false;
     for (a, b) in reference.pixels().iter().zip(film.pixels()) {

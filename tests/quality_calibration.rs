@@ -15,9 +15,9 @@
 //! deterministic, so the figures below are the same on every run; they are printed for the
 //! record.
 
+use scnc::shade::color;
 use std::sync::atomic::AtomicBool;
 
-use glam::Vec3;
 use scnc::assets::FsLoader;
 use scnc::compile::compile_file;
 use scnc::film::Film;
@@ -30,7 +30,6 @@ const SIDE: u32 = 48;
 const REFERENCE_SPP: u32 = 2048;
 /// Seeds of the adaptive renders, whose squared errors are pooled.
 const SEEDS: [u64; 4] = [7, 8, 9, 10];
-const LUMA: Vec3 = Vec3::new(0.2126, 0.7152, 0.0722);
 
 fn example(name: &str) -> Scene {
     let loader = FsLoader::new();
@@ -60,7 +59,10 @@ fn reference(scene: &mut Scene, spp: u32, seed: u64) -> Film {
 }
 
 fn luminance(f: &Film) -> Vec<f64> {
-    f.pixels().iter().map(|p| p.dot(LUMA) as f64).collect()
+    f.pixels()
+        .iter()
+        .map(|&p| f64::from(color::luminance(p)))
+        .collect()
 }
 
 /// (target, measured RMS relative error, reported RMS, mean samples) for each target, pooled

@@ -25,7 +25,7 @@ use glam::{Vec2, Vec3};
 use super::camera::PinholeCamera;
 use super::emitter_pixels::EmitterPixels;
 use crate::scene::Scene;
-use crate::shade::light::env_map::luminance;
+use crate::shade::color::luminance;
 use crate::shade::Light;
 
 /// Per pixel a light covers: the share of its area area lights can cover, and the dimmest such

@@ -30,6 +30,8 @@
 
 use glam::{DVec3, Vec3};
 
+use crate::shade::color::luminance_f64;
+
 pub use super::rng::REPLICATES;
 
 /// Samples of the first batch: small, so that a pixel that needs little (a flat, directly lit
@@ -107,9 +109,6 @@ pub const REL_FLOOR: f64 = 1e-3;
 /// relative error is dominated by the [`REL_FLOOR`] and says little about the image.
 pub const RMS_MIN_LUMINANCE: f64 = 0.01;
 
-/// Rec. 709 luminance weights (linear RGB).
-const LUMA: DVec3 = DVec3::new(0.2126, 0.7152, 0.0722);
-
 /// Running sums of one pixel's samples and of its replicates' luminance.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Accumulator {
@@ -132,7 +131,7 @@ impl Accumulator {
         self.sum += l;
         let d = l.as_dvec3();
         self.sum_sq += d * d;
-        let y = d.dot(LUMA);
+        let y = luminance_f64(d);
         self.luma_sum += y;
         self.luma_sum_sq += y * y;
         self.n += 1;
@@ -303,7 +302,7 @@ impl NoiseStats {
         self.pixels_at_max += p.hit_max as u64;
         self.mean_relative_error += p.relative_error as f64;
         self.max_relative_error = self.max_relative_error.max(p.relative_error as f64);
-        if p.mean.as_dvec3().dot(LUMA) > RMS_MIN_LUMINANCE {
+        if luminance_f64(p.mean.as_dvec3()) > RMS_MIN_LUMINANCE {
             self.rms_pixels += 1;
             self.rms_relative_error += (p.relative_error as f64).powi(2);
         }

@@ -20,6 +20,7 @@
 //!   shrunk as the pixel's samples grow); [`texture::image`] holds decoded texels and their mip
 //!   pyramid, [`texture::anisotropic`] filters along the ellipse's major axis.
 //! - [`normal_map`]: `normal_map` in tangent space, and the bend that keeps it plausible.
+//! - [`color`]: the luminance of linear RGB, one weighting for every stage.
 //! - [`brdf`]: the energy-normalised Phong BRDF: `eval`, `sample` and `pdf` side by side.
 //! - [`light`]: the closed set of lights, each with `sample` beside `pdf` (pbrt's `SampleLi`
 //!   beside `PDF_Li`), so that multiple importance sampling weighs a BRDF ray with exactly the
@@ -34,6 +35,7 @@
 //! layer never sees.
 
 pub mod brdf;
+pub mod color;
 pub mod distribution;
 pub mod distribution2d;
 pub mod light;

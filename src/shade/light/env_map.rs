@@ -31,11 +31,7 @@ use glam::{Vec2, Vec3};
 use super::env_angles::TexelGrid;
 use super::env_bright::BrightTexels;
 use super::env_sampler::{EnvSampler, TexelSample};
-
-/// Rec. 709 luminance of linear RGB.
-pub fn luminance(c: Vec3) -> f32 {
-    c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
-}
+use crate::shade::color::luminance;
 
 /// An equirectangular radiance map (intensity already applied), row 0 at the top (+y).
 #[derive(Debug, Clone)]

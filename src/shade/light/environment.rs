@@ -13,7 +13,8 @@ use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
-use super::env_map::{luminance, EnvMap, EnvSample};
+use super::env_map::{EnvMap, EnvSample};
+use crate::shade::color::luminance;
 use crate::shade::sampling::uniform_sphere;
 
 /// The scene's environment: a constant part plus an optional map.
