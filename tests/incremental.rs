@@ -3,27 +3,14 @@
 //! break and fix the syntax; declared names renamed; includes added and removed; `--define`s)
 //! are replayed on a scene, and after each one the IR and every diagnostic (severity, code,
 //! message, labels with their spans, help) must be the full compile's. The common edit (one
-//! object's numbers) must take the fast path.
+//! object's numbers) of a scene the fast path covers (one file without includes, no error)
+//! must take it, every time.
 
 use scnc::assets::MemLoader;
 use scnc::compile::{compile_with, Incremental, Overrides, Reuse};
 use scnc::source::SourceMap;
+use scnc::testing::SplitMix64;
 use std::path::Path;
-
-/// A small xorshift generator: the edits are a function of the seed.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-}
 
 fn base_scene() -> String {
     let mut s = String::from(
@@ -58,8 +45,9 @@ fn base_scene() -> String {
 
 const INCLUDED: &str = "scnc 1\nmaterial extra = phong { diffuse #fff }\n";
 
-/// One seeded edit of `text`.
-fn edit(rng: &mut Rng, text: &str) -> String {
+/// One seeded edit of `text`, and whether it was the common edit (a digit of an `object`
+/// line replaced).
+fn edit(rng: &mut SplitMix64, text: &str) -> (String, bool) {
     let lines: Vec<&str> = text.split_inclusive('\n').collect();
     let line = rng.below(lines.len());
     let mut out: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
@@ -78,6 +66,7 @@ fn edit(rng: &mut Rng, text: &str) -> String {
                 if let Some(&p) = digits.get(rng.below(digits.len())) {
                     let d = char::from(b'0' + rng.below(10) as u8);
                     out[i].replace_range(p..p + 1, &d.to_string());
+                    return (out.concat(), true);
                 }
             }
         }
@@ -101,7 +90,7 @@ fn edit(rng: &mut Rng, text: &str) -> String {
                     t.insert_str(p, c);
                 }
             }
-            return t;
+            return (t, false);
         }
         // A line deleted, duplicated or moved.
         5 => {
@@ -134,11 +123,12 @@ fn edit(rng: &mut Rng, text: &str) -> String {
             let (from, to) =
                 [("m1", "m1x"), ("box1", "crate"), ("k", "kk"), ("m3", "m2")][rng.below(4)];
             let t: String = out.concat();
-            return if rng.below(2) == 0 {
+            let renamed = if rng.below(2) == 0 {
                 t.replace(&format!("{from} ="), &format!("{to} ="))
             } else {
                 t.replace(from, to)
             };
+            return (renamed, false);
         }
         // Includes added and removed.
         8 => {
@@ -157,7 +147,7 @@ fn edit(rng: &mut Rng, text: &str) -> String {
             out[line].truncate(cut);
             out[line].push('\n');
         }
-        10 => return base_scene(),
+        10 => return (base_scene(), false),
         // An object's material changed (a material may become used or unused).
         _ => {
             if let Some(i) = (0..out.len()).find(|&i| out[i].contains("material m0 ")) {
@@ -165,7 +155,7 @@ fn edit(rng: &mut Rng, text: &str) -> String {
             }
         }
     }
-    out.concat()
+    (out.concat(), false)
 }
 
 fn same(label: &str, incremental: &SourceMap, full: &SourceMap) -> Option<String> {
@@ -177,12 +167,24 @@ fn same(label: &str, incremental: &SourceMap, full: &SourceMap) -> Option<String
     (texts(incremental) != texts(full)).then(|| format!("{label}: sources differ"))
 }
 
-fn replay(seed: u64, edits: usize, overrides: Overrides) -> usize {
+/// How a replay's edits went through the incremental front end.
+#[derive(Default)]
+struct Replayed {
+    /// Edits that took the fast path (`Reuse::Statements`).
+    fast: usize,
+    /// Common edits (one object's number) made to a scene that compiled without an error.
+    number_edits_of_clean_scenes: usize,
+    /// Those of them that took the fast path.
+    number_edits_fast: usize,
+}
+
+fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
     let path = Path::new("scenes/edit.scn");
-    let mut rng = Rng(seed);
+    let mut rng = SplitMix64(seed);
     let mut text = base_scene();
     let mut inc = Incremental::new(overrides.clone());
-    let mut fast = 0;
+    let mut replayed = Replayed::default();
+    let mut number_edit_of_clean_scene = false;
     // Every other step holds its scene across the next edit, as `scnc watch` may: the memo
     // then edits a copy (`Arc::make_mut`), and the held scene must not change.
     let mut held: Option<(std::sync::Arc<scnc::ir::SceneDesc>, String)> = None;
@@ -211,6 +213,8 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> usize {
             format!("{:?}", want.value.as_ref()),
             "{label}: IR differs (all bits) on\n{text}"
         );
+        // The fast path covers one file without includes (`Incremental`'s memo).
+        let clean = !got.has_errors() && !text.contains("include");
         if let Some((scene, debug)) = held.take() {
             assert_eq!(format!("{scene:?}"), debug, "{label}: a held scene changed");
         }
@@ -220,27 +224,52 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> usize {
                 (s, debug)
             });
         }
-        if matches!(inc.reuse, Reuse::Statements { .. }) {
-            fast += 1;
+        let fast = matches!(inc.reuse, Reuse::Statements { .. });
+        let reused = fast || matches!(inc.reuse, Reuse::Unchanged);
+        replayed.fast += usize::from(fast);
+        if number_edit_of_clean_scene {
+            replayed.number_edits_of_clean_scenes += 1;
+            replayed.number_edits_fast += usize::from(reused);
         }
-        text = edit(&mut rng, &text);
+        let (edited, number_edit) = edit(&mut rng, &text);
+        number_edit_of_clean_scene = clean && number_edit;
+        text = edited;
     }
-    fast
+    replayed
 }
 
 #[test]
 fn seeded_edits_compile_as_a_fresh_compile_does() {
-    let mut fast = 0;
+    let mut total = Replayed::default();
     for seed in 1..=8u64 {
-        let f = replay(
-            seed.wrapping_mul(0x9E37_79B9_7F4A_7C15),
+        let r = replay(
+            seed.wrapping_mul(0xD1B5_4A32_D192_ED03),
             100,
             Overrides::default(),
         );
-        fast += f;
+        total.fast += r.fast;
+        total.number_edits_of_clean_scenes += r.number_edits_of_clean_scenes;
+        total.number_edits_fast += r.number_edits_fast;
     }
-    // The fast path must carry a good part of the edits, or this test checks nothing.
-    assert!(fast > 80, "only {fast} edits took the incremental path");
+    eprintln!(
+        "fast {} of 800; number edits of clean scenes {}, fast {}",
+        total.fast, total.number_edits_of_clean_scenes, total.number_edits_fast
+    );
+    assert_fast_path_taken(&total, 20);
+}
+
+/// The common edit (one object's number) of a scene without errors always takes the fast
+/// path, and the replay made enough of them for that to mean something.
+fn assert_fast_path_taken(r: &Replayed, at_least: usize) {
+    assert!(
+        r.number_edits_of_clean_scenes >= at_least,
+        "only {} number edits of clean scenes: the replay checks too little of the fast path",
+        r.number_edits_of_clean_scenes
+    );
+    assert_eq!(
+        r.number_edits_fast, r.number_edits_of_clean_scenes,
+        "a number edit of a clean scene took the full path"
+    );
 }
 
 #[test]
@@ -249,8 +278,12 @@ fn defines_and_frame_keep_their_values_across_edits() {
         frame: 3.0,
         defines: vec![("k".into(), "frame * 2".into())],
     };
-    let fast = replay(0xDEAD_BEEF, 80, overrides);
-    assert!(fast > 10, "only {fast} edits took the incremental path");
+    let r = replay(0xDEAD_BEEF, 160, overrides);
+    eprintln!(
+        "fast {} of 160; number edits of clean scenes {}, fast {}",
+        r.fast, r.number_edits_of_clean_scenes, r.number_edits_fast
+    );
+    assert_fast_path_taken(&r, 4);
 }
 
 #[test]
