@@ -80,8 +80,7 @@ pub fn compile_with(
     sources: &mut SourceMap,
     overrides: &Overrides,
 ) -> Staged<ir::SceneDesc> {
-    let mut d = Driver::checking(loader, overrides.frame);
-    d.pending_defines.clone_from(&overrides.defines);
+    let d = Driver::checking(loader, overrides);
     let (read, staged) = d.compile_root(path).into_staged();
     *sources = read;
     staged
@@ -89,7 +88,7 @@ pub fn compile_with(
 
 /// Compiles the scene file at `path`, reading it and its includes through `loader`.
 pub fn compile_file(path: &Path, loader: &dyn Loader) -> Compiled {
-    Driver::checking(loader, 0.0).compile_root(path)
+    Driver::checking(loader, &Overrides::default()).compile_root(path)
 }
 
 /// The statements of the scene file at `path` and of its includes, expanded as [`compile`]
@@ -128,7 +127,7 @@ impl Driver<'_> {
 /// Compiles `text` as if it were the file `name` (includes resolve relative to `name`'s
 /// directory through `loader`).
 pub fn compile_source(name: &str, text: &str, loader: &dyn Loader) -> Compiled {
-    let mut d = Driver::checking(loader, 0.0);
+    let mut d = Driver::checking(loader, &Overrides::default());
     d.add_root(Path::new(name), name, text.as_bytes());
     d.finish()
 }
@@ -146,9 +145,9 @@ struct Driver<'l> {
     pending_defines: Vec<(String, String)>,
     /// `--define`s parsed: the name and the value's expression.
     defines: Vec<(String, syntax::Expr)>,
-    /// Top-level `object`s are checked as they are parsed (`check::PreCheck`) while this is
+    /// Top-level statements are checked as they are parsed (`check::PreCheck`) while this is
     /// set: only until a file has a syntax error or any other diagnostic, which makes the
-    /// driver start over without it (`restarted`).
+    /// driver start over without it.
     pre: Option<check::PreCheck>,
     /// The pre-check gave up part-way (statements it saw are lost): the compile starts over.
     aborted: bool,
@@ -170,32 +169,39 @@ impl<'l> Driver<'l> {
         }
     }
 
-    /// A driver that checks top-level `object`s while parsing (a compile, not an index).
-    fn checking(loader: &'l dyn Loader, frame: f64) -> Driver<'l> {
+    /// A driver that checks top-level statements while parsing (a compile, not an index),
+    /// with the command line's `overrides` (the `--define`s are parsed after the root file).
+    fn checking(loader: &'l dyn Loader, overrides: &Overrides) -> Driver<'l> {
         let mut d = Driver::new(loader);
-        d.frame = frame;
-        d.pre = Some(check::PreCheck::new(frame));
+        d.frame = overrides.frame;
+        d.pending_defines.clone_from(&overrides.defines);
+        // The pre-check needs the defines' values before the root file, which must be file 0:
+        // it gets them parsed on their own, under a file id no source map holds (it evaluates
+        // them, which reads no source text, and never reports: a diagnostic stops its `let`s).
+        let mut defines = Vec::new();
+        let mut defines_ok = true;
+        for (name, value) in &overrides.defines {
+            let text = define_text(name, value);
+            let (parsed, diags) = parse_define(FileId(u32::MAX), &text);
+            defines.extend(parsed);
+            defines_ok &= diags.is_empty();
+        }
+        d.pre = Some(check::PreCheck::new(overrides.frame, defines, defines_ok));
         d
     }
 
     /// Parses `--define NAME=VALUE` as the source `let NAME = VALUE`.
     fn add_define(&mut self, name: &str, value: &str) {
         let label = format!("--define {name}");
-        let text = format!("scnc 1\nlet {name} = {value}\n");
         let id = self.sources.add(
             PathBuf::from(&label),
             &label,
-            std::sync::Arc::<str>::from(text),
+            std::sync::Arc::<str>::from(define_text(name, value)),
         );
         let text = self.sources.get(id).text.clone();
-        let (file, diags) = syntax::parse(id, &text).into_parts();
+        let (defines, diags) = parse_define(id, &text);
         self.diags.extend(diags);
-        let lets = file.into_iter().flat_map(|f| f.statements);
-        for stmt in lets {
-            if let Stmt::Let { name, value, .. } = stmt {
-                self.defines.push((name.name, value));
-            }
-        }
+        self.defines.extend(defines);
     }
 
     fn add_root(&mut self, path: &Path, name: &str, bytes: &[u8]) {
@@ -216,7 +222,7 @@ impl<'l> Driver<'l> {
     fn add_streamed(&mut self, id: FileId, text: &str) {
         if let Some(pre) = &mut self.pre {
             let count = |word: &[u8]| memchr::memmem::find_iter(text.as_bytes(), word).count();
-            pre.reserve(count(b"object"), count(b"\nmaterial"));
+            pre.reserve(count(b"object"), count(b"\nmaterial"), count(b"\nmesh"));
         }
         let mut first = true;
         let ok = syntax::parse_each(id, text, &mut |stmt| {
@@ -465,6 +471,25 @@ impl<'l> Driver<'l> {
             diagnostics: diags,
         }
     }
+}
+
+/// The source a `--define NAME=VALUE` is parsed as.
+fn define_text(name: &str, value: &str) -> String {
+    format!("scnc 1\nlet {name} = {value}\n")
+}
+
+/// The `let`s of a `--define`'s source `text` (file `id`): each name with its value, and the
+/// parse's diagnostics.
+fn parse_define(id: FileId, text: &str) -> (Vec<(String, syntax::Expr)>, Vec<Diagnostic>) {
+    let (file, diags) = syntax::parse(id, text).into_parts();
+    let lets = file.into_iter().flat_map(|f| f.statements);
+    let defines = lets
+        .filter_map(|stmt| match stmt {
+            Stmt::Let { name, value, .. } => Some((name.name, value)),
+            _ => None,
+        })
+        .collect();
+    (defines, diags)
 }
 
 /// Sorts diagnostics into reading order: by file, then position; those without a place last

@@ -14,6 +14,7 @@ use super::props::Props;
 use super::Checker;
 use crate::diag::{suggest, Code, Diagnostic};
 use crate::ir;
+use crate::source::Span;
 use crate::syntax::{Decl, Expr};
 
 use super::vocabulary::{MaterialKind, Word, MATERIAL_KEYS as KEYS};
@@ -163,8 +164,16 @@ impl Checker<'_> {
                 && !self.poisoned.contains(name)
                 && !matches!(name, "true" | "false")
             {
-                // Neither a texture nor a constant: say both were looked for.
-                let mut candidates: Vec<String> = self.lets.keys().cloned().collect();
+                // Neither a texture nor a constant: say both were looked for. The constants
+                // in the order they were declared (a map's order would change from run to run).
+                let mut lets: Vec<(&String, Span)> = self
+                    .lets
+                    .iter()
+                    .map(|(name, (_, at))| (name, *at))
+                    .collect();
+                lets.sort_unstable_by_key(|&(_, at)| (at.file.0, at.start));
+                let mut candidates: Vec<String> =
+                    lets.into_iter().map(|(name, _)| name.clone()).collect();
                 candidates.extend(self.texture_names());
                 let refs: Vec<&str> = candidates.iter().map(String::as_str).collect();
                 self.error(

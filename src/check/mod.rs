@@ -241,20 +241,18 @@ impl Checker<'_> {
         mut track: Option<(&mut Vec<StmtRecord>, &mut Option<PlacementStart>)>,
     ) -> Option<ir::SceneDesc> {
         let cx = self;
-        // `None`: the next material lowered while parsing (`lowered`).
+        // `None`: the next declaration of its kind lowered while parsing (`lowered`).
         let mut decls: [Vec<Option<&Decl>>; 4] = Default::default();
         let mut renders = Vec::new();
         let mut cameras = Vec::new();
         let mut placements = Vec::new();
         let total = statements.len() + placed.len();
-        let indices: Vec<usize> = early::kept_indices(&placed, total).collect();
-        let (lowered, placed) = placed.take_materials();
-        let mut next_lowered = lowered.iter().peekable();
+        let indices = early::kept_indices(&placed, total);
+        let (mut lowered, placed) = placed.take_decls();
+        cx.take_constants(&mut lowered);
+        let mut undeclared = early::Undeclared::default();
         for (i, stmt) in indices.into_iter().zip(statements) {
-            while let Some(m) = next_lowered.next_if(|m| (m.at as usize) < i) {
-                cx.declare(Namespace::Material, &m.material.name, m.material.span);
-                decls[Namespace::Material as usize].push(None);
-            }
+            cx.declare_lowered(&lowered, &mut undeclared, i, &mut decls);
             match stmt {
                 Stmt::Version { .. } | Stmt::Include { .. } => {}
                 Stmt::Let { name, value, .. } => cx.let_stmt(name, value),
@@ -278,30 +276,34 @@ impl Checker<'_> {
                 Stmt::Render { body, span } => renders.push((body, *span)),
             }
         }
-        for m in next_lowered {
-            cx.declare(Namespace::Material, &m.material.name, m.material.span);
-            decls[Namespace::Material as usize].push(None);
-        }
+        cx.declare_lowered(&lowered, &mut undeclared, usize::MAX, &mut decls);
         for d in decls[Namespace::Texture as usize].iter().flatten() {
             let t = cx.texture(d);
             cx.textures.push(t);
         }
-        let mut lowered = lowered.into_iter();
+        let mut materials = std::mem::take(&mut lowered.materials).into_iter();
         cx.materials
             .reserve_exact(decls[Namespace::Material as usize].len());
         for d in &decls[Namespace::Material as usize] {
             let (m, texs) = match d {
                 Some(d) => cx.material(d),
-                None => (lowered.next().map(|m| m.material), Vec::new()),
+                None => (materials.next().map(|m| m.value), Vec::new()),
             };
             cx.materials.push(m);
             cx.material_textures.push(texs);
         }
-        drop(lowered);
-        for d in decls[Namespace::Mesh as usize].iter().flatten() {
-            let m = cx.mesh(d);
+        drop(materials);
+        let mut meshes = std::mem::take(&mut lowered.meshes).into_iter();
+        cx.meshes
+            .reserve_exact(decls[Namespace::Mesh as usize].len());
+        for d in &decls[Namespace::Mesh as usize] {
+            let m = match d {
+                Some(d) => cx.mesh(d),
+                None => meshes.next().map(|m| m.value),
+            };
             cx.meshes.push(m);
         }
+        drop(meshes);
         cx.used_materials = vec![false; cx.materials.len()];
         cx.used_meshes = vec![false; cx.meshes.len()];
         cx.material_uses = vec![0; cx.materials.len()];

@@ -93,8 +93,7 @@ impl Incremental {
             }
         }
         self.reuse = Reuse::Full;
-        let mut d = Driver::checking(loader, self.overrides.frame);
-        d.pending_defines.clone_from(&self.overrides.defines);
+        let mut d = Driver::checking(loader, &self.overrides);
         let compiled = match bytes {
             Ok(bytes) => {
                 d.add_root(path, &path.display().to_string(), &bytes);
