@@ -115,25 +115,12 @@ fn calibrate(name: &str) -> Vec<(f64, f64, f64, f64)> {
 }
 
 /// The issue's band: measured RMS relative error 0.5–1.1× the target, the reported figure
-/// 0.75–1.25× the measured. Every scene's report is held to it, and env's and texture_bench's
-/// measured error. cornell's is not yet at 10% and 5%: its walls, lit directly by one area
-/// light, reach 2.8% after 24 samples and 3.5% after 8 (the first batch), so most of its
-/// pixels sit far under a 10% or 5% target at the fewest samples a pixel may stop after, and
-/// the pooled error is 0.39× and 0.47× the target (0.49× at 10% before the light's slivers
-/// were found: the error of five pixels stopped black beside the light lifted it, and the
-/// report could not see them). Stopping after 4 samples would reach the band but the 3-degree
-/// estimate then stops pixels on luck (texture_bench 1.4× its target, report 0.47×;
-/// docs/quality.md). So cornell's measured error is held to 0.35–1.1, which still catches a
-/// regression; issue 21 stays open on it.
+/// 0.75–1.25× the measured, for every scene and target.
 #[test]
 fn adaptive_sampling_reaches_the_target_and_reports_it() {
     let mut failures = Vec::new();
-    let bands = [
-        ("cornell", 0.35..=1.1, 0.75..=1.25),
-        ("env", 0.5..=1.1, 0.75..=1.25),
-        ("texture_bench", 0.5..=1.1, 0.75..=1.25),
-    ];
-    for (name, measured_band, report_band) in bands {
+    let (measured_band, report_band) = (0.5..=1.1, 0.75..=1.25);
+    for name in ["cornell", "env", "texture_bench"] {
         for (target, measured, reported, spp) in calibrate(name) {
             let ratio = measured / target;
             let report = reported / measured;

@@ -22,10 +22,13 @@
 //! one an area light's outline crosses samples until it has seen the light or could not miss
 //! it (`render::emitter_coverage`).
 //!
-//! A pixel takes a first batch of [`FIRST_BATCH`] samples (a flat, directly lit pixel may stop
-//! there), then batches of [`BATCH`], and stops after the first batch at which its relative
-//! error is at most the target or its count reached `max_samples`. Every decision uses the
-//! pixel's own samples only (and the light's projected outline, `render::emitter_coverage`),
+//! A pixel takes two first batches of [`FIRST_BATCH`] samples (one per replicate), then
+//! batches of [`BATCH`], and stops after the first batch at which its relative error is at most
+//! the target (from [`min_samples`] on) or its count reached `max_samples`. Before
+//! [`min_samples`], after 4 or 8 samples, a flat, directly lit pixel may stop on the stricter
+//! rule of `render::early_stop`, which pools its neighbours' first batches. Every decision uses
+//! the pixel's own samples, its neighbours' first batches and the light's projected outline
+//! (`render::emitter_coverage`) only,
 //! so the image does not depend on threads or tiles.
 
 use glam::{DVec3, Vec3};
@@ -34,9 +37,9 @@ use crate::shade::color::luminance_f64;
 
 pub use super::rng::REPLICATES;
 
-/// Samples of the first batch: small, so that a pixel that needs little (a flat, directly lit
-/// wall) can stop after a few; two per replicate.
-pub const FIRST_BATCH: u32 = 2 * REPLICATES;
+/// Samples of each of the first two batches: one per replicate, so that a pixel that needs
+/// little (a flat, directly lit wall) can stop after 4 or 8 samples (`render::early_stop`).
+pub const FIRST_BATCH: u32 = REPLICATES;
 /// Samples per later batch.
 pub const BATCH: u32 = 4 * REPLICATES;
 /// Weight, in degrees of freedom, of the per-sample variance estimate (conservative for
@@ -193,6 +196,20 @@ impl Accumulator {
         self.n
     }
 
+    /// The per-sample variance of the luminance relative to its squared mean (floored at
+    /// [`REL_FLOOR`]), with its degrees of freedom: what one pixel tells its neighbours about
+    /// theirs (`render::early_stop`). `None` before two samples or while every sample is black
+    /// (a black pixel says nothing about relative spread).
+    pub fn relative_sample_variance(&self) -> Option<(f64, f64)> {
+        if self.n < 2 || self.is_black() {
+            return None;
+        }
+        let n = self.n as f64;
+        let mean = self.luma_sum / n;
+        let var = ((self.luma_sum_sq - self.luma_sum * mean) / (n - 1.0)).max(0.0);
+        Some((var / mean.abs().max(REL_FLOOR).powi(2), n - 1.0))
+    }
+
     /// Relative standard error of the mean luminance (0 with fewer than two samples).
     pub fn relative_error(&self) -> f64 {
         if self.n < 2 {
@@ -223,9 +240,14 @@ impl Accumulator {
     /// one scaled by the ratio the luminance's two estimates show (the between-batch estimate
     /// is only kept for the luminance).
     pub fn finish(&self, count: u32, hit_max: bool) -> PixelEstimate {
+        self.finish_with(count, hit_max, self.relative_error())
+    }
+
+    /// [`Accumulator::finish`] with the relative error estimated elsewhere (an early stop's,
+    /// which pools the neighbourhood: `render::early_stop`).
+    pub fn finish_with(&self, count: u32, hit_max: bool, relative_error: f64) -> PixelEstimate {
         let count = count.max(1);
         let mean = self.sum / count as f32;
-        let relative_error = self.relative_error();
         let std_error = if self.n >= 2 {
             let n = self.n as f64;
             let m = self.sum.as_dvec3() / n;
@@ -351,11 +373,15 @@ impl NoiseStats {
     }
 }
 
-/// The batch sizes of an adaptive pixel with cap `max_samples`: one of [`FIRST_BATCH`], then
+/// The batch sizes of an adaptive pixel with cap `max_samples`: two of [`FIRST_BATCH`], then
 /// batches of [`BATCH`] until the cap is reached or passed.
 pub fn batch_sizes(max_samples: u32) -> Vec<u32> {
     let mut sizes = vec![FIRST_BATCH];
     let mut total = FIRST_BATCH;
+    if total < max_samples {
+        sizes.push(FIRST_BATCH);
+        total += FIRST_BATCH;
+    }
     while total < max_samples {
         sizes.push(BATCH);
         total += BATCH;
@@ -435,8 +461,9 @@ mod tests {
         // samples before it may stop.
         assert!(a.relative_error() < 1e-3, "{}", a.relative_error());
         assert!((b.relative_error() - 1.0 / 16.0).abs() < 1e-9);
-        assert_eq!(batch_sizes(8), vec![8]);
-        assert_eq!(batch_sizes(9), vec![8, 16]);
+        assert_eq!(batch_sizes(4), vec![4]);
+        assert_eq!(batch_sizes(8), vec![4, 4]);
+        assert_eq!(batch_sizes(9), vec![4, 4, 16]);
         assert_eq!(batch_sizes(4096).iter().sum::<u32>(), 4104);
         assert_eq!(emitter_min_samples(0.1), 80);
         assert_eq!(black_min_samples(0.1), 30);

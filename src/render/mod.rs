@@ -8,13 +8,16 @@
 //!
 //! `render { noise 0.01  max_samples 4096 }` samples each pixel adaptively, in batches, until
 //! the relative standard error of its mean is below the target (see [`estimate`]); every render
-//! also estimates each pixel's standard error ([`render_with_error`]) for `--variance-out`.
+//! also estimates each pixel's standard error ([`render_with_error`]) for `--variance-out`. An
+//! adaptive render runs in two passes: every pixel's first batch, then each pixel on to its
+//! stop, which may come early on what its neighbours' first batches say ([`early_stop`]).
 //!
 //! [`render_window`] renders only a rectangle of the image ([`window`]; `--tile K/N`), each of
 //! its pixels with exactly the bits of the full render.
 
 pub mod balance;
 pub mod camera;
+pub mod early_stop;
 pub mod emitter_coverage;
 pub mod emitter_pixels;
 pub mod estimate;
@@ -31,6 +34,7 @@ use glam::Vec2;
 use rayon::prelude::*;
 
 use self::camera::PinholeCamera;
+use self::early_stop::NeighbourPrior;
 use self::emitter_coverage::{EmitterCoverage, SliverRule};
 use self::emitter_pixels::EmitterPixels;
 use self::estimate::{Accumulator, NoiseStats, PixelEstimate};
@@ -186,19 +190,119 @@ pub fn render_window(
     };
     let window = window.clip(settings.width, settings.height);
     let tiles = tiles(window);
+    // The first batches of an adaptive render cover the window and the neighbours its pixels
+    // pool (`early_stop`), so a `--tile` window's pixels decide as in the full render.
+    let margin = window.grow(early_stop::RADIUS, settings.width, settings.height);
+    let first_tiles = match job.adaptive {
+        Some(_) => self::tiles(margin),
+        None => Vec::new(),
+    };
     let threads = options.threads.unwrap_or(0);
-    let (results, used_threads) = job.run(&tiles, threads, progress, cancel);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .ok();
+    let used_threads = pool.as_ref().map_or(1, |p| p.current_num_threads());
+    let progress = Progress {
+        report: progress,
+        done: AtomicUsize::new(0),
+        total: tiles.len() + first_tiles.len(),
+    };
+    let first = match job.adaptive {
+        Some(_) => {
+            let results = job.run(&first_tiles, pool.as_ref(), &progress, cancel, |t| {
+                job.first_batches(t)
+            });
+            Some(FirstBatches::assemble(margin, &first_tiles, results)?)
+        }
+        None => None,
+    };
+    let results = job.run(&tiles, pool.as_ref(), &progress, cancel, |t| {
+        job.tile(t, first.as_ref())
+    });
     if cancel.load(Ordering::Relaxed) {
         return Err(Cancelled);
     }
     let mut rendered = job.assemble(window, &tiles, results, side)?;
+    if let Some(first) = &first {
+        rendered.stats.counts.add(&first.counts);
+        rendered.stats.camera_rays += first.counts.camera;
+        rendered.stats.shadow_rays += first.counts.shadow;
+        rendered.stats.brdf_rays += first.counts.brdf;
+    }
     rendered.stats.wall = start.elapsed();
     rendered.stats.threads = used_threads;
     Ok(rendered)
 }
 
+/// Tiles done over both passes, for the caller's progress callback.
+struct Progress<'a> {
+    report: &'a (dyn Fn(f32) + Sync),
+    done: AtomicUsize,
+    total: usize,
+}
+
+/// Every pixel's first batch of an adaptive render, over the window and its margin
+/// ([`early_stop::RADIUS`]), with the rays it took.
+struct FirstBatches {
+    area: PixelWindow,
+    /// Row-major over `area`.
+    pixels: Vec<Accumulator>,
+    counts: RayCounts,
+}
+
+impl FirstBatches {
+    /// The tiles' accumulators in one row-major grid; `Cancelled` if a tile is missing.
+    fn assemble(
+        area: PixelWindow,
+        tiles: &[Tile],
+        results: Vec<Option<(Vec<Accumulator>, RayCounts)>>,
+    ) -> Result<FirstBatches, Cancelled> {
+        let width = area.width() as usize;
+        let mut out = FirstBatches {
+            area,
+            pixels: vec![Accumulator::default(); width * area.height() as usize],
+            counts: RayCounts::default(),
+        };
+        for (tile, result) in tiles.iter().zip(results) {
+            let (pixels, counts) = result.ok_or(Cancelled)?;
+            out.counts.add(&counts);
+            let tw = (tile.x1 - tile.x0) as usize;
+            for (k, acc) in pixels.into_iter().enumerate() {
+                let x = (tile.x0 - area.x0) as usize + k % tw;
+                let y = (tile.y0 - area.y0) as usize + k / tw;
+                out.pixels[y * width + x] = acc;
+            }
+        }
+        Ok(out)
+    }
+
+    fn at(&self, x: u32, y: u32) -> Option<&Accumulator> {
+        let a = &self.area;
+        if x < a.x0 || x >= a.x1 || y < a.y0 || y >= a.y1 {
+            return None;
+        }
+        let i = (y - a.y0) as usize * a.width() as usize + (x - a.x0) as usize;
+        self.pixels.get(i)
+    }
+
+    /// What the neighbours of (`x`, `y`) within [`early_stop::RADIUS`] say, in a fixed order.
+    fn prior(&self, x: u32, y: u32) -> NeighbourPrior {
+        let r = early_stop::RADIUS as i64;
+        let (x, y) = (i64::from(x), i64::from(y));
+        let neighbours = (y - r..=y + r)
+            .flat_map(|ny| (x - r..=x + r).map(move |nx| (nx, ny)))
+            .filter(|&(nx, ny)| (nx, ny) != (x, y) && nx >= 0 && ny >= 0)
+            .filter_map(|(nx, ny)| self.at(nx as u32, ny as u32));
+        NeighbourPrior::pool(neighbours)
+    }
+}
+
 /// One tile's pixels and ray counts; `None` when the render was cancelled before it.
 type TileResult = Option<(Vec<PixelEstimate>, RayCounts)>;
+
+/// One tile's first batches (adaptive renders) and ray counts.
+type FirstTileResult = (Vec<Accumulator>, RayCounts);
 
 fn tiles(window: PixelWindow) -> Vec<Tile> {
     let mut out = Vec::new();
@@ -244,35 +348,29 @@ struct Job<'a> {
 }
 
 impl Job<'_> {
-    /// Renders every tile on a pool of `threads` (0: every core), checking `cancel` before
-    /// each; also returns the number of threads used.
-    fn run(
+    /// Runs `work` on every tile on `pool` (on this thread without one: the same image, by
+    /// construction), checking `cancel` before each; `None` for the tiles it skipped.
+    fn run<T: Send>(
         &self,
         tiles: &[Tile],
-        threads: usize,
-        progress: &(dyn Fn(f32) + Sync),
+        pool: Option<&rayon::ThreadPool>,
+        progress: &Progress,
         cancel: &AtomicBool,
-    ) -> (Vec<TileResult>, usize) {
-        let done = AtomicUsize::new(0);
+        work: impl Fn(Tile) -> T + Sync,
+    ) -> Vec<Option<T>> {
         let run_tile = |tile: &Tile| {
             if cancel.load(Ordering::Relaxed) {
                 return None;
             }
-            let out = self.tile(*tile);
-            let n = done.fetch_add(1, Ordering::Relaxed) + 1;
-            progress(n as f32 / tiles.len().max(1) as f32);
+            let out = work(*tile);
+            let n = progress.done.fetch_add(1, Ordering::Relaxed) + 1;
+            (progress.report)(n as f32 / progress.total.max(1) as f32);
             Some(out)
         };
-        let results = match rayon::ThreadPoolBuilder::new().num_threads(threads).build() {
-            Ok(pool) => pool.install(|| tiles.par_iter().map(run_tile).collect()),
-            // No threads to be had: render on this one (same image, by construction).
-            Err(_) => tiles.iter().map(run_tile).collect(),
-        };
-        let used_threads = match threads {
-            0 => rayon::current_num_threads(),
-            n => n,
-        };
-        (results, used_threads)
+        match pool {
+            Some(pool) => pool.install(|| tiles.par_iter().map(run_tile).collect()),
+            None => tiles.iter().map(run_tile).collect(),
+        }
     }
 
     /// The tiles' pixels into the window's film, the error film and the statistics (all but
@@ -335,22 +433,49 @@ impl Job<'_> {
         })
     }
 
-    fn tile(&self, t: Tile) -> (Vec<PixelEstimate>, RayCounts) {
+    fn tile(&self, t: Tile, first: Option<&FirstBatches>) -> (Vec<PixelEstimate>, RayCounts) {
         let mut counts = RayCounts::default();
         let mut pixels = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
         for y in t.y0..t.y1 {
             for x in t.x0..t.x1 {
-                pixels.push(self.pixel(x, y, &mut counts));
+                pixels.push(self.pixel(x, y, first, &mut counts));
             }
         }
         (pixels, counts)
     }
 
-    /// Box filter: the plain mean of the pixel's samples; adaptive batches until its relative
-    /// error reaches the target (decided from this pixel's samples alone).
-    fn pixel(&self, x: u32, y: u32, counts: &mut RayCounts) -> PixelEstimate {
+    /// The first batch of every pixel of the tile (adaptive renders): one sample per
+    /// replicate, taken before any pixel decides (`early_stop`).
+    fn first_batches(&self, t: Tile) -> FirstTileResult {
+        let mut counts = RayCounts::default();
+        let mut pixels = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
+        let size = estimate::FIRST_BATCH;
+        for y in t.y0..t.y1 {
+            for x in t.x0..t.x1 {
+                let sequences = rng::PixelSequences::new(self.scene.settings.seed, x, y);
+                let mut acc = Accumulator::default();
+                // Filtered for the two first batches' samples, as the second batch is.
+                let scale = footprint_scale(early_stop::LAST_EARLY);
+                self.progressive_batch(x, y, &sequences, 0..size, scale, &mut acc, &mut counts);
+                pixels.push(acc);
+            }
+        }
+        (pixels, counts)
+    }
+
+    /// Box filter: the plain mean of the pixel's samples; adaptive batches, from the pixel's
+    /// first batch in `first`, until its relative error reaches the target (decided from this
+    /// pixel's samples, and before `1/target` samples from its neighbours' first batches).
+    fn pixel(
+        &self,
+        x: u32,
+        y: u32,
+        first: Option<&FirstBatches>,
+        counts: &mut RayCounts,
+    ) -> PixelEstimate {
         let mut acc = Accumulator::default();
-        let Some(a) = &self.adaptive else {
+        debug_assert_eq!(self.adaptive.is_some(), first.is_some());
+        let (Some(a), Some(first)) = (&self.adaptive, first) else {
             let offsets = match self.emitter_pixels.factor_at(x, y) {
                 1 => self.offsets,
                 _ => self.boosted_offsets,
@@ -360,25 +485,39 @@ impl Job<'_> {
             return acc.finish(offsets.len() as u32, false);
         };
         let sequences = rng::PixelSequences::new(self.scene.settings.seed, x, y);
+        // Emitter pixels' minimum is never cut short; `a.min` may be (`early_stop`).
         let min = match self.emitter_pixels.factor_at(x, y) {
-            1 => a.min,
+            1 => 0,
             _ => a.emitter_min.max(a.min),
         };
         let sliver = a.coverage.at(x, y).map(|(share, luminance)| SliverRule {
             share: share as f64,
             luminance: luminance as f64,
         });
+        let prior = first.prior(x, y);
         let mut taken = 0;
-        for &size in &a.batch_sizes {
-            // Textures are filtered for the samples the pixel will have by this batch's end.
-            let scale = footprint_scale(taken + size);
-            let samples = taken..taken + size;
-            self.progressive_batch(x, y, &sequences, samples, scale, &mut acc, counts);
+        for (batch, &size) in a.batch_sizes.iter().enumerate() {
+            if batch == 0 {
+                // Taken in the first pass, for every pixel.
+                acc = first.at(x, y).copied().unwrap_or_default();
+            } else {
+                // Textures are filtered for the samples the pixel will have by this batch's end.
+                let scale = footprint_scale(taken + size);
+                let samples = taken..taken + size;
+                self.progressive_batch(x, y, &sequences, samples, scale, &mut acc, counts);
+            }
             taken += size;
             let black = acc.is_black() && taken < a.black_min;
             let unseen = sliver
                 .is_some_and(|r| r.holds(taken, acc.mean_luminance(), acc.brightest(), a.target));
-            if taken >= min && !black && !unseen && acc.relative_error() <= a.target {
+            if taken < min || black || unseen {
+                continue;
+            }
+            if taken < a.min {
+                if let Some(e) = early_stop::confident_error(&acc, &prior, a.target) {
+                    return acc.finish_with(taken, false, e);
+                }
+            } else if acc.relative_error() <= a.target {
                 return acc.finish(taken, false);
             }
         }

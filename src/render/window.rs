@@ -44,6 +44,17 @@ impl PixelWindow {
         self.y1.saturating_sub(self.y0)
     }
 
+    /// The window grown by `margin` pixels on every side, clipped to a `width`×`height` image.
+    pub fn grow(&self, margin: u32, width: u32, height: u32) -> PixelWindow {
+        PixelWindow {
+            x0: self.x0.saturating_sub(margin),
+            y0: self.y0.saturating_sub(margin),
+            x1: self.x1.saturating_add(margin),
+            y1: self.y1.saturating_add(margin),
+        }
+        .clip(width, height)
+    }
+
     /// The window clipped to a `width`×`height` image.
     pub fn clip(&self, width: u32, height: u32) -> PixelWindow {
         let (x1, y1) = (self.x1.min(width), self.y1.min(height));
@@ -206,6 +217,34 @@ mod tests {
                 assert!(bands.iter().all(|b| b.x0 == 0 && b.x1 == w));
             }
         }
+    }
+
+    #[test]
+    fn grown_windows_stay_in_the_image() {
+        let w = PixelWindow {
+            x0: 0,
+            y0: 5,
+            x1: 10,
+            y1: 9,
+        };
+        assert_eq!(
+            w.grow(1, 10, 20),
+            PixelWindow {
+                x0: 0,
+                y0: 4,
+                x1: 10,
+                y1: 10
+            }
+        );
+        assert_eq!(
+            w.grow(3, 12, 10),
+            PixelWindow {
+                x0: 0,
+                y0: 2,
+                x1: 12,
+                y1: 10
+            }
+        );
     }
 
     #[test]
