@@ -11,6 +11,10 @@
 //! of Embree figures: either the `CSV,` lines `rays` prints, or the merged `results.csv`; several
 //! files joined like `PATH` (`a.csv:b.csv`) are merged, keeping Embree's best figure of each.
 //!
+//! Each ray set's hits are also summarised on stderr as a digest of their bits (hit or miss,
+//! `t`, `u`, `v`, instance, triangle of every ray, in order): a kernel change that claims the same
+//! bits shows the same digests, whatever the instruction set (`SCNC_SIMD`).
+//!
 //! With `--features bvh-counters`, each ray set also reports the wide nodes tested, leaves
 //! entered and packets of four triangles tested per ray (on stderr).
 //!
@@ -200,6 +204,8 @@ struct Check {
     hits: u64,
     sum_t: f64,
     sum_prim: u64,
+    /// [`digest`] of the hits.
+    digest: u64,
 }
 
 /// Best-of-`reps` Mrays per CPU-second of closest-hit (or any-hit) tracing, and the checksums.
@@ -250,7 +256,35 @@ fn trace(
         c.sum_t += h.t as f64;
         c.sum_prim += h.prim as u64;
     }
+    c.digest = digest(out);
     (rays.len() as f64 / best / 1e6, c)
+}
+
+/// A digest of every hit's bits, ray by ray (FNV-1a over 32-bit words, each word scrambled by
+/// SplitMix64 so that nearby values do not cancel): equal for equal hit lists, and in practice
+/// different for any changed bit.
+fn digest(hits: &[Option<Hit>]) -> u64 {
+    let mut d = 0xcbf2_9ce4_8422_2325u64;
+    let mut eat = |w: u32| {
+        d = (d ^ SplitMix64(u64::from(w)).next_u64()).wrapping_mul(0x0000_0100_0000_01b3);
+    };
+    for h in hits {
+        match h {
+            None => eat(u32::MAX),
+            Some(h) => {
+                for w in [
+                    h.t.to_bits(),
+                    h.u.to_bits(),
+                    h.v.to_bits(),
+                    h.instance,
+                    h.prim,
+                ] {
+                    eat(w);
+                }
+            }
+        }
+    }
+    d
 }
 
 /// Embree figures keyed by (scene, kind): (Mrays per CPU-s, x1 single thread, HIGH; hits).
@@ -430,6 +464,10 @@ fn main() {
                 ("incoherent", incoherent.len(), mi, ci),
             ] {
                 let e = eb(kind);
+                eprintln!(
+                    "{} {:?} {kind}: hit digest {:016x}",
+                    scene.name, test, c.digest
+                );
                 println!(
                     "| {} | {:?} | {kind} | {n} | {} ({}) | {m:.2} | {} | {} |",
                     scene.name,

@@ -49,7 +49,7 @@ const BANDS: [(f32, f32); 5] = [
 fn checker_png(size: u32, squares: u32) -> Vec<u8> {
     let cell = size / squares;
     let img = image::RgbImage::from_fn(size, size, |x, y| {
-        let v = if (x / cell + y / cell) % 2 == 0 {
+        let v = if (x / cell + y / cell).is_multiple_of(2) {
             255
         } else {
             0

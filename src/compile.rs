@@ -333,7 +333,7 @@ impl<'l> Driver<'l> {
             },
             first => {
                 // Only blame the header if the file's first statement parsed (or nothing did).
-                let starts_ok = first.map_or(true, |s| s.span().start as usize == first_offset);
+                let starts_ok = first.is_none_or(|s| s.span().start as usize == first_offset);
                 if starts_ok {
                     let end = text[first_offset..]
                         .find(char::is_whitespace)

@@ -156,7 +156,7 @@ fn cos_to_normal(meshes: &[Mesh], instances: &[Instance], h: &Hit, ray: &Ray) ->
 /// The instruction sets this CPU can run the queries on (the portable one always).
 fn paths() -> Vec<Simd> {
     let mut probe = Accel::build(&[], &[], AccelKind::Bvh);
-    [Simd::Portable, Simd::Avx2]
+    [Simd::Portable, Simd::Avx2, Simd::Avx512]
         .into_iter()
         .filter(|&s| probe.force_simd(s))
         .collect()

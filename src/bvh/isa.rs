@@ -1,7 +1,8 @@
 //! The instruction set a query runs on, chosen at run time: the node slab test and the leaf's
 //! watertight triangle test, each in a portable form (SSE: glam's four-lane `Vec4`, NEON
 //! elsewhere) and in an AVX2 form (eight lanes in one register: the whole 8-wide node in one
-//! test, two packets of four triangles at once).
+//! test, two packets of four triangles at once), which the AVX-512 path runs compiled for
+//! AVX-512 (32 registers, the node's compare straight into a mask register).
 //!
 //! Stage: queries. `two_level.rs` picks the path once per query ([`Simd`], from CPU detection
 //! at build) and enters it; `traverse.rs` and `mesh_bvh.rs` are generic over [`Isa`], so each
@@ -9,7 +10,7 @@
 //! order, no fused multiply-adds), so which path runs never changes a hit or an image.
 
 use super::wide::{WideNode, WideRay, EXIT_SLACK, WIDTH};
-use crate::geom::avx2::Avx2;
+use crate::geom::avx2::{Avx2, Avx512, F8};
 use crate::geom::triangle::{TriangleHit, WatertightRay};
 use crate::geom::triangle4::{any4, closest4, Tri4};
 use crate::geom::triangle8::{any8, closest8};
@@ -19,8 +20,12 @@ use crate::geom::triangle8::{any8, closest8};
 pub enum Simd {
     /// Four-lane SSE (x86-64's baseline; NEON or scalar elsewhere): runs on every CPU.
     Portable,
-    /// Eight-lane AVX2, chosen when the CPU has AVX2 and FMA and `SCNC_SIMD=portable` is unset.
+    /// Eight-lane AVX2, chosen when the CPU has AVX2 and FMA (and no AVX-512, or
+    /// `SCNC_SIMD=avx2`), unless `SCNC_SIMD=portable`.
     Avx2,
+    /// The AVX2 kernels compiled for AVX-512 F/VL/BW/DQ (still eight lanes: 32 registers and
+    /// mask compares), chosen when the CPU has it, unless `SCNC_SIMD` is `portable` or `avx2`.
+    Avx512,
 }
 
 /// The kernels of one instruction set.
@@ -63,24 +68,42 @@ impl Isa for Portable {
     }
 }
 
+/// [`WideRay::hit`] on all eight lanes at once, the same operations in the same order, up to
+/// the final comparison: the entry distances and the slackened exit distances.
+#[inline(always)]
+fn slab8(avx: Avx2, ray: &WideRay, n: &WideNode, t_max: f32) -> (F8, F8) {
+    // No closures here: their bodies might not be inlined into the AVX2 kernel.
+    let (near, far) = (&ray.near_row, &ray.far_row);
+    let (nx, ny, nz) = (
+        plane(avx, ray, n, 0, near[0]),
+        plane(avx, ray, n, 1, near[1]),
+        plane(avx, ray, n, 2, near[2]),
+    );
+    let (fx, fy, fz) = (
+        plane(avx, ray, n, 0, far[0]),
+        plane(avx, ray, n, 1, far[1]),
+        plane(avx, ray, n, 2, far[2]),
+    );
+    // The tree grouping of `WideRay::hit`.
+    let t_near = avx.max(avx.max(avx.splat(0.0), nx), avx.max(ny, nz));
+    let t_far = avx.min(avx.min(avx.splat(t_max), fx), avx.min(fy, fz));
+    (t_near, avx.mul(t_far, avx.splat(EXIT_SLACK)))
+}
+
+/// The distances to the planes of bounds row `row` (on `axis`) of the eight children.
+#[inline(always)]
+fn plane(avx: Avx2, ray: &WideRay, n: &WideNode, axis: usize, row: usize) -> F8 {
+    let org = avx.splat(ray.origin(axis));
+    let inv = avx.splat(ray.inv_dir(axis));
+    avx.mul(avx.sub(avx.load(&n.bounds[row]), org), inv)
+}
+
 impl Isa for Avx2 {
     /// [`WideRay::hit`] on all eight lanes at once: the same operations in the same order.
     #[inline(always)]
     fn slab(self, ray: &WideRay, n: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
-        let avx = self;
-        let mut t_near = avx.splat(0.0);
-        let mut t_far = avx.splat(t_max);
-        for axis in 0..3 {
-            // No closures here: their bodies might not be inlined into the AVX2 kernel.
-            let org = avx.splat(ray.origin(axis));
-            let inv = avx.splat(ray.inv_dir(axis));
-            let near = avx.mul(avx.sub(avx.load(&n.bounds[ray.near_row[axis]]), org), inv);
-            let far = avx.mul(avx.sub(avx.load(&n.bounds[ray.far_row[axis]]), org), inv);
-            t_near = avx.max(t_near, near);
-            t_far = avx.min(t_far, far);
-        }
-        let entered = avx.le(t_near, avx.mul(t_far, avx.splat(EXIT_SLACK)));
-        (avx.store(t_near), avx.bitmask(entered))
+        let (t_near, t_exit) = slab8(self, ray, n, t_max);
+        (self.store(t_near), self.bitmask(self.le(t_near, t_exit)))
     }
     #[inline(always)]
     fn closest_tris(
@@ -97,9 +120,32 @@ impl Isa for Avx2 {
     }
 }
 
+impl Isa for Avx512 {
+    /// The AVX2 slab test, its last comparison made straight into a mask register.
+    #[inline(always)]
+    fn slab(self, ray: &WideRay, n: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
+        let (t_near, t_exit) = slab8(self.avx2(), ray, n, t_max);
+        (self.avx2().store(t_near), self.le_mask(t_near, t_exit))
+    }
+    #[inline(always)]
+    fn closest_tris(
+        self,
+        r: &WatertightRay,
+        t_max: &mut f32,
+        tris: &[Tri4],
+    ) -> Option<(usize, TriangleHit)> {
+        closest8(self.avx2(), r, t_max, tris)
+    }
+    #[inline(always)]
+    fn any_tris(self, r: &WatertightRay, t_max: f32, tris: &[Tri4]) -> bool {
+        any8(self.avx2(), r, t_max, tris)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::avx2::Kernel;
     use crate::geom::Ray;
     use glam::Vec3;
 
@@ -130,6 +176,55 @@ mod tests {
             }
         }
         n
+    }
+
+    /// Every case's slab test on `isa`, inside its kernel function.
+    struct AllCases;
+    impl<I: Isa> Kernel<I> for AllCases {
+        type Output = Vec<([f32; WIDTH], u32)>;
+        #[inline(always)]
+        fn call(self, isa: I) -> Self::Output {
+            cases()
+                .iter()
+                .map(|(ray, n, t)| isa.slab(ray, n, *t))
+                .collect()
+        }
+    }
+
+    fn cases() -> Vec<(WideRay, WideNode, f32)> {
+        let mut out = Vec::new();
+        for case in 0..4_000u64 {
+            let n = node(case);
+            let f = |k: u64| ((case * 7 + k) % 13) as f32 / 3.0 - 2.0;
+            let mut dir = Vec3::new(f(1), f(2), f(3));
+            match case % 4 {
+                0 => dir.x = 0.0,
+                1 => dir.y = -0.0,
+                _ => {}
+            }
+            let ray = WideRay::new(&Ray::new(Vec3::new(f(4), f(5), f(6)) * 2.0, dir));
+            for t_max in [f32::INFINITY, 1.5] {
+                out.push((ray, n, t_max));
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn each_path_slab_test_gives_the_portable_bits_inside_its_kernel() {
+        let want = AllCases.call(Portable);
+        let bits = |v: &[([f32; WIDTH], u32)]| {
+            v.iter()
+                .map(|(t, m)| (t.map(f32::to_bits), *m))
+                .collect::<Vec<_>>()
+        };
+        if let Some(avx) = Avx2::detect_cpu() {
+            assert_eq!(bits(&avx.run(AllCases)), bits(&want), "AVX2");
+        }
+        match Avx512::detect_cpu() {
+            Some(avx) => assert_eq!(bits(&avx.run(AllCases)), bits(&want), "AVX-512"),
+            None => eprintln!("no AVX-512 on this CPU: that path not compared"),
+        }
     }
 
     #[test]

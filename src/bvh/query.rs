@@ -1,6 +1,7 @@
 //! The query objects of the two-level BVH: the top level's leaf tests (each instance's bottom
-//! level) and the queries handed to the AVX2 kernel. Types rather than closures, so that they
-//! are inlined into the kernel compiled for AVX2 (see `docs/bvh.md`, "Instruction set").
+//! level) and the queries handed to the AVX2 and AVX-512 kernels. Types rather than closures,
+//! so that they are inlined into the kernel compiled for the instruction set (see
+//! `docs/bvh.md`, "Instruction set").
 //!
 //! Stage: queries, for `two_level.rs`.
 
@@ -11,7 +12,7 @@ use super::mesh_bvh::TriTest;
 use super::traverse::{Entry, LeafVisitor};
 use super::two_level::TwoLevel;
 use super::Hit;
-use crate::geom::avx2::{Avx2, Avx2Kernel};
+use crate::geom::avx2::Kernel;
 use crate::geom::Ray;
 
 /// The top level's closest-hit leaf test: each instance's bottom level.
@@ -61,21 +62,21 @@ impl<T: TriTest, I: Isa> LeafVisitor for TopAny<'_, T, I> {
     }
 }
 
-/// A query to run on the AVX2 kernels ([`Avx2::run`]): closest-hit (`ANY == false`) or
-/// any-hit, with triangle test `T`.
-pub(super) struct OnAvx2<'a, T, const ANY: bool> {
+/// A query to run inside an instruction set's kernel function (`Avx2::run`, `Avx512::run`):
+/// closest-hit (`ANY == false`) or any-hit, with triangle test `T`.
+pub(super) struct OnKernel<'a, T, const ANY: bool> {
     pub(super) accel: &'a TwoLevel,
     pub(super) ray: &'a Ray,
     pub(super) stacks: &'a mut [Entry],
     pub(super) test: PhantomData<T>,
 }
 
-pub(super) type ClosestOn<'a, T> = OnAvx2<'a, T, false>;
-pub(super) type AnyOn<'a, T> = OnAvx2<'a, T, true>;
+pub(super) type ClosestOn<'a, T> = OnKernel<'a, T, false>;
+pub(super) type AnyOn<'a, T> = OnKernel<'a, T, true>;
 
-impl<'a, T, const ANY: bool> OnAvx2<'a, T, ANY> {
+impl<'a, T, const ANY: bool> OnKernel<'a, T, ANY> {
     pub(super) fn new(accel: &'a TwoLevel, ray: &'a Ray, stacks: &'a mut [Entry]) -> Self {
-        OnAvx2 {
+        OnKernel {
             accel,
             ray,
             stacks,
@@ -84,18 +85,18 @@ impl<'a, T, const ANY: bool> OnAvx2<'a, T, ANY> {
     }
 }
 
-impl<T: TriTest> Avx2Kernel for ClosestOn<'_, T> {
+impl<T: TriTest, I: Isa> Kernel<I> for ClosestOn<'_, T> {
     type Output = Option<Hit>;
     #[inline(always)]
-    fn call(self, avx: Avx2) -> Option<Hit> {
-        self.accel.closest_with::<T, _>(avx, self.ray, self.stacks)
+    fn call(self, isa: I) -> Option<Hit> {
+        self.accel.closest_with::<T, I>(isa, self.ray, self.stacks)
     }
 }
 
-impl<T: TriTest> Avx2Kernel for AnyOn<'_, T> {
+impl<T: TriTest, I: Isa> Kernel<I> for AnyOn<'_, T> {
     type Output = bool;
     #[inline(always)]
-    fn call(self, avx: Avx2) -> bool {
-        self.accel.any_with::<T, _>(avx, self.ray, self.stacks)
+    fn call(self, isa: I) -> bool {
+        self.accel.any_with::<T, I>(isa, self.ray, self.stacks)
     }
 }

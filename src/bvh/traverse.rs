@@ -43,22 +43,22 @@ thread_local! {
 }
 
 /// Runs `query` with stack space for a top-level traversal and the bottom-level ones it
-/// nests (`STACK_MAX` entries each): this thread's reused stacks, or a fresh array if they are
-/// in use (a query run from inside another's leaf test; nothing does that today).
+/// nests (`STACK_MAX` entries each): this thread's reused stacks, or (out of line) a fresh
+/// array if they are in use (a query run from inside another's leaf test; nothing does that
+/// today).
 #[inline(always)]
 pub fn with_stacks<R>(query: impl FnOnce(&mut [Entry]) -> R) -> R {
-    STACKS.with(|cell| {
-        let mut reused = cell.try_borrow_mut().ok();
-        let mut fresh: Vec<Entry>;
-        let stacks = match reused.as_deref_mut() {
-            Some(stacks) => &mut stacks[..],
-            None => {
-                fresh = vec![(0, 0, 0.0); SCRATCH];
-                &mut fresh[..]
-            }
-        };
-        query(stacks)
+    STACKS.with(|cell| match cell.try_borrow_mut() {
+        Ok(mut stacks) => query(&mut stacks[..]),
+        Err(_) => with_fresh_stacks(query),
     })
+}
+
+/// [`with_stacks`]' fallback: a fresh, zeroed array.
+#[cold]
+#[inline(never)]
+fn with_fresh_stacks<R>(query: impl FnOnce(&mut [Entry]) -> R) -> R {
+    query(&mut vec![(0, 0, 0.0); SCRATCH])
 }
 
 /// Visits the leaves the ray enters within `(0, *t_max)`, nearer first; `leaf(first, count,

@@ -16,7 +16,7 @@ use super::query::{AnyOn, ClosestOn, TopAny, TopClosest};
 use super::traverse::{traverse, with_stacks, Entry, STACK_MAX};
 use super::wide::{collapse, Wide, WideNode, WideRay};
 use super::{AccelStats, Hit, Instance, MeshRef, TriangleTest};
-use crate::geom::avx2::Avx2;
+use crate::geom::avx2::{Avx2, Avx512};
 use crate::geom::{Aabb, Ray};
 
 /// An instance that survived validation (its mesh exists and has triangles, its transform is
@@ -50,8 +50,29 @@ pub struct TwoLevel {
     /// Leaf order of the top level: indices into `placed`.
     pub(super) top_order: Vec<u32>,
     test: TriangleTest,
-    /// The AVX2 kernels' token when queries run on them (`None`: the portable kernels).
-    avx2: Option<Avx2>,
+    /// The kernels queries run on.
+    kernels: Kernels,
+}
+
+/// The kernels a query runs on, with the token that proves the CPU has them.
+#[derive(Debug, Clone, Copy)]
+enum Kernels {
+    Portable,
+    Avx2(Avx2),
+    Avx512(Avx512),
+}
+
+impl Kernels {
+    /// The widest this CPU has (and `SCNC_SIMD` allows).
+    fn detect() -> Kernels {
+        if let Some(avx) = Avx512::detect() {
+            Kernels::Avx512(avx)
+        } else if let Some(avx) = Avx2::detect() {
+            Kernels::Avx2(avx)
+        } else {
+            Kernels::Portable
+        }
+    }
 }
 
 fn finite_affine(m: &Affine3A) -> bool {
@@ -194,7 +215,7 @@ impl TwoLevel {
             top: collapse(&top.nodes),
             top_order: top.order,
             test,
-            avx2: Avx2::detect(),
+            kernels: Kernels::detect(),
         }
     }
 
@@ -308,20 +329,21 @@ impl TwoLevel {
         if !(ray.origin.is_finite() && ray.dir.is_finite()) || ray.t_max.is_nan() {
             return None;
         }
-        with_stacks(|stacks| match (self.test, self.avx2) {
-            (TriangleTest::MollerTrumbore, None) => {
-                self.closest_with::<MollerTrumbore, _>(Portable, ray, stacks)
-            }
-            (TriangleTest::Watertight, None) => {
-                self.closest_with::<Watertight, _>(Portable, ray, stacks)
-            }
-            (TriangleTest::MollerTrumbore, Some(avx)) => {
-                avx.run(ClosestOn::<MollerTrumbore>::new(self, ray, stacks))
-            }
-            (TriangleTest::Watertight, Some(avx)) => {
-                avx.run(ClosestOn::<Watertight>::new(self, ray, stacks))
-            }
-        })
+        match self.test {
+            TriangleTest::MollerTrumbore => self.closest_on::<MollerTrumbore>(ray),
+            TriangleTest::Watertight => self.closest_on::<Watertight>(ray),
+        }
+    }
+
+    /// The closest-hit query with triangle test `T` on this structure's kernels: one small
+    /// closure per path, which fetches the stacks and enters the kernel.
+    #[inline(always)]
+    fn closest_on<T: TriTest>(&self, ray: &Ray) -> Option<Hit> {
+        match self.kernels {
+            Kernels::Portable => with_stacks(|s| self.closest_with::<T, _>(Portable, ray, s)),
+            Kernels::Avx2(avx) => with_stacks(|s| avx.run(ClosestOn::<T>::new(self, ray, s))),
+            Kernels::Avx512(avx) => with_stacks(|s| avx.run(ClosestOn::<T>::new(self, ray, s))),
+        }
     }
 
     /// Whether anything blocks `ray` before its `t_max` (shadow rays).
@@ -329,41 +351,39 @@ impl TwoLevel {
         if !(ray.origin.is_finite() && ray.dir.is_finite()) || ray.t_max.is_nan() {
             return false;
         }
-        with_stacks(|stacks| match (self.test, self.avx2) {
-            (TriangleTest::MollerTrumbore, None) => {
-                self.any_with::<MollerTrumbore, _>(Portable, ray, stacks)
-            }
-            (TriangleTest::Watertight, None) => {
-                self.any_with::<Watertight, _>(Portable, ray, stacks)
-            }
-            (TriangleTest::MollerTrumbore, Some(avx)) => {
-                avx.run(AnyOn::<MollerTrumbore>::new(self, ray, stacks))
-            }
-            (TriangleTest::Watertight, Some(avx)) => {
-                avx.run(AnyOn::<Watertight>::new(self, ray, stacks))
-            }
-        })
+        match self.test {
+            TriangleTest::MollerTrumbore => self.any_on::<MollerTrumbore>(ray),
+            TriangleTest::Watertight => self.any_on::<Watertight>(ray),
+        }
+    }
+
+    /// The any-hit query, as [`Self::closest_on`].
+    #[inline(always)]
+    fn any_on<T: TriTest>(&self, ray: &Ray) -> bool {
+        match self.kernels {
+            Kernels::Portable => with_stacks(|s| self.any_with::<T, _>(Portable, ray, s)),
+            Kernels::Avx2(avx) => with_stacks(|s| avx.run(AnyOn::<T>::new(self, ray, s))),
+            Kernels::Avx512(avx) => with_stacks(|s| avx.run(AnyOn::<T>::new(self, ray, s))),
+        }
     }
 
     /// The instruction set queries run on.
     pub fn simd(&self) -> Simd {
-        if self.avx2.is_some() {
-            Simd::Avx2
-        } else {
-            Simd::Portable
+        match self.kernels {
+            Kernels::Portable => Simd::Portable,
+            Kernels::Avx2(_) => Simd::Avx2,
+            Kernels::Avx512(_) => Simd::Avx512,
         }
     }
 
     /// Makes queries run on `simd`; `false` (and no change) if this CPU cannot run it.
     pub fn force_simd(&mut self, simd: Simd) -> bool {
-        match simd {
-            Simd::Portable => self.avx2 = None,
-            Simd::Avx2 => match Avx2::detect_cpu() {
-                Some(avx) => self.avx2 = Some(avx),
-                None => return false,
-            },
-        }
-        true
+        let kernels = match simd {
+            Simd::Portable => Some(Kernels::Portable),
+            Simd::Avx2 => Avx2::detect_cpu().map(Kernels::Avx2),
+            Simd::Avx512 => Avx512::detect_cpu().map(Kernels::Avx512),
+        };
+        kernels.map(|k| self.kernels = k).is_some()
     }
 
     /// Node, leaf and triangle counts and memory, for `--stats`.

@@ -117,7 +117,7 @@ fn emit(bin: &[Node], i: usize, out: &mut Vec<WideNode>) -> u32 {
         for (pos, &k) in kids[..n].iter().enumerate() {
             if !bin[k].is_leaf() {
                 let area = bin[k].bounds().surface_area();
-                if open.map_or(true, |(_, a)| area > a) {
+                if open.is_none_or(|(_, a)| area > a) {
                     open = Some((pos, area));
                 }
             }
@@ -212,16 +212,15 @@ impl WideRay {
         let mut mask = 0u32;
         for half in 0..WIDTH / 4 {
             let lanes = 4 * half..4 * half + 4;
-            let mut t_near = Vec4::ZERO;
-            let mut t_far = Vec4::splat(t_max);
-            for axis in 0..3 {
-                let (near, far) = (self.near_row[axis], self.far_row[axis]);
-                let row = |r: usize| Vec4::from_slice(&n.bounds[r][lanes.clone()]);
-                let tn = (row(near) - self.org[axis]) * self.inv[axis];
-                let tf = (row(far) - self.org[axis]) * self.inv[axis];
-                t_near = t_near.max(tn);
-                t_far = t_far.min(tf);
-            }
+            let row = |r: usize| Vec4::from_slice(&n.bounds[r][lanes.clone()]);
+            let plane = |axis: usize, r: usize| (row(r) - self.org[axis]) * self.inv[axis];
+            let tn = [0, 1, 2].map(|axis| plane(axis, self.near_row[axis]));
+            let tf = [0, 1, 2].map(|axis| plane(axis, self.far_row[axis]));
+            // Reduced as a tree, not a chain (one max and one min shorter on the critical
+            // path); no operand is NaN, so only the sign of a zero distance could depend on
+            // the grouping, and no comparison sees it. The AVX2 form groups alike.
+            let t_near = Vec4::ZERO.max(tn[0]).max(tn[1].max(tn[2]));
+            let t_far = Vec4::splat(t_max).min(tf[0]).min(tf[1].min(tf[2]));
             mask |= t_near.cmple(t_far * EXIT_SLACK).bitmask() << (4 * half);
             t_near.write_to_slice(&mut entry[lanes]);
         }

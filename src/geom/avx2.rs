@@ -13,8 +13,17 @@
 //! fused multiply-add is ever formed: the AVX2 path computes the same bits as the portable one,
 //! lane for lane (tests compare them).
 //!
-//! On other architectures [`Avx2`] is uninhabited: `detect` returns `None` and the methods are
-//! never reached.
+//! [`Avx512`] is the same token on a CPU that also has AVX-512 (F, VL, BW, DQ): its
+//! [`Avx512::run`] compiles the same kernels for AVX-512, which gives the compiler 32 vector
+//! registers instead of 16 (the traversal's ray constants stay in registers instead of being
+//! spilled) and compares straight into mask registers; [`Avx512::le_mask`] is the one explicit
+//! AVX-512 operation. The registers stay 256 bits wide (AVX-512VL), so the CPU keeps its AVX2
+//! clock. Same IEEE operations, same bits.
+//!
+//! `SCNC_SIMD=portable`, `avx2` or `avx512` caps the path a process uses (read once).
+//!
+//! On other architectures [`Avx2`] and [`Avx512`] are uninhabited: `detect` returns `None` and
+//! the methods are never reached.
 #![allow(unsafe_code)]
 
 #[cfg(target_arch = "x86_64")]
@@ -41,26 +50,113 @@ pub struct F8(
     #[cfg(not(target_arch = "x86_64"))] Proof,
 );
 
-/// A computation to run inside [`Avx2::run`] (a trait rather than a closure so that its body
-/// is `#[inline(always)]` and so compiled for AVX2 with everything it inlines).
-pub trait Avx2Kernel {
+/// Proof that the CPU runs AVX2, FMA and AVX-512 F, VL, BW and DQ; made only by
+/// [`Avx512::detect`]. Every [`Avx2`] operation is available through [`Avx512::avx2`].
+#[derive(Debug, Clone, Copy)]
+pub struct Avx512 {
+    avx2: Avx2,
+}
+
+/// A computation to run inside [`Avx2::run`] or [`Avx512::run`] with the token `T` (a trait
+/// rather than a closure so that its body is `#[inline(always)]` and so compiled for the
+/// instruction set with everything it inlines).
+pub trait Kernel<T> {
     /// What it returns.
     type Output;
     /// Runs it; the implementation should be `#[inline(always)]`.
-    fn call(self, avx: Avx2) -> Self::Output;
+    fn call(self, token: T) -> Self::Output;
 }
 
-/// Whether `SCNC_SIMD=portable` asks for the portable path (read once per process).
-fn portable_requested() -> bool {
+/// The widest path `SCNC_SIMD` allows (read once per process): 0 portable, 1 AVX2, 2 AVX-512
+/// (unset or any other value: no cap).
+fn allowed_level() -> u8 {
     use std::sync::OnceLock;
-    static PORTABLE: OnceLock<bool> = OnceLock::new();
-    *PORTABLE.get_or_init(|| std::env::var("SCNC_SIMD").is_ok_and(|v| v == "portable"))
+    static LEVEL: OnceLock<u8> = OnceLock::new();
+    *LEVEL.get_or_init(|| match std::env::var("SCNC_SIMD").as_deref() {
+        Ok("portable") => 0,
+        Ok("avx2") => 1,
+        _ => 2,
+    })
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn run_avx2<K: Avx2Kernel>(avx: Avx2, kernel: K) -> K::Output {
+unsafe fn run_avx2<K: Kernel<Avx2>>(avx: Avx2, kernel: K) -> K::Output {
     kernel.call(avx)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma,avx512f,avx512vl,avx512bw,avx512dq")]
+unsafe fn run_avx512<K: Kernel<Avx512>>(avx: Avx512, kernel: K) -> K::Output {
+    kernel.call(avx)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[allow(
+    clippy::inline_always,
+    reason = "each method is one instruction in the kernels"
+)]
+impl Avx512 {
+    /// The token if this CPU has AVX2, FMA and AVX-512 F/VL/BW/DQ and `SCNC_SIMD` does not ask
+    /// for a narrower path.
+    pub fn detect() -> Option<Avx512> {
+        Avx512::detect_cpu().filter(|_| allowed_level() >= 2)
+    }
+
+    /// The token if this CPU has the features, whatever the environment says (for tests).
+    pub fn detect_cpu() -> Option<Avx512> {
+        let avx2 = Avx2::detect_cpu()?;
+        (is_x86_feature_detected!("avx512f")
+            && is_x86_feature_detected!("avx512vl")
+            && is_x86_feature_detected!("avx512bw")
+            && is_x86_feature_detected!("avx512dq"))
+        .then_some(Avx512 { avx2 })
+    }
+
+    /// The AVX2 operations (all of them run here, compiled with AVX-512's registers).
+    #[inline(always)]
+    pub fn avx2(self) -> Avx2 {
+        self.avx2
+    }
+
+    /// Runs `kernel` inside a function compiled for AVX2, FMA and AVX-512 F/VL/BW/DQ.
+    #[inline(always)]
+    pub fn run<K: Kernel<Avx512>>(self, kernel: K) -> K::Output {
+        // SAFETY: the token exists, so the CPU has the features `run_avx512` is compiled for.
+        unsafe { run_avx512(self, kernel) }
+    }
+
+    /// Bit `k` set where `a ≤ b` in lane `k` (ordered: false for NaN), compared straight into
+    /// a mask register: `bitmask(le(a, b))` in one instruction.
+    #[inline(always)]
+    pub fn le_mask(self, a: F8, b: F8) -> u32 {
+        // SAFETY: the token proves AVX-512 F and VL.
+        u32::from(unsafe { _mm256_cmp_ps_mask::<_CMP_LE_OQ>(a.0, b.0) })
+    }
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+#[allow(
+    missing_docs,
+    clippy::inline_always,
+    reason = "never reached: no token exists"
+)]
+impl Avx512 {
+    pub fn detect() -> Option<Avx512> {
+        None
+    }
+    pub fn detect_cpu() -> Option<Avx512> {
+        None
+    }
+    pub fn avx2(self) -> Avx2 {
+        self.avx2
+    }
+    pub fn run<K: Kernel<Avx512>>(self, _: K) -> K::Output {
+        match self.avx2._proof {}
+    }
+    pub fn le_mask(self, _: F8, _: F8) -> u32 {
+        match self.avx2._proof {}
+    }
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -71,7 +167,7 @@ unsafe fn run_avx2<K: Avx2Kernel>(avx: Avx2, kernel: K) -> K::Output {
 impl Avx2 {
     /// The token if this CPU has AVX2 and FMA and `SCNC_SIMD=portable` is not set.
     pub fn detect() -> Option<Avx2> {
-        Avx2::detect_cpu().filter(|_| !portable_requested())
+        Avx2::detect_cpu().filter(|_| allowed_level() >= 1)
     }
 
     /// The token if this CPU has AVX2 and FMA, whatever the environment says (for tests).
@@ -82,7 +178,7 @@ impl Avx2 {
 
     /// Runs `kernel` inside a function compiled for AVX2 and FMA.
     #[inline(always)]
-    pub fn run<K: Avx2Kernel>(self, kernel: K) -> K::Output {
+    pub fn run<K: Kernel<Avx2>>(self, kernel: K) -> K::Output {
         // SAFETY: the token exists, so the CPU has the features `run_avx2` is compiled for.
         unsafe { run_avx2(self, kernel) }
     }
@@ -220,13 +316,13 @@ impl Avx2 {
 )]
 impl Avx2 {
     pub fn detect() -> Option<Avx2> {
-        let _ = portable_requested;
+        let _ = allowed_level;
         None
     }
     pub fn detect_cpu() -> Option<Avx2> {
         None
     }
-    pub fn run<K: Avx2Kernel>(self, _: K) -> K::Output {
+    pub fn run<K: Kernel<Avx2>>(self, _: K) -> K::Output {
         match self._proof {}
     }
     pub fn splat(self, _: f32) -> F8 {
@@ -382,7 +478,7 @@ mod tests {
     }
 
     struct Sum([f32; 8]);
-    impl Avx2Kernel for Sum {
+    impl Kernel<Avx2> for Sum {
         type Output = f32;
         #[inline(always)]
         fn call(self, avx: Avx2) -> f32 {
@@ -397,5 +493,28 @@ mod tests {
         if let Some(avx) = Avx2::detect_cpu() {
             assert_eq!(avx.run(Sum([1.0; 8])), 16.0);
         }
+    }
+
+    /// `le_mask` against `bitmask(le)`, inside the AVX-512 function.
+    struct LeMasks;
+    impl Kernel<Avx512> for LeMasks {
+        type Output = (u32, u32);
+        #[inline(always)]
+        fn call(self, avx: Avx512) -> (u32, u32) {
+            let (a, b) = (avx.avx2().load(&A), avx.avx2().load(&B));
+            (avx.le_mask(a, b), avx.avx2().bitmask(avx.avx2().le(a, b)))
+        }
+    }
+
+    #[test]
+    fn the_mask_compare_gives_the_bits_of_the_avx2_one() {
+        let Some(avx) = Avx512::detect_cpu() else {
+            eprintln!("no AVX-512 on this CPU: nothing to compare");
+            return;
+        };
+        let (mask, want) = avx.run(LeMasks);
+        assert_eq!(mask, want);
+        assert_ne!(mask, 0, "some lanes compare true");
+        assert_ne!(mask, 0xff, "some lanes compare false (NaN among them)");
     }
 }

@@ -423,7 +423,7 @@ mod tests {
         let n = 100 * REPLICATES;
         for g in 0..n {
             let r = (g % REPLICATES) as usize;
-            c.add_replicate(Vec3::splat(if r % 2 == 0 { 0.9 } else { 1.1 }), r);
+            c.add_replicate(Vec3::splat(if r.is_multiple_of(2) { 0.9 } else { 1.1 }), r);
         }
         let between = 0.01 / dof;
         let per = 0.01 / (n as f64 - 1.0);

@@ -229,7 +229,7 @@ mod tests {
         let weights: Vec<f32> = (0..w * h)
             .map(|i| {
                 let x = (i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 40;
-                if x % 7 == 0 {
+                if x.is_multiple_of(7) {
                     0.0
                 } else {
                     (x % 1000) as f32 * if i % 97 == 0 { 1e3 } else { 1.0 }
