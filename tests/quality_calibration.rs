@@ -115,8 +115,8 @@ fn calibrate(name: &str) -> Vec<(f64, f64, f64, f64)> {
 }
 
 /// The band: measured RMS relative error 0.5–1.1× the target, the reported figure
-/// 0.75–1.25× the measured. Every scene's report is held to it, and env's and texture_bench's
-/// measured error. cornell's is not yet at 10% and 5%: its walls, lit directly by one area
+/// 0.75–1.25× the measured. Every scene's report is held to it, and texture_bench's measured
+/// error; env's from 0.4× (see its row). cornell's is not yet at 10% and 5%: its walls, lit directly by one area
 /// light, reach 2.8% after 24 samples and 3.5% after 8 (the first batch), so most of its
 /// pixels sit far under a 10% or 5% target at the fewest samples a pixel may stop after, and
 /// the pooled error is 0.39× and 0.47× the target (0.49× at 10% before the light's slivers
@@ -130,7 +130,10 @@ fn adaptive_sampling_reaches_the_target_and_reports_it() {
     let mut failures = Vec::new();
     let bands = [
         ("cornell", 0.35..=1.1, 0.75..=1.25),
-        ("env", 0.5..=1.1, 0.75..=1.25),
+        // env's sky samples are stratified in two dimensions since 2026-11-26 (docs/speed.md):
+        // at 10% most of its pixels are under the target at the fewest samples a pixel may
+        // stop after (28.9 per pixel on average), and the pooled error is 0.49× the target.
+        ("env", 0.4..=1.1, 0.75..=1.25),
         ("texture_bench", 0.5..=1.1, 0.75..=1.25),
     ];
     for (name, measured_band, report_band) in bands {
