@@ -227,6 +227,39 @@ fn the_test_sky_s_sun_is_sampled_on_its_own_and_a_plain_gradient_is_not() {
 }
 
 #[test]
+fn a_sun_below_a_normal_s_horizon_is_said_so_only_when_none_of_its_samples_is_above() {
+    // The render skips the sun's samples at such a normal (`render::mis`): the test sky's
+    // 3° sun, rotated, against 2,000 normals and 256 samples of the sun each.
+    let m = map(0.7);
+    let samples: Vec<Vec3> = (0..256)
+        .filter_map(|k| {
+            let u = Vec2::new((k as f32 + 0.5) / 256.0, ((k * 97) % 256) as f32 / 256.0);
+            m.sample_bright(u).map(|s| s.wi)
+        })
+        .collect();
+    assert_eq!(samples.len(), 256);
+    let (mut below, mut near) = (0, 0);
+    for i in 0..2000 {
+        let z = 1.0 - 2.0 * (i as f32 + 0.5) / 2000.0;
+        let t = i as f32 * 2.399_963;
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        let n = Vec3::new(r * t.cos(), z, r * t.sin());
+        let highest = samples.iter().map(|d| n.dot(*d)).fold(f32::MIN, f32::max);
+        if m.bright_below_horizon_of(n) {
+            below += 1;
+            assert!(highest < 0.0, "{n}: a sun sample at cos {highest}");
+        } else if highest < -0.6 {
+            near += 1;
+        }
+    }
+    // The cone is tight enough: on this coarse map (a texel's diagonal is 8°, its margin twice
+    // that) it is about 22° wide, so about 31% of the normals see it wholly below; and every
+    // normal whose horizon is far above the sun's samples is recognised.
+    assert!(below > 600, "{below} normals");
+    assert_eq!(near, 0, "{near} normals far below the sun not recognised");
+}
+
+#[test]
 fn a_diffuse_plane_under_the_map_renders_its_irradiance_for_every_strategy() {
     plane_irradiance_for_every_strategy(0.0);
 }

@@ -86,7 +86,11 @@ impl Shading<'_> {
         if let Some((s, other)) = env.sample_sky_facing(u, Some(self.ns)) {
             sum += self.environment_sample(&s, pmf, other, counts);
         }
-        if env.has_bright() {
+        // A sun below the horizon of either normal adds nothing (`environment_sample` would
+        // drop each of its samples): skip drawing them.
+        let sun_up =
+            !(env.bright_below_horizon_of(self.ns) || env.bright_below_horizon_of(self.ng));
+        if env.has_bright() && sun_up {
             let u = sampler.stratified_2d(STREAM_ENVIRONMENT_BRIGHT, pick, picks);
             if let Some((s, other)) = env.sample_bright(u) {
                 sum += self.environment_sample(&s, pmf, other, counts);

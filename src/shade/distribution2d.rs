@@ -130,7 +130,24 @@ impl Distribution2D {
     /// A point for `u` in `[0, 1)²`: `u.y` picks the row, `u.x` the column, and the remainders
     /// place the point inside the cell (so stratified `u` stay stratified).
     pub fn sample(&self, u: Vec2) -> Sample2D {
-        let (row, pmf_row, v_in) = self.marginal.sample(u.y);
+        let (col, row, rest) = self.pick(u);
+        let uv = Vec2::new(
+            (col as f32 + rest.x) / self.width as f32,
+            (row as f32 + rest.y) / self.height as f32,
+        );
+        Sample2D {
+            uv: uv.min(Vec2::splat(1.0 - f32::EPSILON / 2.0)),
+            col,
+            row,
+            pdf_uv: self.pmf(col, row) * (self.width * self.height) as f32,
+        }
+    }
+
+    /// The cell for `u` in `[0, 1)²` (`u.y` picks the row, `u.x` the column), and `u` rescaled
+    /// to `[0, 1)²` inside the cell's buckets, so that a finer table can use it again without
+    /// losing its stratification in either coordinate.
+    pub fn pick(&self, u: Vec2) -> (usize, usize, Vec2) {
+        let (row, _, v_in) = self.marginal.sample(u.y);
         let cdf = &self.cdf[row * (self.width + 1)..(row + 1) * (self.width + 1)];
         let col = if self.guides > 0 {
             // The answer lies between the guides of u's bracket (`u < (k + 1)/guides`).
@@ -153,24 +170,21 @@ impl Distribution2D {
         } else {
             0.5
         };
-        let uv = Vec2::new(
-            (col as f32 + u_in) / self.width as f32,
-            (row as f32 + v_in) / self.height as f32,
-        );
-        Sample2D {
-            uv: uv.min(Vec2::splat(1.0 - f32::EPSILON / 2.0)),
-            col,
-            row,
-            pdf_uv: pmf_row * self.conditional(col, row) * (self.width * self.height) as f32,
+        (col, row, Vec2::new(u_in, v_in))
+    }
+
+    /// The probability with which [`Distribution2D::pick`] chooses cell (`col`, `row`), read
+    /// from the tables it inverts; 0 outside the grid.
+    pub fn pmf(&self, col: usize, row: usize) -> f32 {
+        if col >= self.width || row >= self.height {
+            return 0.0;
         }
+        self.marginal.pmf(row) * self.conditional(col, row)
     }
 
     /// The density of cell (`col`, `row`) over the unit square; 0 outside the grid.
     pub fn pdf_uv(&self, col: usize, row: usize) -> f32 {
-        if col >= self.width || row >= self.height {
-            return 0.0;
-        }
-        self.marginal.pmf(row) * self.conditional(col, row) * (self.width * self.height) as f32
+        self.pmf(col, row) * (self.width * self.height) as f32
     }
 
     /// P(column | row), as sampled.
@@ -190,6 +204,49 @@ mod tests {
         assert!(Distribution2D::new(2, 2, vec![1.0; 3]).is_none());
         assert!(Distribution2D::new(0, 2, vec![]).is_none());
         assert!(Distribution2D::new(1, 2, vec![f32::NAN, -1.0]).is_none());
+    }
+
+    #[test]
+    fn pick_is_the_sample_s_cell_and_its_remainders_are_stratified() {
+        let weights = vec![1.0, 0.0, 2.0, 1.0, 0.5, 3.0, 0.0, 0.25, 3.0, 1.0, 1.0, 7.0];
+        let d = Distribution2D::new(4, 3, weights).expect("positive");
+        let total: f32 = (0..3)
+            .flat_map(|r| (0..4).map(move |c| (c, r)))
+            .map(|(c, r)| d.pmf(c, r))
+            .sum();
+        assert!((total - 1.0).abs() < 1e-6);
+        // A 64 × 64 grid: each cell receives its pmf's share of the points, and the remainders
+        // of the points that land in one cell cover the unit square evenly (each quadrant its
+        // quarter), so a finer table fed with them stays stratified.
+        let n = 64;
+        let mut quadrants = vec![[0usize; 4]; 12];
+        let mut counts = vec![0usize; 12];
+        for i in 0..n {
+            for j in 0..n {
+                let u = Vec2::new((i as f32 + 0.5) / n as f32, (j as f32 + 0.5) / n as f32);
+                let (col, row, rest) = d.pick(u);
+                let s = d.sample(u);
+                assert_eq!((col, row), (s.col, s.row));
+                assert!((0.0..1.0).contains(&rest.x) && (0.0..1.0).contains(&rest.y));
+                let q = usize::from(rest.x >= 0.5) + 2 * usize::from(rest.y >= 0.5);
+                quadrants[row * 4 + col][q] += 1;
+                counts[row * 4 + col] += 1;
+            }
+        }
+        for c in 0..12 {
+            let expected = d.pmf(c % 4, c / 4) * (n * n) as f32;
+            assert!(
+                (counts[c] as f32 - expected).abs() <= 2.0 * n as f32,
+                "{c}: {counts:?}"
+            );
+            for &q in &quadrants[c] {
+                let quarter = counts[c] as f32 / 4.0;
+                assert!(
+                    (q as f32 - quarter).abs() <= 0.1 * quarter + n as f32 / 4.0,
+                    "{c}: {quadrants:?}"
+                );
+            }
+        }
     }
 
     #[test]

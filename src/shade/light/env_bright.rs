@@ -86,6 +86,11 @@ impl BrightTexels {
         })
     }
 
+    /// The set's bounding box in texels: first column, first row, columns, rows.
+    pub fn texel_box(&self) -> (usize, usize, usize, usize) {
+        (self.col0, self.row0, self.cols, self.rows)
+    }
+
     /// The share of the map's power the set holds.
     pub fn share(&self) -> f32 {
         self.share

@@ -49,6 +49,53 @@ pub struct EnvMap {
     distribution: Option<EnvSampler>,
     /// The few texels that hold most of the power, sampled on their own (`env_bright`).
     bright: Option<BrightTexels>,
+    /// A cone (world space) that holds every direction of the bright set's box.
+    bright_cone: Option<Cone>,
+}
+
+/// A cone of directions: its unit axis and the sine of its half-angle (the half-angle below
+/// π/2).
+#[derive(Debug, Clone, Copy)]
+struct Cone {
+    axis: Vec3,
+    sin_half: f32,
+}
+
+impl Cone {
+    /// A cone that holds every direction of the texels in the box of `cols × rows` texels from
+    /// (`col0`, `row0`) of a `width × height` map, `direction(u, v)` mapping map points to world
+    /// directions; `None` if it would be half the sphere or more.
+    fn around_texels(
+        (col0, row0, cols, rows): (usize, usize, usize, usize),
+        (width, height): (usize, usize),
+        direction: impl Fn(f32, f32) -> Vec3,
+    ) -> Option<Cone> {
+        let corner =
+            |c: usize, r: usize| direction(c as f32 / width as f32, r as f32 / height as f32);
+        let corners =
+            || (row0..=row0 + rows).flat_map(move |r| (col0..=col0 + cols).map(move |c| (c, r)));
+        let axis = corners()
+            .map(|(c, r)| corner(c, r))
+            .sum::<Vec3>()
+            .try_normalize()?;
+        let cos_corners = corners()
+            .map(|(c, r)| axis.dot(corner(c, r)))
+            .fold(1.0f32, f32::min)
+            .clamp(-1.0, 1.0);
+        // A point of a texel lies within the texel's diagonal of one of its corners (a row's
+        // span is π/H, a column's 2π/W at most); twice that, and 1e-3 rad for rounding.
+        let diagonal = (2.0 * PI / width as f32).hypot(PI / height as f32);
+        let half = cos_corners.acos() + 2.0 * diagonal + 1e-3;
+        (half < 0.5 * PI).then(|| Cone {
+            axis,
+            sin_half: half.sin(),
+        })
+    }
+
+    /// Whether every direction `d` of the cone has `n · d < 0` (`n` unit).
+    fn below_horizon_of(&self, n: Vec3) -> bool {
+        n.dot(self.axis) < -self.sin_half
+    }
 }
 
 /// A direction sampled from the environment.
@@ -92,6 +139,7 @@ impl EnvMap {
             average: (sum / weight.max(f64::MIN_POSITIVE)).as_vec3(),
             distribution: None,
             bright: None,
+            bright_cone: None,
         })
     }
 
@@ -135,6 +183,10 @@ impl EnvMap {
             ))
         };
         self.bright = BrightTexels::find(self.width, self.height, &weights);
+        self.bright_cone = self
+            .bright
+            .as_ref()
+            .and_then(|b| Cone::around_texels(b.texel_box(), (self.width, self.height), direction));
         if let Some(b) = &self.bright {
             for (i, w) in weights.iter_mut().enumerate() {
                 if b.contains(i % self.width, i / self.width) {
@@ -154,6 +206,12 @@ impl EnvMap {
     /// Whether the map has a bright set sampled on its own ([`EnvMap::sample_bright`]).
     pub fn has_bright(&self) -> bool {
         self.bright.is_some()
+    }
+
+    /// Whether every direction of the bright set lies below the horizon of unit `n` (then no
+    /// sample of it can light a surface facing `n`): `false` when unsure or without a set.
+    pub fn bright_below_horizon_of(&self, n: Vec3) -> bool {
+        self.bright_cone.is_some_and(|c| c.below_horizon_of(n))
     }
 
     /// The probability with which [`EnvMap::sample_facing`] takes the bright set: its share of

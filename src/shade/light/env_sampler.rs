@@ -24,7 +24,6 @@
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
-use crate::shade::distribution::Distribution1D;
 use crate::shade::distribution2d::{Distribution2D, Sample2D};
 
 /// Cells across the map (at most the map's width).
@@ -71,10 +70,10 @@ pub struct EnvSampler {
     /// Cell of each map column and row.
     cell_of_col: Vec<u16>,
     cell_of_row: Vec<u16>,
-    /// Cells by power alone.
-    plain: Distribution1D,
+    /// Cells by power alone, as a 2-D table over the grid of cells (row `cy`, column `cx`).
+    plain: Distribution2D,
     /// Cells by power × widened cosine, per octahedral bin (`None`: no cell above its horizon).
-    by_normal: Vec<Option<Distribution1D>>,
+    by_normal: Vec<Option<Distribution2D>>,
 }
 
 /// The bin of unit normal `n` in the octahedral map.
@@ -178,7 +177,7 @@ impl EnvSampler {
                 sum as f32
             })
             .collect();
-        let plain = Distribution1D::new(&power)?;
+        let plain = Distribution2D::new(cells_x, cells_y, power.clone())?;
         // Each cell's corners and centre, and each bin's corners, edge midpoints and centre:
         // the largest cosine between them, plus [`MARGIN`] for the gaps, bounds the cosine of
         // any normal of the bin with any direction of the cell.
@@ -219,7 +218,7 @@ impl EnvSampler {
                         p * (most + MARGIN).max(0.0)
                     })
                     .collect();
-                Distribution1D::new(&w)
+                Distribution2D::new(cells_x, cells_y, w)
             })
             .collect();
         let lookup = |n: usize, size: usize| -> Vec<u16> {
@@ -239,24 +238,28 @@ impl EnvSampler {
         })
     }
 
-    fn cells_for(&self, normal: Option<Vec3>) -> Option<&Distribution1D> {
+    fn cells_for(&self, normal: Option<Vec3>) -> Option<&Distribution2D> {
         match normal {
             None => Some(&self.plain),
             Some(n) => self.by_normal.get(normal_bin(n))?.as_ref(),
         }
     }
 
-    /// A texel and a point in it for `u` ∈ [0, 1)²: `u.y` picks the cell (for a surface facing
-    /// `normal`, or by power alone), its remainder the row inside it and `u.x` the column.
+    /// A texel and a point in it for `u` ∈ [0, 1)²: the cells' table (for a surface facing
+    /// `normal`, or by power alone) picks a row of cells with `u.y` and a cell in it with `u.x`,
+    /// and their remainders pick the texel's row and column inside the cell.
     ///
-    /// The cell is `u.y`'s choice, not `u.x`'s, as the plain table picks its row: the render's
-    /// per-pixel sets give each sample an `x` that grows with the sample's index, as do its
-    /// sub-pixel positions, so a cell picked by `x` would pair the bright cells with one part of
-    /// the pixel (on cornell-like edges, a structured error that more samples do not remove).
+    /// Both coordinates reach the cells, so a pixel's stratified points stay stratified over
+    /// the sky in two dimensions (a cell picked by `u.y` alone along a list of the cells
+    /// stratified only one: sky samples measured 2.5× the variance of the cosine lobe's on
+    /// env-bench's open ground, docs/speed.md). `u.x` grows with the sample's index in the
+    /// pixel's set, as do the sub-pixel positions; each stream's own index permutation
+    /// (`render::rng`) keeps the two from pairing.
     pub fn sample(&self, u: Vec2, normal: Option<Vec3>) -> Option<TexelSample> {
-        let (c, pmf, v_rest) = self.cells_for(normal)?.sample(u.y);
-        let cell = &self.cells[c];
-        let s: Sample2D = cell.table.as_ref()?.sample(Vec2::new(u.x, v_rest));
+        let cells = self.cells_for(normal)?;
+        let (cx, cy, rest) = cells.pick(u);
+        let cell = &self.cells[cy * self.cells_x + cx];
+        let s: Sample2D = cell.table.as_ref()?.sample(rest);
         let uv = Vec2::new(
             (cell.col0 as f32 + s.uv.x * cell.cols as f32) / self.width as f32,
             (cell.row0 as f32 + s.uv.y * cell.rows as f32) / self.height as f32,
@@ -265,7 +268,7 @@ impl EnvSampler {
             uv: uv.min(Vec2::splat(1.0 - f32::EPSILON / 2.0)),
             col: cell.col0 + s.col,
             row: cell.row0 + s.row,
-            pdf_uv: self.cell_density(pmf, cell, s.pdf_uv),
+            pdf_uv: self.cell_density(cells.pmf(cx, cy), cell, s.pdf_uv),
         })
     }
 
@@ -275,7 +278,8 @@ impl EnvSampler {
         let (Some(&cx), Some(&cy)) = (self.cell_of_col.get(col), self.cell_of_row.get(row)) else {
             return 0.0;
         };
-        let c = cy as usize * self.cells_x + cx as usize;
+        let (cx, cy) = (cx as usize, cy as usize);
+        let c = cy * self.cells_x + cx;
         let (Some(cells), Some(cell)) = (self.cells_for(normal), self.cells.get(c)) else {
             return 0.0;
         };
@@ -283,7 +287,7 @@ impl EnvSampler {
             return 0.0;
         };
         let inside = table.pdf_uv(col - cell.col0, row - cell.row0);
-        self.cell_density(cells.pmf(c), cell, inside)
+        self.cell_density(cells.pmf(cx, cy), cell, inside)
     }
 
     /// A cell picked with probability `pmf`, a density `pdf_cell` over the cell's unit square:

@@ -148,6 +148,14 @@ impl Environment {
         self.map.as_ref().is_some_and(EnvMap::has_bright)
     }
 
+    /// Whether every direction of the map's bright set lies below the horizon of unit `n`
+    /// (`false` when unsure): a surface facing `n` then gets nothing from its samples.
+    pub fn bright_below_horizon_of(&self, n: Vec3) -> bool {
+        self.map
+            .as_ref()
+            .is_some_and(|m| m.bright_below_horizon_of(n))
+    }
+
     /// The sky strategy of a split environment: the map without its bright set (probability
     /// `map_fraction`) or the uniform sphere. Its sample's `pdf_solid_angle` is this strategy's
     /// density; the second value is the bright strategy's density at the same direction.
