@@ -190,46 +190,68 @@ pub fn render_window(
     };
     let window = window.clip(settings.width, settings.height);
     let tiles = tiles(window);
-    // The first batches of an adaptive render cover the window and the neighbours its pixels
-    // pool (`early_stop`), so a `--tile` window's pixels decide as in the full render.
-    let margin = window.grow(early_stop::RADIUS, settings.width, settings.height);
-    let first_tiles = match job.adaptive {
-        Some(_) => self::tiles(margin),
-        None => Vec::new(),
-    };
     let threads = options.threads.unwrap_or(0);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .ok();
     let used_threads = pool.as_ref().map_or(1, |p| p.current_num_threads());
+    // An adaptive render goes band by band (a row of tiles): first the first batches of the
+    // band's rows and of a margin of `early_stop::RADIUS` rows and columns around them (the
+    // rows above kept from the band before), then the band's pixels, which pool their
+    // neighbours' first batches (`early_stop`). A `--tile` window's pixels so decide as in the
+    // full render, and only about a band's first batches are held at a time.
+    let (width, height) = (settings.width, settings.height);
+    let bands = bands(window);
+    let mut fresh = Vec::new();
+    let mut covered = None::<PixelWindow>;
+    for band in &bands {
+        let area = band.grow(early_stop::RADIUS, width, height);
+        let y0 = covered.map_or(area.y0, |c| c.y1.max(area.y0));
+        fresh.push(PixelWindow { y0, ..area });
+        covered = Some(area);
+    }
+    let fresh_tiles: Vec<Vec<Tile>> = match job.adaptive {
+        Some(_) => fresh.iter().map(|w| self::tiles(*w)).collect(),
+        None => Vec::new(),
+    };
     let progress = Progress {
         report: progress,
         done: AtomicUsize::new(0),
-        total: tiles.len() + first_tiles.len(),
+        total: tiles.len() + fresh_tiles.iter().map(Vec::len).sum::<usize>(),
     };
-    let first = match job.adaptive {
+    let mut first_counts = RayCounts::default();
+    let results = match job.adaptive {
+        None => job.run(&tiles, pool.as_ref(), &progress, cancel, |t| {
+            job.tile(t, None)
+        }),
         Some(_) => {
-            let results = job.run(&first_tiles, pool.as_ref(), &progress, cancel, |t| {
-                job.first_batches(t)
-            });
-            Some(FirstBatches::assemble(margin, &first_tiles, results)?)
+            let mut results = Vec::with_capacity(tiles.len());
+            let mut first: Option<FirstBatches> = None;
+            for (band, fresh_tiles) in bands.iter().zip(&fresh_tiles) {
+                let got = job.run(fresh_tiles, pool.as_ref(), &progress, cancel, |t| {
+                    job.first_batches(t)
+                });
+                let area = band.grow(early_stop::RADIUS, width, height);
+                let now = FirstBatches::assemble(area, first.as_ref(), fresh_tiles, got)?;
+                first_counts.add(&now.counts);
+                let band_tiles = self::tiles(*band);
+                results.extend(job.run(&band_tiles, pool.as_ref(), &progress, cancel, |t| {
+                    job.tile(t, Some(&now))
+                }));
+                first = Some(now);
+            }
+            results
         }
-        None => None,
     };
-    let results = job.run(&tiles, pool.as_ref(), &progress, cancel, |t| {
-        job.tile(t, first.as_ref())
-    });
     if cancel.load(Ordering::Relaxed) {
         return Err(Cancelled);
     }
     let mut rendered = job.assemble(window, &tiles, results, side)?;
-    if let Some(first) = &first {
-        rendered.stats.counts.add(&first.counts);
-        rendered.stats.camera_rays += first.counts.camera;
-        rendered.stats.shadow_rays += first.counts.shadow;
-        rendered.stats.brdf_rays += first.counts.brdf;
-    }
+    rendered.stats.counts.add(&first_counts);
+    rendered.stats.camera_rays += first_counts.camera;
+    rendered.stats.shadow_rays += first_counts.shadow;
+    rendered.stats.brdf_rays += first_counts.brdf;
     rendered.stats.wall = start.elapsed();
     rendered.stats.threads = used_threads;
     Ok(rendered)
@@ -242,8 +264,8 @@ struct Progress<'a> {
     total: usize,
 }
 
-/// Every pixel's first batch of an adaptive render, over the window and its margin
-/// ([`early_stop::RADIUS`]), with the rays it took.
+/// The first batches of an adaptive render's pixels in one band of rows and its margin
+/// ([`early_stop::RADIUS`]), with the rays taken for the ones new to this band.
 struct FirstBatches {
     area: PixelWindow,
     /// Row-major over `area`.
@@ -252,11 +274,13 @@ struct FirstBatches {
 }
 
 impl FirstBatches {
-    /// The tiles' accumulators in one row-major grid; `Cancelled` if a tile is missing.
+    /// The first batches over `area`: those `before` holds, and the tiles' new ones;
+    /// `Cancelled` if a tile is missing.
     fn assemble(
         area: PixelWindow,
+        before: Option<&FirstBatches>,
         tiles: &[Tile],
-        results: Vec<Option<(Vec<Accumulator>, RayCounts)>>,
+        results: Vec<Option<FirstTileResult>>,
     ) -> Result<FirstBatches, Cancelled> {
         let width = area.width() as usize;
         let mut out = FirstBatches {
@@ -264,6 +288,16 @@ impl FirstBatches {
             pixels: vec![Accumulator::default(); width * area.height() as usize],
             counts: RayCounts::default(),
         };
+        if let Some(before) = before {
+            for y in area.y0..area.y1 {
+                for x in area.x0..area.x1 {
+                    if let Some(acc) = before.at(x, y) {
+                        let i = (y - area.y0) as usize * width + (x - area.x0) as usize;
+                        out.pixels[i] = *acc;
+                    }
+                }
+            }
+        }
         for (tile, result) in tiles.iter().zip(results) {
             let (pixels, counts) = result.ok_or(Cancelled)?;
             out.counts.add(&counts);
@@ -303,6 +337,18 @@ type TileResult = Option<(Vec<PixelEstimate>, RayCounts)>;
 
 /// One tile's first batches (adaptive renders) and ray counts.
 type FirstTileResult = (Vec<Accumulator>, RayCounts);
+
+/// The window's rows of tiles, top to bottom: [`tiles`] of each, in order, are the window's.
+fn bands(window: PixelWindow) -> Vec<PixelWindow> {
+    (window.y0..window.y1)
+        .step_by(TILE_SIZE as usize)
+        .map(|y0| PixelWindow {
+            y0,
+            y1: (y0 + TILE_SIZE).min(window.y1),
+            ..window
+        })
+        .collect()
+}
 
 fn tiles(window: PixelWindow) -> Vec<Tile> {
     let mut out = Vec::new();
