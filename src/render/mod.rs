@@ -21,6 +21,7 @@ pub mod early_stop;
 pub mod emitter_coverage;
 pub mod emitter_pixels;
 pub mod estimate;
+mod first_pass;
 pub mod integrator;
 mod mis;
 pub mod pattern;
@@ -34,10 +35,10 @@ use glam::Vec2;
 use rayon::prelude::*;
 
 use self::camera::PinholeCamera;
-use self::early_stop::NeighbourPrior;
 use self::emitter_coverage::{EmitterCoverage, SliverRule};
 use self::emitter_pixels::EmitterPixels;
 use self::estimate::{Accumulator, NoiseStats, PixelEstimate};
+use self::first_pass::{FirstBatches, FirstTileResult};
 use self::integrator::{radiance_scaled, RayCounts};
 pub use self::window::PixelWindow;
 use crate::film::Film;
@@ -264,79 +265,8 @@ struct Progress<'a> {
     total: usize,
 }
 
-/// The first batches of an adaptive render's pixels in one band of rows and its margin
-/// ([`early_stop::RADIUS`]), with the rays taken for the ones new to this band.
-struct FirstBatches {
-    area: PixelWindow,
-    /// Row-major over `area`.
-    pixels: Vec<Accumulator>,
-    counts: RayCounts,
-}
-
-impl FirstBatches {
-    /// The first batches over `area`: those `before` holds, and the tiles' new ones;
-    /// `Cancelled` if a tile is missing.
-    fn assemble(
-        area: PixelWindow,
-        before: Option<&FirstBatches>,
-        tiles: &[Tile],
-        results: Vec<Option<FirstTileResult>>,
-    ) -> Result<FirstBatches, Cancelled> {
-        let width = area.width() as usize;
-        let mut out = FirstBatches {
-            area,
-            pixels: vec![Accumulator::default(); width * area.height() as usize],
-            counts: RayCounts::default(),
-        };
-        if let Some(before) = before {
-            for y in area.y0..area.y1 {
-                for x in area.x0..area.x1 {
-                    if let Some(acc) = before.at(x, y) {
-                        let i = (y - area.y0) as usize * width + (x - area.x0) as usize;
-                        out.pixels[i] = *acc;
-                    }
-                }
-            }
-        }
-        for (tile, result) in tiles.iter().zip(results) {
-            let (pixels, counts) = result.ok_or(Cancelled)?;
-            out.counts.add(&counts);
-            let tw = (tile.x1 - tile.x0) as usize;
-            for (k, acc) in pixels.into_iter().enumerate() {
-                let x = (tile.x0 - area.x0) as usize + k % tw;
-                let y = (tile.y0 - area.y0) as usize + k / tw;
-                out.pixels[y * width + x] = acc;
-            }
-        }
-        Ok(out)
-    }
-
-    fn at(&self, x: u32, y: u32) -> Option<&Accumulator> {
-        let a = &self.area;
-        if x < a.x0 || x >= a.x1 || y < a.y0 || y >= a.y1 {
-            return None;
-        }
-        let i = (y - a.y0) as usize * a.width() as usize + (x - a.x0) as usize;
-        self.pixels.get(i)
-    }
-
-    /// What the neighbours of (`x`, `y`) within [`early_stop::RADIUS`] say, in a fixed order.
-    fn prior(&self, x: u32, y: u32) -> NeighbourPrior {
-        let r = early_stop::RADIUS as i64;
-        let (x, y) = (i64::from(x), i64::from(y));
-        let neighbours = (y - r..=y + r)
-            .flat_map(|ny| (x - r..=x + r).map(move |nx| (nx, ny)))
-            .filter(|&(nx, ny)| (nx, ny) != (x, y) && nx >= 0 && ny >= 0)
-            .filter_map(|(nx, ny)| self.at(nx as u32, ny as u32));
-        NeighbourPrior::pool(neighbours)
-    }
-}
-
 /// One tile's pixels and ray counts; `None` when the render was cancelled before it.
 type TileResult = Option<(Vec<PixelEstimate>, RayCounts)>;
-
-/// One tile's first batches (adaptive renders) and ray counts.
-type FirstTileResult = (Vec<Accumulator>, RayCounts);
 
 /// The window's rows of tiles, top to bottom: [`tiles`] of each, in order, are the window's.
 fn bands(window: PixelWindow) -> Vec<PixelWindow> {
