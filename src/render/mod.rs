@@ -21,6 +21,7 @@ pub mod early_stop;
 pub mod emitter_coverage;
 pub mod emitter_pixels;
 pub mod estimate;
+mod first_pass;
 pub mod integrator;
 mod mis;
 pub mod pattern;
@@ -34,10 +35,10 @@ use glam::Vec2;
 use rayon::prelude::*;
 
 use self::camera::PinholeCamera;
-use self::early_stop::NeighbourPrior;
 use self::emitter_coverage::{EmitterCoverage, SliverRule};
 use self::emitter_pixels::EmitterPixels;
 use self::estimate::{Accumulator, NoiseStats, PixelEstimate};
+use self::first_pass::{FirstBatches, FirstTileResult};
 use self::integrator::{radiance_scaled, RayCounts};
 pub use self::window::PixelWindow;
 use crate::film::Film;
@@ -190,46 +191,68 @@ pub fn render_window(
     };
     let window = window.clip(settings.width, settings.height);
     let tiles = tiles(window);
-    // The first batches of an adaptive render cover the window and the neighbours its pixels
-    // pool (`early_stop`), so a `--tile` window's pixels decide as in the full render.
-    let margin = window.grow(early_stop::RADIUS, settings.width, settings.height);
-    let first_tiles = match job.adaptive {
-        Some(_) => self::tiles(margin),
-        None => Vec::new(),
-    };
     let threads = options.threads.unwrap_or(0);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .ok();
     let used_threads = pool.as_ref().map_or(1, |p| p.current_num_threads());
+    // An adaptive render goes band by band (a row of tiles): first the first batches of the
+    // band's rows and of a margin of `early_stop::RADIUS` rows and columns around them (the
+    // rows above kept from the band before), then the band's pixels, which pool their
+    // neighbours' first batches (`early_stop`). A `--tile` window's pixels so decide as in the
+    // full render, and only about a band's first batches are held at a time.
+    let (width, height) = (settings.width, settings.height);
+    let bands = bands(window);
+    let mut fresh = Vec::new();
+    let mut covered = None::<PixelWindow>;
+    for band in &bands {
+        let area = band.grow(early_stop::RADIUS, width, height);
+        let y0 = covered.map_or(area.y0, |c| c.y1.max(area.y0));
+        fresh.push(PixelWindow { y0, ..area });
+        covered = Some(area);
+    }
+    let fresh_tiles: Vec<Vec<Tile>> = match job.adaptive {
+        Some(_) => fresh.iter().map(|w| self::tiles(*w)).collect(),
+        None => Vec::new(),
+    };
     let progress = Progress {
         report: progress,
         done: AtomicUsize::new(0),
-        total: tiles.len() + first_tiles.len(),
+        total: tiles.len() + fresh_tiles.iter().map(Vec::len).sum::<usize>(),
     };
-    let first = match job.adaptive {
+    let mut first_counts = RayCounts::default();
+    let results = match job.adaptive {
+        None => job.run(&tiles, pool.as_ref(), &progress, cancel, |t| {
+            job.tile(t, None)
+        }),
         Some(_) => {
-            let results = job.run(&first_tiles, pool.as_ref(), &progress, cancel, |t| {
-                job.first_batches(t)
-            });
-            Some(FirstBatches::assemble(margin, &first_tiles, results)?)
+            let mut results = Vec::with_capacity(tiles.len());
+            let mut first: Option<FirstBatches> = None;
+            for (band, fresh_tiles) in bands.iter().zip(&fresh_tiles) {
+                let got = job.run(fresh_tiles, pool.as_ref(), &progress, cancel, |t| {
+                    job.first_batches(t)
+                });
+                let area = band.grow(early_stop::RADIUS, width, height);
+                let now = FirstBatches::assemble(area, first.as_ref(), fresh_tiles, got)?;
+                first_counts.add(&now.counts);
+                let band_tiles = self::tiles(*band);
+                results.extend(job.run(&band_tiles, pool.as_ref(), &progress, cancel, |t| {
+                    job.tile(t, Some(&now))
+                }));
+                first = Some(now);
+            }
+            results
         }
-        None => None,
     };
-    let results = job.run(&tiles, pool.as_ref(), &progress, cancel, |t| {
-        job.tile(t, first.as_ref())
-    });
     if cancel.load(Ordering::Relaxed) {
         return Err(Cancelled);
     }
     let mut rendered = job.assemble(window, &tiles, results, side)?;
-    if let Some(first) = &first {
-        rendered.stats.counts.add(&first.counts);
-        rendered.stats.camera_rays += first.counts.camera;
-        rendered.stats.shadow_rays += first.counts.shadow;
-        rendered.stats.brdf_rays += first.counts.brdf;
-    }
+    rendered.stats.counts.add(&first_counts);
+    rendered.stats.camera_rays += first_counts.camera;
+    rendered.stats.shadow_rays += first_counts.shadow;
+    rendered.stats.brdf_rays += first_counts.brdf;
     rendered.stats.wall = start.elapsed();
     rendered.stats.threads = used_threads;
     Ok(rendered)
@@ -242,67 +265,20 @@ struct Progress<'a> {
     total: usize,
 }
 
-/// Every pixel's first batch of an adaptive render, over the window and its margin
-/// ([`early_stop::RADIUS`]), with the rays it took.
-struct FirstBatches {
-    area: PixelWindow,
-    /// Row-major over `area`.
-    pixels: Vec<Accumulator>,
-    counts: RayCounts,
-}
-
-impl FirstBatches {
-    /// The tiles' accumulators in one row-major grid; `Cancelled` if a tile is missing.
-    fn assemble(
-        area: PixelWindow,
-        tiles: &[Tile],
-        results: Vec<Option<(Vec<Accumulator>, RayCounts)>>,
-    ) -> Result<FirstBatches, Cancelled> {
-        let width = area.width() as usize;
-        let mut out = FirstBatches {
-            area,
-            pixels: vec![Accumulator::default(); width * area.height() as usize],
-            counts: RayCounts::default(),
-        };
-        for (tile, result) in tiles.iter().zip(results) {
-            let (pixels, counts) = result.ok_or(Cancelled)?;
-            out.counts.add(&counts);
-            let tw = (tile.x1 - tile.x0) as usize;
-            for (k, acc) in pixels.into_iter().enumerate() {
-                let x = (tile.x0 - area.x0) as usize + k % tw;
-                let y = (tile.y0 - area.y0) as usize + k / tw;
-                out.pixels[y * width + x] = acc;
-            }
-        }
-        Ok(out)
-    }
-
-    fn at(&self, x: u32, y: u32) -> Option<&Accumulator> {
-        let a = &self.area;
-        if x < a.x0 || x >= a.x1 || y < a.y0 || y >= a.y1 {
-            return None;
-        }
-        let i = (y - a.y0) as usize * a.width() as usize + (x - a.x0) as usize;
-        self.pixels.get(i)
-    }
-
-    /// What the neighbours of (`x`, `y`) within [`early_stop::RADIUS`] say, in a fixed order.
-    fn prior(&self, x: u32, y: u32) -> NeighbourPrior {
-        let r = early_stop::RADIUS as i64;
-        let (x, y) = (i64::from(x), i64::from(y));
-        let neighbours = (y - r..=y + r)
-            .flat_map(|ny| (x - r..=x + r).map(move |nx| (nx, ny)))
-            .filter(|&(nx, ny)| (nx, ny) != (x, y) && nx >= 0 && ny >= 0)
-            .filter_map(|(nx, ny)| self.at(nx as u32, ny as u32));
-        NeighbourPrior::pool(neighbours)
-    }
-}
-
 /// One tile's pixels and ray counts; `None` when the render was cancelled before it.
 type TileResult = Option<(Vec<PixelEstimate>, RayCounts)>;
 
-/// One tile's first batches (adaptive renders) and ray counts.
-type FirstTileResult = (Vec<Accumulator>, RayCounts);
+/// The window's rows of tiles, top to bottom: [`tiles`] of each, in order, are the window's.
+fn bands(window: PixelWindow) -> Vec<PixelWindow> {
+    (window.y0..window.y1)
+        .step_by(TILE_SIZE as usize)
+        .map(|y0| PixelWindow {
+            y0,
+            y1: (y0 + TILE_SIZE).min(window.y1),
+            ..window
+        })
+        .collect()
+}
 
 fn tiles(window: PixelWindow) -> Vec<Tile> {
     let mut out = Vec::new();

@@ -1,0 +1,83 @@
+//! Stage 4, render: the first batches of an adaptive render, which every pixel takes before
+//! any pixel decides, so that each can pool its neighbours' (`render::early_stop`). The render
+//! goes band by band (a row of tiles, `render::bands`): a band's [`FirstBatches`] cover its rows
+//! and a margin of `early_stop::RADIUS` rows and columns, those above kept from the band
+//! before, so about a band's accumulators are held at a time, not the image's.
+//!
+//! Syntax: none of its own; `render { noise 0.05 }` / `--noise 0.05` renders this way.
+
+use super::early_stop::{self, NeighbourPrior};
+use super::estimate::Accumulator;
+use super::integrator::RayCounts;
+use super::{Cancelled, PixelWindow, Tile};
+
+/// One tile's first batches and ray counts.
+pub(super) type FirstTileResult = (Vec<Accumulator>, RayCounts);
+
+/// The first batches of an adaptive render's pixels in one band of rows and its margin
+/// ([`early_stop::RADIUS`]), with the rays taken for the ones new to this band.
+pub(super) struct FirstBatches {
+    area: PixelWindow,
+    /// Row-major over `area`.
+    pixels: Vec<Accumulator>,
+    pub(super) counts: RayCounts,
+}
+
+impl FirstBatches {
+    /// The first batches over `area`: those `before` holds, and the tiles' new ones;
+    /// `Cancelled` if a tile is missing.
+    pub(super) fn assemble(
+        area: PixelWindow,
+        before: Option<&FirstBatches>,
+        tiles: &[Tile],
+        results: Vec<Option<FirstTileResult>>,
+    ) -> Result<FirstBatches, Cancelled> {
+        let width = area.width() as usize;
+        let mut out = FirstBatches {
+            area,
+            pixels: vec![Accumulator::default(); width * area.height() as usize],
+            counts: RayCounts::default(),
+        };
+        if let Some(before) = before {
+            for y in area.y0..area.y1 {
+                for x in area.x0..area.x1 {
+                    if let Some(acc) = before.at(x, y) {
+                        let i = (y - area.y0) as usize * width + (x - area.x0) as usize;
+                        out.pixels[i] = *acc;
+                    }
+                }
+            }
+        }
+        for (tile, result) in tiles.iter().zip(results) {
+            let (pixels, counts) = result.ok_or(Cancelled)?;
+            out.counts.add(&counts);
+            let tw = (tile.x1 - tile.x0) as usize;
+            for (k, acc) in pixels.into_iter().enumerate() {
+                let x = (tile.x0 - area.x0) as usize + k % tw;
+                let y = (tile.y0 - area.y0) as usize + k / tw;
+                out.pixels[y * width + x] = acc;
+            }
+        }
+        Ok(out)
+    }
+
+    pub(super) fn at(&self, x: u32, y: u32) -> Option<&Accumulator> {
+        let a = &self.area;
+        if x < a.x0 || x >= a.x1 || y < a.y0 || y >= a.y1 {
+            return None;
+        }
+        let i = (y - a.y0) as usize * a.width() as usize + (x - a.x0) as usize;
+        self.pixels.get(i)
+    }
+
+    /// What the neighbours of (`x`, `y`) within [`early_stop::RADIUS`] say, in a fixed order.
+    pub(super) fn prior(&self, x: u32, y: u32) -> NeighbourPrior {
+        let r = early_stop::RADIUS as i64;
+        let (x, y) = (i64::from(x), i64::from(y));
+        let neighbours = (y - r..=y + r)
+            .flat_map(|ny| (x - r..=x + r).map(move |nx| (nx, ny)))
+            .filter(|&(nx, ny)| (nx, ny) != (x, y) && nx >= 0 && ny >= 0)
+            .filter_map(|(nx, ny)| self.at(nx as u32, ny as u32));
+        NeighbourPrior::pool(neighbours)
+    }
+}
