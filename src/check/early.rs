@@ -32,7 +32,7 @@
 mod placed;
 
 pub use placed::Placed;
-pub(super) use placed::{kept_indices, Undeclared};
+pub(super) use placed::{kept_indices, merge_lowered, Undeclared};
 
 use std::collections::HashMap;
 
@@ -74,10 +74,11 @@ impl PreCheck {
         }
     }
 
-    /// Room for `n` more placed objects (the driver counts `object` words in each file, so
-    /// the list is allocated once instead of doubling), materials and meshes.
-    pub fn reserve(&mut self, objects: usize, materials: usize, meshes: usize) {
+    /// Room for more placed objects, `let`s, materials and meshes (the driver counts their
+    /// words in each file, so each list is allocated once instead of doubling).
+    pub fn reserve(&mut self, objects: usize, lets: usize, materials: usize, meshes: usize) {
         self.placed.objects.reserve_exact(objects);
+        self.placed.decls.lets.reserve_exact(lets);
         self.placed.decls.materials.reserve_exact(materials);
         self.placed.decls.meshes.reserve_exact(meshes);
     }

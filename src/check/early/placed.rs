@@ -126,6 +126,28 @@ pub(in crate::check) fn kept_indices(placed: &Placed, total: usize) -> Vec<usize
     (0..total).filter(|&i| !taken[i]).collect()
 }
 
+/// The IR of one namespace's declarations in table order: the lowered ones (`lowered`, in
+/// order) where `decls` holds `None`, `lower`'s (given the position) for the others. When
+/// every one was lowered (the usual case), the list of them becomes it where it lies.
+pub(in crate::check) fn merge_lowered<T>(
+    lowered: Vec<Lowered<T>>,
+    decls: &[Option<&Decl>],
+    mut lower: impl FnMut(usize, &Decl) -> Option<T>,
+) -> Vec<Option<T>> {
+    if decls.iter().all(Option::is_none) {
+        return lowered.into_iter().map(|l| Some(l.value)).collect();
+    }
+    let mut lowered = lowered.into_iter();
+    let mut out = Vec::with_capacity(decls.len());
+    for (i, d) in decls.iter().enumerate() {
+        out.push(match d {
+            Some(d) => lower(i, d),
+            None => lowered.next().map(|l| l.value),
+        });
+    }
+    out
+}
+
 /// The lowered declarations whose names are not declared yet (indices into their lists).
 #[derive(Debug, Default)]
 pub(in crate::check) struct Undeclared {
