@@ -66,8 +66,9 @@ pub struct Checker<'s> {
     lights: Vec<ir::Light>,
     objects: Vec<ir::Object>,
     cameras: Vec<ir::Camera>,
-    /// Which textures each material (by table index) refers to.
-    material_textures: Vec<Vec<usize>>,
+    /// The textures each material that refers to any refers to: (material table index,
+    /// texture table indices), ascending.
+    material_textures: Vec<(u32, Vec<usize>)>,
     used_materials: Vec<bool>,
     used_meshes: Vec<bool>,
     /// How many objects name each material and mesh (table indices), for the incremental
@@ -250,6 +251,14 @@ impl Checker<'_> {
         let indices = early::kept_indices(&placed, total);
         let (mut lowered, placed) = placed.take_decls();
         cx.take_constants(&mut lowered);
+        let declared = |kind| {
+            let decl = |s: &&Stmt| matches!(s, Stmt::Decl(d) if d.kind == kind);
+            statements.iter().filter(decl).count()
+        };
+        let materials = lowered.materials.len() + declared(DeclKind::Material);
+        cx.table(Namespace::Material).reserve(materials);
+        let meshes = lowered.meshes.len() + declared(DeclKind::Mesh);
+        cx.table(Namespace::Mesh).reserve(meshes);
         let mut undeclared = early::Undeclared::default();
         for (i, stmt) in indices.into_iter().zip(statements) {
             cx.declare_lowered(&lowered, &mut undeclared, i, &mut decls);
@@ -282,11 +291,13 @@ impl Checker<'_> {
             cx.textures.push(t);
         }
         let materials = &decls[Namespace::Material as usize];
-        let mut textures = vec![Vec::new(); materials.len()];
+        let mut textures = Vec::new();
         let lowered_materials = std::mem::take(&mut lowered.materials);
         cx.materials = early::merge_lowered(lowered_materials, materials, |i, d| {
             let (m, texs) = cx.material(d);
-            textures[i] = texs;
+            if !texs.is_empty() {
+                textures.push((i as u32, texs));
+            }
             m
         });
         cx.material_textures = textures;

@@ -81,6 +81,13 @@ impl Table {
         self.index.get(name).map(|&i| i as usize)
     }
 
+    /// Room for `n` more names (declared one by one, the index would otherwise be rebuilt at
+    /// each doubling, the old beside the new).
+    pub fn reserve(&mut self, n: usize) {
+        self.index.reserve(n);
+        self.spans.reserve_exact(n);
+    }
+
     /// How many names are declared.
     pub fn len(&self) -> usize {
         self.spans.len()
@@ -215,13 +222,16 @@ impl Checker<'_> {
     /// kept textures and the old → new texture index map.
     fn keep_used_textures(&mut self) -> (Vec<ir::Texture>, Vec<Option<u32>>) {
         let mut used_textures = vec![false; self.textures.len()];
-        let mut names = Names::default();
-        for i in 0..self.materials.len() {
-            if self.used_materials[i] {
-                for &t in &self.material_textures[i] {
+        for (i, textures) in &self.material_textures {
+            if self.used_materials[*i as usize] {
+                for &t in textures {
                     used_textures[t] = true;
                 }
-            } else {
+            }
+        }
+        let mut names = Names::default();
+        for i in 0..self.materials.len() {
+            if !self.used_materials[i] {
                 let name = names.get(self, Namespace::Material, i);
                 self.warn_unused(Namespace::Material, i, &name);
             }

@@ -219,9 +219,15 @@ impl Checker<'_> {
             ..
         } = placed;
         if placements.is_empty() && self.objects.is_empty() {
-            // Usually every placement was placed: the list becomes the IR's as it is.
+            // Usually every placement was placed: the list becomes the IR's as it is. The
+            // group names are declared only for a memo: nothing else reads them any more.
             self.objects = objects;
-            self.count_placed(&stmts, 0, &group_names, records);
+            let names = if records.is_some() {
+                &group_names[..]
+            } else {
+                &[]
+            };
+            self.count_placed(&stmts, 0, names, records);
             return;
         }
         let deferred: Vec<&Stmt> = placements.iter().map(|(_, s)| *s).collect();
@@ -270,7 +276,7 @@ impl Checker<'_> {
     }
 
     /// Counts the uses of placed statements' objects (from `self.objects[from..]`), declares
-    /// their groups' names (`names`, in order) and records each (with `records`).
+    /// their groups' names (`names`, in order, if given) and records each (with `records`).
     fn count_placed(
         &mut self,
         stmts: &[PlacedStmt],
@@ -286,7 +292,7 @@ impl Checker<'_> {
                 let (mesh, material) = (self.objects[k].mesh, self.objects[k].material);
                 self.use_object(Some(mesh as usize), Some(material as usize));
             }
-            for &span in &names[n..n + s.names as usize] {
+            for &span in names.get(n..n + s.names as usize).unwrap_or_default() {
                 let _ = self
                     .table(Namespace::Group)
                     .declare(sources.snippet(span), span);
