@@ -222,7 +222,8 @@ impl<'l> Driver<'l> {
     fn add_streamed(&mut self, id: FileId, text: &str) {
         if let Some(pre) = &mut self.pre {
             let count = |word: &[u8]| memchr::memmem::find_iter(text.as_bytes(), word).count();
-            pre.reserve(count(b"object"), count(b"\nmaterial"), count(b"\nmesh"));
+            let decls = [count(b"\nmaterial"), count(b"\nmesh"), count(b"group")];
+            pre.reserve(count(b"object"), count(b"\nlet"), decls);
         }
         let mut first = true;
         let ok = syntax::parse_each(id, text, &mut |stmt| {

@@ -32,7 +32,7 @@
 mod placed;
 
 pub use placed::Placed;
-pub(super) use placed::{kept_indices, Undeclared};
+pub(super) use placed::{kept_indices, merge_lowered, Undeclared};
 
 use std::collections::HashMap;
 
@@ -74,12 +74,19 @@ impl PreCheck {
         }
     }
 
-    /// Room for `n` more placed objects (the driver counts `object` words in each file, so
-    /// the list is allocated once instead of doubling), materials and meshes.
-    pub fn reserve(&mut self, objects: usize, materials: usize, meshes: usize) {
+    /// Room for more placed objects, `let`s, materials, meshes and groups (the driver counts
+    /// their words in each file, so each list is allocated once instead of doubling).
+    pub fn reserve(&mut self, objects: usize, lets: usize, decls: [usize; 3]) {
+        let [materials, meshes, groups] = decls;
         self.placed.objects.reserve_exact(objects);
+        self.placed.decls.lets.reserve_exact(lets);
         self.placed.decls.materials.reserve_exact(materials);
         self.placed.decls.meshes.reserve_exact(meshes);
+        self.placed.group_names.reserve_exact(groups);
+        self.lets.reserve(lets);
+        self.tables[Namespace::Material as usize].reserve(materials);
+        self.tables[Namespace::Mesh as usize].reserve(meshes);
+        self.tables[Namespace::Group as usize].reserve(groups);
     }
 
     /// Takes the next top-level statement: `None` when it was placed or lowered (its AST is
@@ -190,6 +197,11 @@ impl PreCheck {
     /// What was placed and lowered, with the constants evaluated (the tables are dropped).
     pub fn into_placed(self) -> Placed {
         let mut placed = self.placed;
+        // Lists reserved by counting words may have room to spare (`object` in a comment).
+        placed.stmts.shrink_to_fit();
+        placed.objects.shrink_to_fit();
+        placed.group_names.shrink_to_fit();
+        placed.group_spans.shrink_to_fit();
         placed.decls.constants = self.lets;
         placed.decls.defines_used = (self.defines.into_iter())
             .filter_map(|(name, (_, used))| used.then_some(name))

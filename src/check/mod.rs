@@ -66,8 +66,9 @@ pub struct Checker<'s> {
     lights: Vec<ir::Light>,
     objects: Vec<ir::Object>,
     cameras: Vec<ir::Camera>,
-    /// Which textures each material (by table index) refers to.
-    material_textures: Vec<Vec<usize>>,
+    /// The textures each material that refers to any refers to: (material table index,
+    /// texture table indices), ascending.
+    material_textures: Vec<(u32, Vec<usize>)>,
     used_materials: Vec<bool>,
     used_meshes: Vec<bool>,
     /// How many objects name each material and mesh (table indices), for the incremental
@@ -250,6 +251,14 @@ impl Checker<'_> {
         let indices = early::kept_indices(&placed, total);
         let (mut lowered, placed) = placed.take_decls();
         cx.take_constants(&mut lowered);
+        let declared = |kind| {
+            let decl = |s: &&Stmt| matches!(s, Stmt::Decl(d) if d.kind == kind);
+            statements.iter().filter(decl).count()
+        };
+        let materials = lowered.materials.len() + declared(DeclKind::Material);
+        cx.table(Namespace::Material).reserve(materials);
+        let meshes = lowered.meshes.len() + declared(DeclKind::Mesh);
+        cx.table(Namespace::Mesh).reserve(meshes);
         let mut undeclared = early::Undeclared::default();
         for (i, stmt) in indices.into_iter().zip(statements) {
             cx.declare_lowered(&lowered, &mut undeclared, i, &mut decls);
@@ -281,29 +290,20 @@ impl Checker<'_> {
             let t = cx.texture(d);
             cx.textures.push(t);
         }
-        let mut materials = std::mem::take(&mut lowered.materials).into_iter();
-        cx.materials
-            .reserve_exact(decls[Namespace::Material as usize].len());
-        for d in &decls[Namespace::Material as usize] {
-            let (m, texs) = match d {
-                Some(d) => cx.material(d),
-                None => (materials.next().map(|m| m.value), Vec::new()),
-            };
-            cx.materials.push(m);
-            cx.material_textures.push(texs);
-        }
-        drop(materials);
-        let mut meshes = std::mem::take(&mut lowered.meshes).into_iter();
-        cx.meshes
-            .reserve_exact(decls[Namespace::Mesh as usize].len());
-        for d in &decls[Namespace::Mesh as usize] {
-            let m = match d {
-                Some(d) => cx.mesh(d),
-                None => meshes.next().map(|m| m.value),
-            };
-            cx.meshes.push(m);
-        }
-        drop(meshes);
+        let materials = &decls[Namespace::Material as usize];
+        let mut textures = Vec::new();
+        let lowered_materials = std::mem::take(&mut lowered.materials);
+        cx.materials = early::merge_lowered(lowered_materials, materials, |i, d| {
+            let (m, texs) = cx.material(d);
+            if !texs.is_empty() {
+                textures.push((i as u32, texs));
+            }
+            m
+        });
+        cx.material_textures = textures;
+        let lowered_meshes = std::mem::take(&mut lowered.meshes);
+        let meshes = &decls[Namespace::Mesh as usize];
+        cx.meshes = early::merge_lowered(lowered_meshes, meshes, |_, d| cx.mesh(d));
         cx.used_materials = vec![false; cx.materials.len()];
         cx.used_meshes = vec![false; cx.meshes.len()];
         cx.material_uses = vec![0; cx.materials.len()];
@@ -338,6 +338,12 @@ impl Checker<'_> {
         }
         cx.unused_defines();
         let settings = cx.render(renders.first().map(|(b, s)| (*b, *s)));
+        if track.is_none() {
+            // Nothing reads them any more (an incremental check's memo keeps them): their
+            // room goes to the IR's final lists.
+            cx.lets = HashMap::new();
+            cx.tables[Namespace::Group as usize] = Table::default();
+        }
         cx.finish(settings)
     }
 }

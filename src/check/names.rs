@@ -56,11 +56,12 @@ impl Namespace {
     }
 }
 
-/// Names declared in one namespace, in declaration order.
+/// Names declared in one namespace, in declaration order. Each name is held once, as the
+/// key of its index (a scene of 50,000 declarations has tables as large as its IR's objects:
+/// docs/frontend-bench.md); the names in order are rebuilt only for diagnostics.
 #[derive(Debug, Default)]
 pub struct Table {
-    index: HashMap<String, usize>,
-    pub names: Vec<String>,
+    index: HashMap<Box<str>, u32>,
     pub spans: Vec<Span>,
 }
 
@@ -69,16 +70,47 @@ impl Table {
     /// duplicate is not added).
     pub fn declare(&mut self, name: &str, span: Span) -> Option<Span> {
         if let Some(&i) = self.index.get(name) {
-            return Some(self.spans[i]);
+            return Some(self.spans[i as usize]);
         }
-        self.index.insert(name.to_string(), self.names.len());
-        self.names.push(name.to_string());
+        self.index.insert(name.into(), self.spans.len() as u32);
         self.spans.push(span);
         None
     }
 
     pub fn get(&self, name: &str) -> Option<usize> {
-        self.index.get(name).copied()
+        self.index.get(name).map(|&i| i as usize)
+    }
+
+    /// Room for `n` more names (declared one by one, the index would otherwise be rebuilt at
+    /// each doubling, the old beside the new).
+    pub fn reserve(&mut self, n: usize) {
+        self.index.reserve(n);
+        self.spans.reserve_exact(n);
+    }
+
+    /// How many names are declared.
+    pub fn len(&self) -> usize {
+        self.spans.len()
+    }
+
+    /// Whether none is.
+    pub fn is_empty(&self) -> bool {
+        self.spans.is_empty()
+    }
+
+    /// Every name, in declaration order.
+    pub fn names(&self) -> Vec<&str> {
+        let mut names = vec![""; self.spans.len()];
+        for (name, &i) in &self.index {
+            names[i as usize] = name;
+        }
+        names
+    }
+
+    /// The name declared `i`-th.
+    pub fn name(&self, i: usize) -> &str {
+        let found = self.index.iter().find(|(_, &at)| at as usize == i);
+        found.map_or("", |(name, _)| name)
     }
 }
 
@@ -104,7 +136,7 @@ impl Checker<'_> {
         if let Some(i) = table.get(name) {
             return Some(i);
         }
-        let candidates: Vec<&str> = table.names.iter().map(String::as_str).collect();
+        let candidates = table.names();
         let help = suggest::help_for(name, &candidates, ns.plural());
         self.error(
             Diagnostic::error(ns.unknown_code(), format!("unknown {} `{name}`", ns.what()))
@@ -119,9 +151,9 @@ impl Checker<'_> {
         self.table(ns).get(name).is_some()
     }
 
-    fn warn_unused(&mut self, ns: Namespace, i: usize) {
+    /// Warns that the `i`-th name of `ns` (`name`) is never used.
+    fn warn_unused(&mut self, ns: Namespace, i: usize, name: &str) {
         let span = self.table(ns).spans[i];
-        let name = self.table(ns).names[i].clone();
         self.error(
             Diagnostic::warning(
                 Code::CheckUnused,
@@ -149,7 +181,7 @@ impl Checker<'_> {
                 a.mesh = mesh_map[a.mesh as usize].unwrap_or(0);
             }
         }
-        if self.cameras.is_empty() && self.table(Namespace::Camera).names.is_empty() {
+        if self.cameras.is_empty() && self.table(Namespace::Camera).is_empty() {
             self.error(
                 Diagnostic::error(Code::CheckNoCamera, "the scene has no camera").help(
                     "add one, e.g. `camera main { eye (0, 1, -5)  target (0, 1, 0)  fov 40deg }`",
@@ -190,20 +222,27 @@ impl Checker<'_> {
     /// kept textures and the old → new texture index map.
     fn keep_used_textures(&mut self) -> (Vec<ir::Texture>, Vec<Option<u32>>) {
         let mut used_textures = vec![false; self.textures.len()];
-        for i in 0..self.materials.len() {
-            if self.used_materials[i] {
-                for &t in &self.material_textures[i] {
+        for (i, textures) in &self.material_textures {
+            if self.used_materials[*i as usize] {
+                for &t in textures {
                     used_textures[t] = true;
                 }
-            } else {
-                self.warn_unused(Namespace::Material, i);
+            }
+        }
+        let mut names = Names::default();
+        for i in 0..self.materials.len() {
+            if !self.used_materials[i] {
+                let name = names.get(self, Namespace::Material, i);
+                self.warn_unused(Namespace::Material, i, &name);
             }
         }
         let mut texture_map = vec![None; self.textures.len()];
         let mut textures = Vec::new();
+        let mut names = Names::default();
         for (i, used) in used_textures.iter().enumerate() {
             if !used {
-                self.warn_unused(Namespace::Texture, i);
+                let name = names.get(self, Namespace::Texture, i);
+                self.warn_unused(Namespace::Texture, i, &name);
             } else if let Some(t) = self.textures[i].take() {
                 texture_map[i] = Some(textures.len() as u32);
                 textures.push(t);
@@ -213,17 +252,18 @@ impl Checker<'_> {
     }
 
     /// The used materials with their texture indices remapped, and the material index map.
+    /// The list is compacted where it lies (no second list of every material at once).
     fn keep_used_materials(
         &mut self,
         texture_map: &[Option<u32>],
     ) -> (Vec<ir::Material>, Vec<Option<u32>>) {
-        let mut material_map = vec![None; self.materials.len()];
-        let mut materials = Vec::new();
-        for (i, slot) in material_map.iter_mut().enumerate() {
-            if !self.used_materials[i] {
-                continue;
-            }
-            if let Some(mut m) = self.materials[i].take() {
+        let all = std::mem::take(&mut self.materials);
+        let mut material_map = vec![None; all.len()];
+        let mut kept = 0;
+        let used = &self.used_materials;
+        let materials = (all.into_iter().enumerate())
+            .filter_map(|(i, m)| {
+                let mut m = m.filter(|_| used[i])?;
                 remap_color(&mut m.diffuse, texture_map);
                 remap_color(&mut m.specular, texture_map);
                 if let ir::ScalarInput::Texture(t) = &mut m.shininess {
@@ -232,37 +272,59 @@ impl Checker<'_> {
                 if let Some(n) = &mut m.normal_map {
                     n.texture = texture_map[n.texture as usize].unwrap_or(0);
                 }
-                *slot = Some(materials.len() as u32);
-                materials.push(m);
-            }
-        }
+                material_map[i] = Some(kept);
+                kept += 1;
+                Some(m)
+            })
+            .collect();
         (materials, material_map)
     }
 
     /// The used meshes (with a warning for each unused one the user declared) with their
-    /// material overrides remapped, and the mesh index map.
+    /// material overrides remapped, and the mesh index map. Compacted where it lies.
     fn keep_used_meshes(
         &mut self,
         material_map: &[Option<u32>],
     ) -> (Vec<ir::Mesh>, Vec<Option<u32>>) {
-        let user_meshes = self.table(Namespace::Mesh).names.len();
-        let mut mesh_map = vec![None; self.meshes.len()];
-        let mut meshes = Vec::new();
-        for (i, slot) in mesh_map.iter_mut().enumerate() {
-            let used = self.used_meshes.get(i).copied().unwrap_or(true);
-            if !used && i < user_meshes {
-                self.warn_unused(Namespace::Mesh, i);
-                continue;
-            }
-            if let Some(mut m) = self.meshes[i].take() {
+        let user_meshes = self.table(Namespace::Mesh).len();
+        let all = std::mem::take(&mut self.meshes);
+        let mut mesh_map = vec![None; all.len()];
+        let mut kept = 0;
+        let mut names = Names::default();
+        let meshes = (all.into_iter().enumerate())
+            .filter_map(|(i, m)| {
+                let used = self.used_meshes.get(i).copied().unwrap_or(true);
+                if !used && i < user_meshes {
+                    let name = names.get(self, Namespace::Mesh, i);
+                    self.warn_unused(Namespace::Mesh, i, &name);
+                    return None;
+                }
+                let mut m = m?;
                 for o in &mut m.obj.materials {
                     o.material = material_map[o.material as usize].unwrap_or(0);
                 }
-                *slot = Some(meshes.len() as u32);
-                meshes.push(m);
-            }
-        }
+                mesh_map[i] = Some(kept);
+                kept += 1;
+                Some(m)
+            })
+            .collect();
         (meshes, mesh_map)
+    }
+}
+
+/// A namespace's names in declaration order, rebuilt at the first one asked for (only
+/// warnings need them).
+#[derive(Default)]
+struct Names(Option<Vec<String>>);
+
+impl Names {
+    /// The `i`-th name of `ns`.
+    fn get(&mut self, cx: &mut Checker, ns: Namespace, i: usize) -> String {
+        let names = self.0.get_or_insert_with(|| {
+            let names = cx.table(ns).names();
+            names.into_iter().map(str::to_string).collect()
+        });
+        names.get(i).cloned().unwrap_or_default()
     }
 }
 

@@ -134,7 +134,7 @@ impl Checker<'_> {
     fn select_camera(&mut self, p: &super::props::Prop) -> Option<()> {
         let e = self.one(p, "camera NAME")?;
         let i = self.resolve(Namespace::Camera, e)?;
-        let name = self.tables[Namespace::Camera as usize].names[i].clone();
+        let name = self.tables[Namespace::Camera as usize].name(i).to_string();
         self.active_camera = self
             .cameras
             .iter()

@@ -147,7 +147,8 @@ impl Checker<'_> {
     }
 
     pub(super) fn texture_names(&self) -> Vec<String> {
-        self.tables[Namespace::Texture as usize].names.clone()
+        let table = &self.tables[Namespace::Texture as usize];
+        table.names().into_iter().map(str::to_string).collect()
     }
 
     /// A normal map read through the sRGB curve is almost always a mistake.

@@ -126,6 +126,28 @@ pub(in crate::check) fn kept_indices(placed: &Placed, total: usize) -> Vec<usize
     (0..total).filter(|&i| !taken[i]).collect()
 }
 
+/// The IR of one namespace's declarations in table order: the lowered ones (`lowered`, in
+/// order) where `decls` holds `None`, `lower`'s (given the position) for the others. When
+/// every one was lowered (the usual case), the list of them becomes it where it lies.
+pub(in crate::check) fn merge_lowered<T>(
+    lowered: Vec<Lowered<T>>,
+    decls: &[Option<&Decl>],
+    mut lower: impl FnMut(usize, &Decl) -> Option<T>,
+) -> Vec<Option<T>> {
+    if decls.iter().all(Option::is_none) {
+        return lowered.into_iter().map(|l| Some(l.value)).collect();
+    }
+    let mut lowered = lowered.into_iter();
+    let mut out = Vec::with_capacity(decls.len());
+    for (i, d) in decls.iter().enumerate() {
+        out.push(match d {
+            Some(d) => lower(i, d),
+            None => lowered.next().map(|l| l.value),
+        });
+    }
+    out
+}
+
 /// The lowered declarations whose names are not declared yet (indices into their lists).
 #[derive(Debug, Default)]
 pub(in crate::check) struct Undeclared {
@@ -197,9 +219,15 @@ impl Checker<'_> {
             ..
         } = placed;
         if placements.is_empty() && self.objects.is_empty() {
-            // Usually every placement was placed: the list becomes the IR's as it is.
+            // Usually every placement was placed: the list becomes the IR's as it is. The
+            // group names are declared only for a memo: nothing else reads them any more.
             self.objects = objects;
-            self.count_placed(&stmts, 0, &group_names, records);
+            let names = if records.is_some() {
+                &group_names[..]
+            } else {
+                &[]
+            };
+            self.count_placed(&stmts, 0, names, records);
             return;
         }
         let deferred: Vec<&Stmt> = placements.iter().map(|(_, s)| *s).collect();
@@ -248,7 +276,7 @@ impl Checker<'_> {
     }
 
     /// Counts the uses of placed statements' objects (from `self.objects[from..]`), declares
-    /// their groups' names (`names`, in order) and records each (with `records`).
+    /// their groups' names (`names`, in order, if given) and records each (with `records`).
     fn count_placed(
         &mut self,
         stmts: &[PlacedStmt],
@@ -264,7 +292,7 @@ impl Checker<'_> {
                 let (mesh, material) = (self.objects[k].mesh, self.objects[k].material);
                 self.use_object(Some(mesh as usize), Some(material as usize));
             }
-            for &span in &names[n..n + s.names as usize] {
+            for &span in names.get(n..n + s.names as usize).unwrap_or_default() {
                 let _ = self
                     .table(Namespace::Group)
                     .declare(sources.snippet(span), span);
