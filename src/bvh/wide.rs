@@ -212,10 +212,14 @@ impl WideRay {
         let mut mask = 0u32;
         for half in 0..WIDTH / 4 {
             let lanes = 4 * half..4 * half + 4;
-            let row = |r: usize| Vec4::from_slice(&n.bounds[r][lanes.clone()]);
-            let plane = |axis: usize, r: usize| (row(r) - self.org[axis]) * self.inv[axis];
-            let tn = [0, 1, 2].map(|axis| plane(axis, self.near_row[axis]));
-            let tf = [0, 1, 2].map(|axis| plane(axis, self.far_row[axis]));
+            let mut tn = [Vec4::ZERO; 3];
+            let mut tf = [Vec4::ZERO; 3];
+            for axis in 0..3 {
+                let (near, far) = (self.near_row[axis], self.far_row[axis]);
+                let row = |r: usize| Vec4::from_slice(&n.bounds[r][lanes.clone()]);
+                tn[axis] = (row(near) - self.org[axis]) * self.inv[axis];
+                tf[axis] = (row(far) - self.org[axis]) * self.inv[axis];
+            }
             // Reduced as a tree, not a chain (one max and one min shorter on the critical
             // path); no operand is NaN, so only the sign of a zero distance could depend on
             // the grouping, and no comparison sees it. The AVX2 form groups alike.
