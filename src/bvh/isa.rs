@@ -191,6 +191,9 @@ mod tests {
         }
     }
 
+    /// 4,000 nodes, each against a ray with axis-parallel and signed-zero direction
+    /// components (where the reciprocal is replaced) in turn, to an infinite and a finite
+    /// `t_max`.
     fn cases() -> Vec<(WideRay, WideNode, f32)> {
         let mut out = Vec::new();
         for case in 0..4_000u64 {
@@ -234,25 +237,13 @@ mod tests {
             return;
         };
         let mut entered = 0;
-        for case in 0..4_000u64 {
-            let n = node(case);
-            let f = |k: u64| ((case * 7 + k) % 13) as f32 / 3.0 - 2.0;
-            let mut dir = Vec3::new(f(1), f(2), f(3));
-            // Axis-parallel and signed-zero components, where the reciprocal is replaced.
-            match case % 4 {
-                0 => dir.x = 0.0,
-                1 => dir.y = -0.0,
-                _ => {}
-            }
-            let ray = WideRay::new(&Ray::new(Vec3::new(f(4), f(5), f(6)) * 2.0, dir));
-            for t_max in [f32::INFINITY, 1.5] {
-                let (tp, mp) = Portable.slab(&ray, &n, t_max);
-                let (ta, ma) = avx.slab(&ray, &n, t_max);
-                assert_eq!(ma, mp, "case {case}");
-                assert_eq!(ta.map(f32::to_bits), tp.map(f32::to_bits), "case {case}");
-                assert_eq!(ma & 0b1100_0000, 0, "empty lanes are never entered");
-                entered += ma.count_ones();
-            }
+        for (case, (ray, n, t_max)) in cases().iter().enumerate() {
+            let (tp, mp) = Portable.slab(ray, n, *t_max);
+            let (ta, ma) = avx.slab(ray, n, *t_max);
+            assert_eq!(ma, mp, "case {case}");
+            assert_eq!(ta.map(f32::to_bits), tp.map(f32::to_bits), "case {case}");
+            assert_eq!(ma & 0b1100_0000, 0, "empty lanes are never entered");
+            entered += ma.count_ones();
         }
         assert!(
             entered > 1_000,
