@@ -31,6 +31,7 @@ use glam::{Vec2, Vec3};
 use super::env_angles::TexelGrid;
 use super::env_bright::BrightTexels;
 use super::env_sampler::{EnvSampler, TexelSample};
+use super::env_texels::Texels;
 use crate::shade::color::luminance;
 
 /// An equirectangular radiance map (intensity already applied), row 0 at the top (+y).
@@ -38,7 +39,7 @@ use crate::shade::color::luminance;
 pub struct EnvMap {
     width: usize,
     height: usize,
-    texels: Vec<Vec3>,
+    texels: Texels,
     cos_rot: f32,
     sin_rot: f32,
     /// The texel edges' sines and cosines (lookups and samples without libm trigonometry).
@@ -132,7 +133,7 @@ impl EnvMap {
         Some(EnvMap {
             width,
             height,
-            texels,
+            texels: Texels::new(texels),
             cos_rot: rotation_y_rad.cos(),
             sin_rot: rotation_y_rad.sin(),
             grid: TexelGrid::new(width, height),
@@ -156,14 +157,11 @@ impl EnvMap {
     /// Builds the sampling table (luminance × sin θ). Returns `false` (and builds nothing) when
     /// the map is black.
     pub fn build_distribution(&mut self) -> bool {
-        let mut weights: Vec<f32> = self
-            .texels
-            .chunks(self.width)
-            .enumerate()
-            .flat_map(|(row, line)| {
-                let s = row_sin_theta(row, self.height);
-                line.iter().map(move |&t| luminance(t) * s)
-            })
+        let row_sines: Vec<f32> = (0..self.height)
+            .map(|row| row_sin_theta(row, self.height))
+            .collect();
+        let mut weights: Vec<f32> = (0..self.texels.len())
+            .map(|i| luminance(self.texels.get(i)) * row_sines[i / self.width])
             .collect();
         let (cos_rot, sin_rot) = (self.cos_rot, self.sin_rot);
         let to_world = |m: Vec3| {
@@ -227,7 +225,7 @@ impl EnvMap {
     /// Heap memory of the texels and of the importance table (if built).
     pub fn bytes(&self) -> (usize, usize) {
         (
-            self.texels.len() * std::mem::size_of::<Vec3>(),
+            self.texels.bytes(),
             self.distribution.as_ref().map_or(0, EnvSampler::bytes)
                 + self.bright.as_ref().map_or(0, BrightTexels::bytes),
         )
@@ -259,7 +257,7 @@ impl EnvMap {
     /// Radiance arriving from world direction `d` (unit): the nearest texel.
     pub fn radiance(&self, d: Vec3) -> Vec3 {
         let (col, row, _) = self.texel_of(d);
-        self.texels[row * self.width + col]
+        self.texels.get(row * self.width + col)
     }
 
     /// A direction by the table (`None` without one, or at a pole where the density is
@@ -334,7 +332,7 @@ impl EnvMap {
         }
         Some(EnvSample {
             wi,
-            radiance: self.texels[s.row * self.width + s.col],
+            radiance: self.texels.get(s.row * self.width + s.col),
             pdf_solid_angle: s.pdf_uv / (2.0 * PI * PI * sin_back),
         })
     }
@@ -360,7 +358,7 @@ impl EnvMap {
     /// [`EnvMap::sample_sky_facing`] and [`EnvMap::sample_bright`] there, finding its texel once.
     pub fn densities_facing(&self, d: Vec3, normal: Option<Vec3>) -> (Vec3, f32, f32) {
         let (col, row, sin_theta) = self.texel_of(d);
-        let radiance = self.texels[row * self.width + col];
+        let radiance = self.texels.get(row * self.width + col);
         if sin_theta <= 0.0 {
             return (radiance, 0.0, 0.0);
         }

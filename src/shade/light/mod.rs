@@ -23,6 +23,7 @@ pub mod env_angles;
 pub mod env_bright;
 pub mod env_map;
 pub mod env_sampler;
+pub mod env_texels;
 pub mod environment;
 pub mod point;
 pub mod spherical;
