@@ -210,7 +210,7 @@ impl Checker<'_> {
             if !self.used_meshes.get(i).copied().unwrap_or(true) {
                 continue;
             }
-            for o in m.iter().flat_map(|m| &m.obj.materials) {
+            for o in m.iter().flat_map(|m| &m.obj_options().materials) {
                 if let Some(u) = self.used_materials.get_mut(o.material as usize) {
                     *u = true;
                 }
@@ -300,7 +300,7 @@ impl Checker<'_> {
                     return None;
                 }
                 let mut m = m?;
-                for o in &mut m.obj.materials {
+                for o in m.obj.iter_mut().flat_map(|o| &mut o.materials) {
                     o.material = material_map[o.material as usize].unwrap_or(0);
                 }
                 mesh_map[i] = Some(kept);
