@@ -48,12 +48,12 @@ fn in_ball(rng: &mut Rng, r: f32) -> Vec3 {
 fn inline_mesh(positions: Vec<Vec3>, indices: Vec<[u32; 3]>) -> Mesh {
     Mesh {
         name: "sphere".into(),
-        source: MeshSource::Inline(InlineMesh {
+        source: MeshSource::Inline(Box::new(InlineMesh {
             positions,
             normals: Vec::new(),
             uvs: Vec::new(),
             indices,
-        }),
+        })),
         span: span(),
         obj: Default::default(),
     }

@@ -52,7 +52,7 @@ impl Fixture {
         );
         desc.meshes = vec![Mesh {
             name: "m".into(),
-            source: MeshSource::Obj(self.asset("meshes/m.obj")),
+            source: MeshSource::Obj(Box::new(self.asset("meshes/m.obj"))),
             span: self.literal("meshes/m.obj"),
             obj: Default::default(),
         }];

@@ -13,12 +13,12 @@ use scnc::ir::{InlineMesh, Mesh, MeshSource, SceneDesc};
 fn inline(name: &str, positions: &[[f32; 3]], indices: &[[u32; 3]]) -> Mesh {
     Mesh {
         name: name.into(),
-        source: MeshSource::Inline(InlineMesh {
+        source: MeshSource::Inline(Box::new(InlineMesh {
             positions: positions.iter().map(|&p| Vec3::from(p)).collect(),
             normals: Vec::new(),
             uvs: Vec::new(),
             indices: indices.to_vec(),
-        }),
+        })),
         span: span(),
         obj: Default::default(),
     }

@@ -40,12 +40,12 @@ fn flat_sphere() -> Mesh {
     });
     Mesh {
         name: "ball".into(),
-        source: MeshSource::Inline(InlineMesh {
+        source: MeshSource::Inline(Box::new(InlineMesh {
             positions: m.positions,
             normals: Vec::new(),
             uvs: Vec::new(),
             indices: m.triangles,
-        }),
+        })),
         span: span(),
         obj: Default::default(),
     }

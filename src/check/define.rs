@@ -51,7 +51,7 @@ impl Checker<'_> {
             .collect();
         unused.sort_by(|a, b| a.0.cmp(&b.0));
         for (name, span) in unused {
-            let lets: Vec<&str> = self.lets.keys().map(String::as_str).collect();
+            let lets: Vec<&str> = self.lets.keys().collect();
             let help = match did_you_mean(&name, lets.iter().copied()) {
                 Some(best) => format!("did you mean `{best}`?"),
                 None => "`--define` can only replace a `let` constant of the scene".to_string(),

@@ -37,9 +37,8 @@ pub(super) use placed::{kept_indices, merge_lowered, Undeclared};
 use std::collections::HashMap;
 
 use super::names::{Namespace, Table};
-use super::value::Value;
 use super::Checker;
-use crate::source::{SourceMap, Span};
+use crate::source::SourceMap;
 use crate::syntax::{DeclKind, Expr, Stmt};
 use placed::{Lowered, PlacedStmt};
 
@@ -50,7 +49,7 @@ pub struct PreCheck {
     /// The material, mesh and group tables are filled.
     tables: [Table; 6],
     /// The constants evaluated so far (the check's `lets` after the same `let`s).
-    lets: HashMap<String, (Value, Span)>,
+    lets: super::Constants,
     /// `--define NAME=VALUE`: the value's expression, and whether a `let` used it.
     defines: HashMap<String, (Expr, bool)>,
     /// No more `let`s are evaluated here (one had a diagnostic, or a `--define` did not parse).

@@ -161,7 +161,7 @@ impl Checker<'_> {
         if self.poisoned.contains(name) {
             return None;
         }
-        let candidates: Vec<&str> = self.lets.keys().map(String::as_str).collect();
+        let candidates: Vec<&str> = self.lets.keys().collect();
         let help = match suggest::did_you_mean(name, candidates.iter().copied()) {
             Some(best) => format!("did you mean `{best}`?"),
             None => "constants must be declared with `let` before they are used".to_string(),

@@ -194,14 +194,14 @@ impl Checker<'_> {
         let id = self.meshes.len();
         self.meshes.push(Some(ir::Mesh {
             name: format!("light {}", d.name.name),
-            source: ir::MeshSource::Inline(ir::InlineMesh {
+            source: ir::MeshSource::Inline(Box::new(ir::InlineMesh {
                 positions: pts.iter().map(|p| p.as_vec3()).collect(),
                 normals: Vec::new(),
                 uvs: Vec::new(),
                 indices: vec![[0, 1, 2], [0, 2, 3]],
-            }),
+            })),
             span: q.key_span,
-            obj: ir::ObjOptions::default(),
+            obj: None,
         }));
         Some(id)
     }

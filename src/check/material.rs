@@ -166,14 +166,10 @@ impl Checker<'_> {
             {
                 // Neither a texture nor a constant: say both were looked for. The constants
                 // in the order they were declared (a map's order would change from run to run).
-                let mut lets: Vec<(&String, Span)> = self
-                    .lets
-                    .iter()
-                    .map(|(name, (_, at))| (name, *at))
-                    .collect();
+                let mut lets: Vec<(&str, Span)> = self.lets.names_and_spans().collect();
                 lets.sort_unstable_by_key(|&(_, at)| (at.file.0, at.start));
                 let mut candidates: Vec<String> =
-                    lets.into_iter().map(|(name, _)| name.clone()).collect();
+                    lets.into_iter().map(|(name, _)| name.to_string()).collect();
                 candidates.extend(self.texture_names());
                 let refs: Vec<&str> = candidates.iter().map(String::as_str).collect();
                 self.error(

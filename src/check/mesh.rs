@@ -28,10 +28,10 @@ impl Checker<'_> {
         let source = match (MeshKind::from_word(name), &d.ctor.args) {
             (Some(MeshKind::Obj), Some(args)) => {
                 obj = self.obj_options(body);
-                ir::MeshSource::Obj(self.obj_file(args, d)?)
+                ir::MeshSource::Obj(Box::new(self.obj_file(args, d)?))
             }
             (Some(MeshKind::Inline), None) => {
-                ir::MeshSource::Inline(self.inline_mesh(body, d.name.span)?)
+                ir::MeshSource::Inline(Box::new(self.inline_mesh(body, d.name.span)?))
             }
             (Some(MeshKind::Sphere), None) => ir::MeshSource::Builtin(self.sphere(body)?),
             (Some(MeshKind::Icosphere), None) => ir::MeshSource::Builtin(self.icosphere(body)?),
@@ -46,7 +46,7 @@ impl Checker<'_> {
             name: d.name.name.clone(),
             source,
             span: d.name.span,
-            obj,
+            obj: (!obj.is_default()).then(|| Box::new(obj)),
         })
     }
 

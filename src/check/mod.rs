@@ -10,6 +10,7 @@
 
 pub mod array;
 mod camera;
+mod constants;
 mod define;
 mod early;
 mod eval;
@@ -41,8 +42,8 @@ use crate::diag::{Code, Diagnostic, Staged};
 use crate::ir;
 use crate::source::{SourceMap, Span};
 use crate::syntax::{Decl, DeclKind, Stmt};
+pub use constants::Constants;
 use names::{Namespace, Table};
-use value::Value;
 
 /// The checker's state for one compile.
 pub struct Checker<'s> {
@@ -51,7 +52,7 @@ pub struct Checker<'s> {
     /// Every error and warning found so far.
     pub diags: Vec<Diagnostic>,
     /// The `let` constants evaluated so far, with where each was declared.
-    pub lets: HashMap<String, (Value, Span)>,
+    pub lets: Constants,
     /// The value of the predefined constant `frame` (`--frame F`; 0 when not animating).
     pub frame: f64,
     /// `--define NAME=VALUE` overrides: name → (value expression, used by a `let`).
@@ -88,7 +89,7 @@ impl<'s> Checker<'s> {
         Checker {
             sources,
             diags: Vec::new(),
-            lets: HashMap::new(),
+            lets: Constants::default(),
             frame: 0.0,
             defines: HashMap::new(),
             poisoned: Default::default(),
@@ -165,7 +166,7 @@ impl<'s> Checker<'s> {
         }
         match self.eval(value).and_then(|v| self.define_override(name, v)) {
             Some(v) => {
-                self.lets.insert(name.name.clone(), (v, name.span));
+                self.lets.insert(&name.name, v, name.span);
             }
             None => {
                 self.poisoned.insert(name.name.clone());
@@ -341,7 +342,7 @@ impl Checker<'_> {
         if track.is_none() {
             // Nothing reads them any more (an incremental check's memo keeps them): their
             // room goes to the IR's final lists.
-            cx.lets = HashMap::new();
+            cx.lets = Constants::default();
             cx.tables[Namespace::Group as usize] = Table::default();
         }
         cx.finish(settings)

@@ -1,7 +1,9 @@
 //! Stage 2, check: declaration tables, reference resolution with did-you-mean, and the final
 //! pass that reports unused declarations, drops them and compacts the IR's indices.
 
-use std::collections::HashMap;
+use std::hash::{BuildHasher, RandomState};
+
+use hashbrown::HashTable;
 
 use super::Checker;
 use crate::diag::{suggest, Code, Diagnostic};
@@ -56,35 +58,66 @@ impl Namespace {
     }
 }
 
-/// Names declared in one namespace, in declaration order. Each name is held once, as the
-/// key of its index (a scene of 50,000 declarations has tables as large as its IR's objects:
-/// docs/frontend-bench.md); the names in order are rebuilt only for diagnostics.
+/// Names declared in one namespace, in declaration order. Each name is held once, in one
+/// string, and the hash index holds only declaration numbers (a scene of 50,000 declarations
+/// had tables as large as its IR's objects: docs/frontend-bench.md).
 #[derive(Debug, Default)]
 pub struct Table {
-    index: HashMap<Box<str>, u32>,
+    /// Declaration indices, hashed by their names (4 bytes a bucket: the names lie in `names`).
+    index: HashTable<u32>,
+    /// Every name, one after the other, in declaration order.
+    names: String,
+    /// Where each name ends in `names`.
+    ends: Vec<u32>,
     pub spans: Vec<Span>,
+    hasher: RandomState,
 }
 
 impl Table {
     /// Adds a name; returns the first declaration's span if it was already declared (the
     /// duplicate is not added).
     pub fn declare(&mut self, name: &str, span: Span) -> Option<Span> {
-        if let Some(&i) = self.index.get(name) {
-            return Some(self.spans[i as usize]);
+        if let Some(i) = self.get(name) {
+            return Some(self.spans[i]);
         }
-        self.index.insert(name.into(), self.spans.len() as u32);
+        let Table {
+            index,
+            names,
+            ends,
+            hasher,
+            ..
+        } = self;
+        let hash = hasher.hash_one(name);
+        index.insert_unique(hash, ends.len() as u32, |&i| {
+            hasher.hash_one(name_at(names, ends, i as usize))
+        });
+        names.push_str(name);
+        ends.push(names.len() as u32);
         self.spans.push(span);
         None
     }
 
     pub fn get(&self, name: &str) -> Option<usize> {
-        self.index.get(name).map(|&i| i as usize)
+        let hash = self.hasher.hash_one(name);
+        self.index
+            .find(hash, |&i| {
+                name_at(&self.names, &self.ends, i as usize) == name
+            })
+            .map(|&i| i as usize)
     }
 
     /// Room for `n` more names (declared one by one, the index would otherwise be rebuilt at
     /// each doubling, the old beside the new).
     pub fn reserve(&mut self, n: usize) {
-        self.index.reserve(n);
+        let Table {
+            index,
+            names,
+            ends,
+            hasher,
+            ..
+        } = self;
+        index.reserve(n, |&i| hasher.hash_one(name_at(names, ends, i as usize)));
+        self.ends.reserve_exact(n);
         self.spans.reserve_exact(n);
     }
 
@@ -100,18 +133,23 @@ impl Table {
 
     /// Every name, in declaration order.
     pub fn names(&self) -> Vec<&str> {
-        let mut names = vec![""; self.spans.len()];
-        for (name, &i) in &self.index {
-            names[i as usize] = name;
-        }
-        names
+        (0..self.ends.len()).map(|i| self.name(i)).collect()
     }
 
     /// The name declared `i`-th.
     pub fn name(&self, i: usize) -> &str {
-        let found = self.index.iter().find(|(_, &at)| at as usize == i);
-        found.map_or("", |(name, _)| name)
+        if i < self.ends.len() {
+            name_at(&self.names, &self.ends, i)
+        } else {
+            ""
+        }
     }
+}
+
+/// The `i`-th name of a table's `names`, which end at `ends`.
+fn name_at<'a>(names: &'a str, ends: &[u32], i: usize) -> &'a str {
+    let start = if i == 0 { 0 } else { ends[i - 1] as usize };
+    &names[start..ends[i] as usize]
 }
 
 impl Checker<'_> {
@@ -210,7 +248,7 @@ impl Checker<'_> {
             if !self.used_meshes.get(i).copied().unwrap_or(true) {
                 continue;
             }
-            for o in m.iter().flat_map(|m| &m.obj.materials) {
+            for o in m.iter().flat_map(|m| &m.obj_options().materials) {
                 if let Some(u) = self.used_materials.get_mut(o.material as usize) {
                     *u = true;
                 }
@@ -300,7 +338,7 @@ impl Checker<'_> {
                     return None;
                 }
                 let mut m = m?;
-                for o in &mut m.obj.materials {
+                for o in m.obj.iter_mut().flat_map(|o| &mut o.materials) {
                     o.material = material_map[o.material as usize].unwrap_or(0);
                 }
                 mesh_map[i] = Some(kept);

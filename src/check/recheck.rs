@@ -26,7 +26,7 @@ use crate::syntax::Stmt;
 /// What a full check of one statement list leaves for re-checking its `object`s.
 pub struct CheckMemo {
     frame: f64,
-    lets: std::collections::HashMap<String, (super::Value, crate::source::Span)>,
+    lets: super::Constants,
     poisoned: std::collections::HashSet<String>,
     defines: std::collections::HashMap<String, (crate::syntax::Expr, bool)>,
     tables: [Table; 6],
@@ -180,7 +180,7 @@ impl CheckMemo {
                 .objects
                 .splice(object_range.start..object_range.start, objects);
         }
-        for (_, span) in self.lets.values_mut() {
+        for span in self.lets.spans_mut() {
             ok &= shift.apply(span);
         }
         for t in &mut self.tables {

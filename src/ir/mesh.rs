@@ -38,9 +38,24 @@ pub struct Mesh {
     pub source: MeshSource,
     /// The declaration's span (diagnostics about the mesh as a whole point here).
     pub span: Span,
-    /// Options of an `obj(...)` mesh (default for every other kind).
-    #[serde(skip_serializing_if = "ObjOptions::is_default")]
-    pub obj: ObjOptions,
+    /// Options of an `obj(...)` mesh; `None` when nothing was written (always for every other
+    /// kind). Boxed and optional so that a mesh without them pays one word, not four; read
+    /// them with [`Mesh::obj_options`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub obj: Option<Box<ObjOptions>>,
+}
+
+/// What [`Mesh::obj_options`] returns for a mesh without options.
+static NO_OBJ_OPTIONS: ObjOptions = ObjOptions {
+    ignore_mtl: false,
+    materials: Vec::new(),
+};
+
+impl Mesh {
+    /// The mesh's OBJ options (the default ones when nothing was written).
+    pub fn obj_options(&self) -> &ObjOptions {
+        self.obj.as_deref().unwrap_or(&NO_OBJ_OPTIONS)
+    }
 }
 
 /// `obj("f.obj") { material OBJ_NAME SCN_MATERIAL ...  mtl false }`.
@@ -73,10 +88,12 @@ impl ObjOptions {
 /// Where a mesh's triangles come from.
 #[derive(Debug, Clone, Serialize)]
 pub enum MeshSource {
-    /// A Wavefront OBJ file (triangulated on load; normals and UVs kept).
-    Obj(AssetPath),
-    /// `inline { positions [...] indices [...] }`: arrays written in the scene.
-    Inline(InlineMesh),
+    /// A Wavefront OBJ file (triangulated on load; normals and UVs kept). Boxed, like
+    /// `Inline`, so that the common built-in shapes keep the enum (and every [`Mesh`]) small.
+    Obj(Box<AssetPath>),
+    /// `inline { positions [...] indices [...] }`: arrays written in the scene (boxed: four
+    /// `Vec`s would make every mesh of a generated scene of boxes 72 bytes larger).
+    Inline(Box<InlineMesh>),
     /// `sphere`, `icosphere`, `quad` or `box`: tessellated at build time.
     Builtin(BuiltinShape),
 }

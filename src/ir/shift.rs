@@ -18,7 +18,7 @@ impl SceneDesc {
             if let MeshSource::Obj(path) = &mut m.source {
                 apply(&mut path.span);
             }
-            for o in &mut m.obj.materials {
+            for o in m.obj.iter_mut().flat_map(|o| &mut o.materials) {
                 apply(&mut o.span);
             }
         }

@@ -255,7 +255,7 @@ impl BuildCache {
         decl: &ir::Mesh,
         loader: &dyn Loader,
     ) -> Result<(TriMesh, Vec<BuildError>), BuildError> {
-        let key = MeshKey::of(&decl.source, &decl.obj);
+        let key = MeshKey::of(&decl.source, decl.obj_options());
         if let Some(hit) = self.meshes.remove(&key) {
             self.report.meshes_reused += 1;
             self.current.push((key, hit.file_hash));

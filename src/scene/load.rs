@@ -77,15 +77,20 @@ fn load_obj_mesh(
             }
         }
     })?;
-    let loaded =
-        load_obj(&path.path, bytes.clone(), !decl.obj.ignore_mtl, loader).map_err(|e| {
-            BuildError::Obj(Box::new(report::error_diagnostic(
-                &e,
-                &path.written,
-                &bytes,
-                Some(path.span),
-            )))
-        })?;
+    let loaded = load_obj(
+        &path.path,
+        bytes.clone(),
+        !decl.obj_options().ignore_mtl,
+        loader,
+    )
+    .map_err(|e| {
+        BuildError::Obj(Box::new(report::error_diagnostic(
+            &e,
+            &path.written,
+            &bytes,
+            Some(path.span),
+        )))
+    })?;
     let mut warnings: Vec<BuildError> =
         report::warning_diagnostics(&loaded, &path.written, Some(path.span))
             .into_iter()

@@ -4,11 +4,8 @@
 //! the `let`s), the lowered declarations' names among the others' as the first loop declares
 //! them, their IR in the lowering phases, and the placed objects in the placement phase.
 
-use std::collections::HashMap;
-
 use super::super::names::Namespace;
 use super::super::object::count_objects;
-use super::super::value::Value;
 use super::super::{Checker, StmtRecord};
 use crate::ir;
 use crate::source::Span;
@@ -36,7 +33,7 @@ pub(in crate::check) struct LoweredDecls {
     /// `let` before the first one the pre-check could not evaluate as the check will.
     pub lets: Vec<(u32, Span)>,
     /// Their constants, as the check's `lets` holds them after the last of them.
-    pub constants: HashMap<String, (Value, Span)>,
+    pub constants: crate::check::Constants,
     /// The `--define`s they used (by name).
     pub defines_used: Vec<String>,
     /// `material`s lowered (each the first of its name, no diagnostic, no texture).

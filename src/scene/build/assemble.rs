@@ -59,7 +59,7 @@ impl Builder<'_> {
             };
             let part_base = parts.place(
                 &self.meshes[mesh as usize],
-                &desc.meshes[object.mesh as usize].obj,
+                desc.meshes[object.mesh as usize].obj_options(),
                 object.material,
                 world_from_object,
                 &mut materials,
