@@ -97,6 +97,7 @@ impl Table {
         None
     }
 
+    /// The declaration number of `name`, if it is declared.
     pub fn get(&self, name: &str) -> Option<usize> {
         let hash = self.hasher.hash_one(name);
         self.index
