@@ -62,6 +62,10 @@ const MAX_NESTING: u32 = 16;
 
 impl Textures {
     /// The colour of `input` at `uv`, for a pixel whose footprint there is `footprint`.
+    ///
+    /// A constant (most materials' inputs) is answered inline, without a call into the
+    /// texture lookup: it runs for every input of every shading point.
+    #[inline]
     pub fn color(
         &self,
         input: ColorInput,
@@ -69,10 +73,14 @@ impl Textures {
         footprint: Footprint,
         stats: &mut FilterStats,
     ) -> Vec3 {
-        self.color_at_depth(input, uv, footprint, stats, 0)
+        match input {
+            ColorInput::Constant(c) => c,
+            ColorInput::Texture(_) => self.color_at_depth(input, uv, footprint, stats, 0),
+        }
     }
 
     /// A scalar input: a constant, or the red channel of a texture.
+    #[inline]
     pub fn scalar(
         &self,
         input: ScalarInput,
