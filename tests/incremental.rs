@@ -4,9 +4,9 @@
 //! are replayed on a scene, and after each one the IR and every diagnostic (severity, code,
 //! message, labels with their spans, help) must be the full compile's. The common edit (one
 //! object's numbers) of a scene the fast path covers (one file without includes, no error)
-//! must take it, every time; so must a value edit of a `let`, a `material` or a (built-in)
-//! `mesh` (a digit after its `=`) that leaves the scene without an error. Texture edits are
-//! replayed for equality only (they take the full path).
+//! must take it, every time; so must a value edit of a `let`, a `material`, a (built-in)
+//! `mesh` or a (checker) `texture` (a digit after its `=`) that leaves the scene without an
+//! error.
 
 use scnc::assets::MemLoader;
 use scnc::compile::{compile_with, Incremental, Overrides, Reuse};
@@ -61,12 +61,15 @@ enum Kind {
     Material,
     /// A digit after the `=` of a `mesh` line replaced.
     Mesh,
+    /// A digit after the `=` of a `texture` line replaced.
+    Texture,
 }
 
-const KINDS: [(Kind, &str); 3] = [
+const KINDS: [(Kind, &str); 4] = [
     (Kind::Let, "let "),
     (Kind::Material, "material "),
     (Kind::Mesh, "mesh "),
+    (Kind::Texture, "texture "),
 ];
 
 /// A digit of line `i` (after byte `from`) replaced by a seeded one; `false` when it has none.
@@ -102,8 +105,8 @@ fn edit(rng: &mut SplitMix64, text: &str) -> (String, Option<(Kind, String)>) {
                 }
             }
         }
-        // A value of a declaration changes: a `let`, a `material`, a `mesh`.
-        12..=16 => {
+        // A value of a declaration changes: a `let`, a `material`, a `mesh`, a `texture`.
+        12..=17 => {
             let (kind, word) = KINDS[rng.below(KINDS.len())];
             let decls: Vec<usize> = (0..lines.len())
                 .filter(|&i| lines[i].starts_with(word))
@@ -115,13 +118,6 @@ fn edit(rng: &mut SplitMix64, text: &str) -> (String, Option<(Kind, String)>) {
                 if replace_digit(rng, &mut out[i], value) {
                     return (out.concat(), Some((kind, name)));
                 }
-            }
-        }
-        // A texture's value changes (the full path).
-        17 => {
-            if let Some(i) = (0..out.len()).find(|&i| out[i].starts_with("texture")) {
-                let value = out[i].find('=').unwrap_or(0);
-                replace_digit(rng, &mut out[i], value);
             }
         }
         // A character inserted, deleted or replaced anywhere.
@@ -230,9 +226,9 @@ struct Replayed {
     number_edits_of_clean_scenes: usize,
     /// Those of them that took the fast path.
     number_edits_fast: usize,
-    /// Per declaration kind (`let`, `material`, `mesh`): value edits made to a scene that
+    /// Per declaration kind (`let`, `material`, `mesh`, `texture`): value edits made to a scene that
     /// compiled without an error which left it without one, and those that took the fast path.
-    decl_edits: [(usize, usize); 3],
+    decl_edits: [(usize, usize); 4],
 }
 
 impl Replayed {
@@ -335,8 +331,8 @@ fn seeded_edits_compile_as_a_fresh_compile_does() {
         total.add(&r);
     }
     eprintln!(
-        "fast {} of 800; number edits of clean scenes {}, fast {}; let, material, mesh value \
-         edits of clean scenes (made, fast) {:?}",
+        "fast {} of 800; number edits of clean scenes {}, fast {}; let, material, mesh, \
+         texture value edits of clean scenes (made, fast) {:?}",
         total.fast, total.number_edits_of_clean_scenes, total.number_edits_fast, total.decl_edits
     );
     assert_fast_path_taken(&total, 20);

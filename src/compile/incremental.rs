@@ -6,12 +6,12 @@
 //! [`CheckMemo`]. After an edit of the scene file it parses only the statements around the
 //! edited bytes ([`super::edit`]) and, when every statement that changed is a top-level
 //! `object`, re-checks those alone ([`CheckMemo::recheck`]) and moves every other span by the
-//! edit. When the changed statements are `let`s, `material`s, `mesh`es (not `obj`) and
-//! `object`s, one for one and each keeping its name, it re-checks them and the statements that
+//! edit. When the changed statements are `let`s, `material`s, `mesh`es (not `obj`), `texture`s
+//! (not `image`) and `object`s, one for one and each keeping its name, it re-checks them and the statements that
 //! name a constant whose value changed ([`CheckMemo::recheck_decls`], which finds them through
 //! [`super::dependents`]). Anything else is a full compile, which is always correct: a scene
 //! with includes or any syntax error or file-level diagnostic, a statement added, removed or
-//! renamed among declarations, an edit of a texture, a light, a camera or the render block (or
+//! renamed among declarations, an edit of a light, a camera or the render block (or
 //! of a constant one of them names), a declaration or `let` with a diagnostic, an edit that
 //! makes a mesh or material used or unused, and any edit where a kept span would reach into the
 //! edited bytes. `scnc watch` and `scnc lsp` compile through it;

@@ -1,20 +1,20 @@
 //! Stage 2, check, incrementally: an edit of declarations that keep their names — a `let`'s
-//! value, a `material`'s or a `mesh`'s properties (`let k = 3` → `let k = 4`, `material m =
-//! phong { diffuse #f00 }` → `... #0f0 }`), and `object`s beside them — re-checked in place,
+//! value, a `material`'s, a `mesh`'s or a `texture`'s properties (`let k = 3` → `let k = 4`,
+//! `material m = phong { diffuse #f00 }` → `... #0f0 }`), and `object`s beside them — re-checked in place,
 //! with every statement that names a constant whose value changed (found by name through
 //! [`Dependents`]), and spliced into the [`CheckMemo`].
 //!
 //! Why the result is the full check's: the memo is of a check with no diagnostic before its
 //! placement phase (no duplicate, no error in a `let` or a declaration), and the re-check keeps
 //! it so: a re-checked `let` or declaration with a diagnostic, a renamed one, a redeclaration
-//! (not the first of its name), an `obj` mesh, a material that comes to refer to other
+//! (not the first of its name), an `obj` mesh, an `image` texture, a material that comes to refer to other
 //! textures than it did or that has a normal map (its warning reads the texture), a `let`
 //! that a `--define` overrides or that names a constant declared after it, and a constant
 //! named by any other kind of statement (a camera, a light, a group, the render block) make it
 //! decline. So the names, their table indices and the diagnostics before the placements stay;
 //! a `let` is evaluated again as the check evaluates it (the constants before it are the
 //! check's), then the declarations and `object`s that name it, which the check lowers after
-//! every `let`, against all constants. A material or mesh keeps its table index and, since
+//! every `let`, against all constants. A texture, material or mesh keeps its table index and, since
 //! which are used is unchanged (the re-check declines otherwise, as `recheck` does), its IR
 //! index: its IR entry is replaced there. An `object` re-checked gives its diagnostics and IR
 //! objects, put in place of its old ones in the placement phase's statement order.
@@ -44,6 +44,8 @@ struct Redone {
     materials: Vec<(usize, ir::Material)>,
     /// Meshes lowered again (table index, IR).
     meshes: Vec<(usize, ir::Mesh)>,
+    /// Textures lowered again (table index, IR).
+    textures: Vec<(usize, ir::Texture)>,
     /// Statements checked again.
     checked: usize,
 }
@@ -111,6 +113,7 @@ impl CheckMemo {
             objects,
             materials,
             meshes,
+            textures,
             checked,
         } = redone;
         let mut ok = true;
@@ -143,6 +146,12 @@ impl CheckMemo {
                 if let Some(slot) = at.and_then(|k| scene.materials.get_mut(k as usize)) {
                     *slot = m;
                     super::super::names::remap_textures(slot, &self.texture_map);
+                }
+            }
+            for (i, t) in textures {
+                let at = self.texture_map.get(i).copied().flatten();
+                if let Some(slot) = at.and_then(|k| scene.textures.get_mut(k as usize)) {
+                    *slot = t;
                 }
             }
             for (i, m) in meshes {
@@ -260,6 +269,15 @@ fn redo(
                 }
                 redone.meshes.push((at, mesh?));
             }
+            // Not an image: a normal map's warning reads only an image's encoding.
+            Stmt::Decl(d) if d.kind == DeclKind::Texture && d.ctor.args.is_none() => {
+                let at = declared_at(cx, Namespace::Texture, d)?;
+                let texture = cx.texture(d);
+                if !cx.diags.is_empty() {
+                    return None;
+                }
+                redone.textures.push((at, texture?));
+            }
             _ => return None,
         }
     }
@@ -318,12 +336,15 @@ fn forget_use(uses: &mut [u32], at: Option<u32>) -> Option<()> {
 }
 
 /// Whether `new` may stand in for `old` in [`CheckMemo::recheck_decls`]: the same `let`,
-/// `material` or (not `obj`) `mesh` by name, or two `object`s.
+/// `material`, (not `obj`) `mesh` or (not `image`) `texture` by name, or two `object`s.
 fn same_declaration(old: &Stmt, new: &Stmt) -> bool {
     match (old, new) {
         (Stmt::Let { name: a, .. }, Stmt::Let { name: b, .. }) => a.name == b.name,
         (Stmt::Decl(a), Stmt::Decl(b)) => {
-            let kind = matches!(a.kind, DeclKind::Material | DeclKind::Mesh);
+            let kind = matches!(
+                a.kind,
+                DeclKind::Material | DeclKind::Mesh | DeclKind::Texture
+            );
             let not_obj = a.ctor.args.is_none() && b.ctor.args.is_none();
             kind && a.kind == b.kind && a.name.name == b.name.name && not_obj
         }
