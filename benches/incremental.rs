@@ -237,6 +237,8 @@ fn watch(objects: usize, edits: usize) {
     for kind in KINDS {
         let mut figures: [Vec<f64>; 6] = Default::default();
         let mut incremental = 0;
+        // What the cached builds made again (`rebuilt` of the `compiled` events), all edits.
+        let mut rebuilt = std::collections::BTreeSet::new();
         for k in 0..edits {
             let text = edit(&mut lines, objects, kind, 1000 + k);
             let t0 = Instant::now();
@@ -245,6 +247,8 @@ fn watch(objects: usize, edits: usize) {
             let (t3, c) = wait("compiled", false);
             let (t2, p) = wait("pass", false);
             incremental += usize::from(c["incremental"] == true);
+            let made = c["rebuilt"].as_array().into_iter().flatten();
+            rebuilt.extend(made.filter_map(|r| r.as_str().map(str::to_string)));
             let f = [
                 (t1 - t0).as_secs_f64() * 1e3,
                 (t2 - t0).as_secs_f64() * 1e3,
@@ -263,7 +267,8 @@ fn watch(objects: usize, edits: usize) {
             "  {kind:?} edits ({edits}, {incremental} incremental): save -> diagnostics \
              (checked event) median {:.1} ms (slowest {:.1}), save -> build done (compiled \
              event) median {:.1} ms, save -> first image median {:.1} ms (slowest {:.1}); of \
-             which compile {:.1} ms, build {:.1} ms, first pass (1 spp, 640x360) {:.1} ms",
+             which compile {:.1} ms, build {:.1} ms, first pass (1 spp, 640x360) {:.1} ms; \
+             rebuilt {rebuilt:?}",
             median(&mut diag),
             max(&diag),
             median(&mut built),
