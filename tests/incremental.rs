@@ -13,6 +13,7 @@ use scnc::compile::{compile_with, Incremental, Overrides, Reuse};
 use scnc::source::SourceMap;
 use scnc::testing::SplitMix64;
 use std::path::Path;
+use std::sync::Arc;
 
 fn base_scene() -> String {
     let mut s = String::from(
@@ -396,4 +397,75 @@ fn an_object_edit_rechecks_that_object_alone() {
     );
     let _ = inc.compile(path, &loader, &mut sources);
     assert_eq!(inc.reuse, Reuse::Unchanged);
+}
+
+#[test]
+fn a_declaration_edit_rechecks_it_and_what_names_it() {
+    let path = Path::new("edit.scn");
+    let text = base_scene();
+    let mut inc = Incremental::new(Overrides::default());
+    let mut loader = MemLoader::new();
+    loader.insert(path, text.clone());
+    let mut sources = SourceMap::new();
+    let _ = inc.compile(path, &loader, &mut sources);
+    assert_eq!(inc.reuse, Reuse::Full);
+    let mut edit = |from: &str, to: &str, text: &mut String| {
+        let edited = text.replacen(from, to, 1);
+        assert_ne!(&edited, text);
+        *text = edited;
+        loader.insert(path, text.clone());
+        let got = inc.compile(path, &loader, &mut sources);
+        let want = compile_with(path, &loader, &mut SourceMap::new(), &Overrides::default());
+        assert_eq!(
+            format!("{:?}", got.value),
+            format!("{:?}", want.value.map(Arc::new))
+        );
+        inc.reuse
+    };
+    let mut text = text;
+    let material = edit("rgb(0.2, 0.5", "rgb(0.7, 0.5", &mut text);
+    assert_eq!(
+        material,
+        Reuse::Statements {
+            parsed: 2,
+            checked: 1
+        }
+    );
+    // `k` is named by the 24 objects of the row (not by the floor, the groups or the camera).
+    let constant = edit("let k = 2", "let k = 3", &mut text);
+    assert_eq!(
+        constant,
+        Reuse::Statements {
+            parsed: 2,
+            checked: 25
+        }
+    );
+    // The same value written otherwise: nothing names a changed constant.
+    let same = edit("let k = 3", "let k = 1 + 2", &mut text);
+    assert_eq!(
+        same,
+        Reuse::Statements {
+            parsed: 2,
+            checked: 1
+        }
+    );
+    let mesh = edit("radius 1", "radius 2", &mut text);
+    assert_eq!(
+        mesh,
+        Reuse::Statements {
+            parsed: 2,
+            checked: 1
+        }
+    );
+    let texture = edit("scale 8", "scale 6", &mut text);
+    assert_eq!(
+        texture,
+        Reuse::Statements {
+            parsed: 2,
+            checked: 1
+        }
+    );
+    // A renamed material is not the same declaration.
+    let renamed = edit("material m3 =", "material m7 =", &mut text);
+    assert_eq!(renamed, Reuse::Full);
 }
