@@ -29,7 +29,8 @@ use crate::ir;
 use crate::source::{Shift, SourceMap};
 use crate::syntax::Stmt;
 
-/// What a full check of one statement list leaves for re-checking its `object`s.
+/// What a full check of one statement list leaves for re-checking its `object`s and
+/// declarations.
 pub struct CheckMemo {
     frame: f64,
     lets: super::Constants,
