@@ -2,8 +2,9 @@
 //! [-- --edits N] [-- --objects N] [-- --no-watch]`.
 //!
 //! The scene of issue 22: 100,000 `object` statements, each with a rotate and a translate, over
-//! three meshes and 100 materials (about 9 MB). Each edit changes one digit of one object's
-//! translate in the middle of the file, as a person nudging one object would.
+//! three meshes and 100 materials that name one constant, `gloss` (about 9 MB). Three kinds of
+//! edit, one line each: one object's translate in the middle of the file (a person nudging one
+//! object), one material's colour, and the value of `gloss` (its 100 materials re-checked).
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
 //!    each edit (the text served from memory; diagnostics are ready when it returns).
@@ -12,7 +13,7 @@
 //!    `compiled` event (after the build) and save → first `pass` event (the preview
 //!    image is written before that event), with the compile, build and pass times it reports.
 //!
-//! Medians (and the slowest) are printed; figures go to docs/watch.md by hand.
+//! Medians (and the slowest) per kind of edit are printed; figures go to docs/watch.md by hand.
 
 // A global allocator needs `unsafe impl`; it only forwards to the system allocator.
 #![allow(unsafe_code)]
@@ -46,20 +47,29 @@ fn scene(objects: usize) -> Vec<String> {
         "mesh tree = icosphere { radius 1  subdivisions 1 }".into(),
         "mesh rock = box { size (1, 0.5, 1) }".into(),
         "mesh post = box { size (0.2, 2, 0.2) }".into(),
+        let_line(0),
     ];
-    for m in 0..100 {
-        s.push(format!(
-            "material m{m} = phong {{ diffuse rgb(0.{}, 0.3, 0.2)  specular 0.05 }}",
-            m % 10
-        ));
-    }
+    s.extend((0..100).map(|m| material_line(m, m % 10)));
     debug_assert_eq!(s.len(), HEADER);
     s.extend((0..objects).map(|i| object_line(i, 0)));
     s.push("light sun = point { position (500, 100, 0)  intensity 100000 }".into());
     s
 }
 
-const HEADER: usize = 106;
+const HEADER: usize = 107;
+/// The line of the `let` every material names, and of the first material.
+const LET_LINE: usize = 6;
+const FIRST_MATERIAL: usize = 7;
+
+/// The constant the materials' `specular` names, at its `k`-th value.
+fn let_line(k: usize) -> String {
+    format!("let gloss = 0.{:02}", 5 + k % 90)
+}
+
+/// Material `m`, with red `0.shade`.
+fn material_line(m: usize, shade: usize) -> String {
+    format!("material m{m} = phong {{ diffuse rgb(0.{shade}, 0.3, 0.2)  specular gloss }}")
+}
 
 /// Object `i`, lifted by `y`.
 fn object_line(i: usize, y: usize) -> String {
@@ -74,14 +84,44 @@ fn object_line(i: usize, y: usize) -> String {
     )
 }
 
-/// Edit `k` of `lines`: one object near the middle (another one each time) is lifted, one
-/// line of text changed. Returns the new text.
-fn edit(lines: &mut [String], objects: usize, k: usize) -> String {
-    let i = objects / 2 + (k * 7919) % (objects / 4);
-    lines[HEADER + i] = object_line(i, 1 + k % 9);
+/// What an edit changes: one line of text each time.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    /// One object near the middle (another one each time) is lifted.
+    Object,
+    /// One material's colour changes (another material each time).
+    Material,
+    /// The constant `gloss`, which every material names, changes.
+    Let,
+}
+
+const KINDS: [Kind; 3] = [Kind::Object, Kind::Material, Kind::Let];
+
+/// Edit `k` of kind `kind` of `lines`. Returns the new text.
+fn edit(lines: &mut [String], objects: usize, kind: Kind, k: usize) -> String {
+    match kind {
+        Kind::Object => {
+            let i = objects / 2 + (k * 7919) % (objects / 4);
+            lines[HEADER + i] = object_line(i, 1 + k % 9);
+        }
+        Kind::Material => {
+            let m = (k * 37) % 100;
+            lines[FIRST_MATERIAL + m] = material_line(m, (m + 1 + k % 9) % 10);
+        }
+        Kind::Let => lines[LET_LINE] = let_line(k + 1),
+    }
     let mut text = lines.join("\n");
     text.push('\n');
     text
+}
+
+/// The statements an edit of `kind` checks again: the edited one, and for the constant every
+/// material (which names it).
+fn checked(kind: Kind) -> usize {
+    match kind {
+        Kind::Object | Kind::Material => 1,
+        Kind::Let => 101,
+    }
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -131,47 +171,50 @@ fn front_end(objects: usize, edits: usize) {
         peak as f64 / 1e6,
         peak as f64 / original.len() as f64
     );
-    let mut times = Vec::new();
     let mut cache = BuildCache::new();
     let opts = BuildOptions::default();
-    let mut build: [Vec<f64>; 3] = Default::default();
-    for k in 0..edits {
-        let mut loader = MemLoader::new();
-        loader.insert(path, edit(&mut lines, objects, k));
-        let t = Instant::now();
-        let r = inc.compile(path, &loader, &mut SourceMap::new());
-        times.push(t.elapsed().as_secs_f64() * 1e3);
-        let desc = r.value.expect("the edit compiles");
-        let built = scene::build_cached(&desc, &loader, &opts, &mut cache)
-            .value
-            .expect("the edit builds");
-        let t = &built.timings;
-        for (v, d) in build.iter_mut().zip([t.total, t.asset_load, t.accel_build]) {
-            v.push(d.as_secs_f64() * 1e3);
-        }
-        cache.recycle(built);
-        assert!(
-            matches!(inc.reuse, Reuse::Statements { checked: 1, .. }),
-            "edit {k} took {:?}",
-            inc.reuse
-        );
-    }
     println!(
         "front end, {} bytes: full compile median {:.1} ms; incremental: first (full, with memo) \
-         {first:.1} ms, one-object edit median {:.1} ms (slowest {:.1} ms, {edits} edits)",
+         {first:.1} ms",
         original.len(),
         median(&mut full),
-        median(&mut times.clone()),
-        max(&times)
     );
-    let [mut total, mut assets, mut accel] = build;
-    println!(
-        "scene::build_cached after each edit: median {:.1} ms (meshes and checks {:.1} ms, \
-         acceleration structure {:.1} ms)",
-        median(&mut total),
-        median(&mut assets),
-        median(&mut accel)
-    );
+    for kind in KINDS {
+        let mut times = Vec::new();
+        let mut build: [Vec<f64>; 3] = Default::default();
+        for k in 0..edits {
+            let mut loader = MemLoader::new();
+            loader.insert(path, edit(&mut lines, objects, kind, k));
+            let t = Instant::now();
+            let r = inc.compile(path, &loader, &mut SourceMap::new());
+            times.push(t.elapsed().as_secs_f64() * 1e3);
+            let desc = r.value.expect("the edit compiles");
+            let built = scene::build_cached(&desc, &loader, &opts, &mut cache)
+                .value
+                .expect("the edit builds");
+            let t = &built.timings;
+            for (v, d) in build.iter_mut().zip([t.total, t.asset_load, t.accel_build]) {
+                v.push(d.as_secs_f64() * 1e3);
+            }
+            cache.recycle(built);
+            assert!(
+                matches!(inc.reuse, Reuse::Statements { checked: n, .. } if n == checked(kind)),
+                "{kind:?} edit {k} took {:?}",
+                inc.reuse
+            );
+        }
+        let [mut total, mut assets, mut accel] = build;
+        println!(
+            "{kind:?} edits ({edits}): incremental compile median {:.1} ms (slowest {:.1} ms); \
+             scene::build_cached after each: median {:.1} ms (meshes and checks {:.1} ms, \
+             acceleration structure {:.1} ms)",
+            median(&mut times.clone()),
+            max(&times),
+            median(&mut total),
+            median(&mut assets),
+            median(&mut accel)
+        );
+    }
 }
 
 fn watch(objects: usize, edits: usize) {
@@ -186,48 +229,58 @@ fn watch(objects: usize, edits: usize) {
     let wait = |name: &str, final_only: bool| watch.wait(name, final_only);
     let (_, first) = wait("compiled", false);
     wait("pass", true);
-    let mut figures: [Vec<f64>; 6] = Default::default();
-    let mut incremental = 0;
-    for k in 0..edits {
-        let text = edit(&mut lines, objects, 1000 + k);
-        let t0 = Instant::now();
-        std::fs::write(&scn, text).expect("save");
-        let (t1, _) = wait("checked", false);
-        let (t3, c) = wait("compiled", false);
-        let (t2, p) = wait("pass", false);
-        incremental += usize::from(c["incremental"] == true);
-        let f = [
-            (t1 - t0).as_secs_f64() * 1e3,
-            (t2 - t0).as_secs_f64() * 1e3,
-            c["compile_ms"].as_f64().unwrap_or(0.0),
-            c["build_ms"].as_f64().unwrap_or(0.0),
-            p["ms"].as_f64().unwrap_or(0.0),
-            (t3 - t0).as_secs_f64() * 1e3,
-        ];
-        for (v, x) in figures.iter_mut().zip(f) {
-            v.push(x);
+    println!(
+        "scnc watch, first compile {:.0} ms + build {:.0} ms",
+        first["compile_ms"].as_f64().unwrap_or(0.0),
+        first["build_ms"].as_f64().unwrap_or(0.0),
+    );
+    for kind in KINDS {
+        let mut figures: [Vec<f64>; 6] = Default::default();
+        let mut incremental = 0;
+        // What the cached builds made again (`rebuilt` of the `compiled` events), all edits.
+        let mut rebuilt = std::collections::BTreeSet::new();
+        for k in 0..edits {
+            let text = edit(&mut lines, objects, kind, 1000 + k);
+            let t0 = Instant::now();
+            std::fs::write(&scn, text).expect("save");
+            let (t1, _) = wait("checked", false);
+            let (t3, c) = wait("compiled", false);
+            let (t2, p) = wait("pass", false);
+            incremental += usize::from(c["incremental"] == true);
+            let made = c["rebuilt"].as_array().into_iter().flatten();
+            rebuilt.extend(made.filter_map(|r| r.as_str().map(str::to_string)));
+            let f = [
+                (t1 - t0).as_secs_f64() * 1e3,
+                (t2 - t0).as_secs_f64() * 1e3,
+                c["compile_ms"].as_f64().unwrap_or(0.0),
+                c["build_ms"].as_f64().unwrap_or(0.0),
+                p["ms"].as_f64().unwrap_or(0.0),
+                (t3 - t0).as_secs_f64() * 1e3,
+            ];
+            for (v, x) in figures.iter_mut().zip(f) {
+                v.push(x);
+            }
+            wait("pass", true);
         }
-        wait("pass", true);
+        let [mut diag, mut image, mut compile, mut build, mut pass, mut built] = figures;
+        println!(
+            "  {kind:?} edits ({edits}, {incremental} incremental): save -> diagnostics \
+             (checked event) median {:.1} ms (slowest {:.1}), save -> build done (compiled \
+             event) median {:.1} ms, save -> first image median {:.1} ms (slowest {:.1}); of \
+             which compile {:.1} ms, build {:.1} ms, first pass (1 spp, 640x360) {:.1} ms; \
+             rebuilt {rebuilt:?}",
+            median(&mut diag),
+            max(&diag),
+            median(&mut built),
+            median(&mut image),
+            max(&image),
+            median(&mut compile),
+            median(&mut build),
+            median(&mut pass)
+        );
     }
     drop(watch);
     let _ = std::fs::remove_dir_all(&dir);
-    let [mut diag, mut image, mut compile, mut build, mut pass, mut built] = figures;
-    println!(
-        "scnc watch, first compile {:.0} ms + build {:.0} ms; {edits} one-object edits \
-         ({incremental} incremental): save -> diagnostics (checked event) median {:.1} ms \
-         (slowest {:.1}), save -> build done (compiled event) median {:.1} ms, save -> first image median {:.1} ms (slowest {:.1}); of which \
-         compile {:.1} ms, build {:.1} ms, first pass (1 spp, 640x360) {:.1} ms",
-        first["compile_ms"].as_f64().unwrap_or(0.0),
-        first["build_ms"].as_f64().unwrap_or(0.0),
-        median(&mut diag),
-        max(&diag),
-        median(&mut built),
-        median(&mut image),
-        max(&image),
-        median(&mut compile),
-        median(&mut build),
-        median(&mut pass)
-    );
 }
 
 fn main() {

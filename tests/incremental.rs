@@ -4,13 +4,16 @@
 //! are replayed on a scene, and after each one the IR and every diagnostic (severity, code,
 //! message, labels with their spans, help) must be the full compile's. The common edit (one
 //! object's numbers) of a scene the fast path covers (one file without includes, no error)
-//! must take it, every time.
+//! must take it, every time; so must a value edit of a `let`, a `material`, a (built-in)
+//! `mesh` or a (checker) `texture` (a digit after its `=`) that leaves the scene without an
+//! error.
 
 use scnc::assets::MemLoader;
 use scnc::compile::{compile_with, Incremental, Overrides, Reuse};
 use scnc::source::SourceMap;
 use scnc::testing::SplitMix64;
 use std::path::Path;
+use std::sync::Arc;
 
 fn base_scene() -> String {
     let mut s = String::from(
@@ -18,7 +21,10 @@ fn base_scene() -> String {
          camera main { eye (0, 5, -20)  target (0, 0, 0)  fov 40deg }\n\
          render { resolution 8 x 6 }\n\
          mesh box1 = box { size (1, 2, 1) }\nmesh ball = icosphere { radius 1  subdivisions 1 }\n\
-         mesh spare = box { size 1 }\n",
+         mesh spare = box { size 1 }\n\
+         texture board = checker { even #e8e8e8  odd #303030  scale 8 }\n\
+         material floor = phong { diffuse board  specular 0.2 }\n\
+         object box1 { material floor  transform { scale (9, 0.1, 9) } }\n",
     );
     for m in 0..4 {
         s.push_str(&format!(
@@ -45,28 +51,73 @@ fn base_scene() -> String {
 
 const INCLUDED: &str = "scnc 1\nmaterial extra = phong { diffuse #fff }\n";
 
-/// One seeded edit of `text`, and whether it was the common edit (a digit of an `object`
-/// line replaced).
-fn edit(rng: &mut SplitMix64, text: &str) -> (String, bool) {
+/// The kinds of edit whose taking the fast path the replay counts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    /// A digit of an `object` line replaced.
+    ObjectNumber,
+    /// A digit after the `=` of a `let` line replaced.
+    Let,
+    /// A digit after the `=` of a `material` line replaced.
+    Material,
+    /// A digit after the `=` of a `mesh` line replaced.
+    Mesh,
+    /// A digit after the `=` of a `texture` line replaced.
+    Texture,
+}
+
+const KINDS: [(Kind, &str); 4] = [
+    (Kind::Let, "let "),
+    (Kind::Material, "material "),
+    (Kind::Mesh, "mesh "),
+    (Kind::Texture, "texture "),
+];
+
+/// A digit of line `i` (after byte `from`) replaced by a seeded one; `false` when it has none.
+fn replace_digit(rng: &mut SplitMix64, line: &mut String, from: usize) -> bool {
+    let digits: Vec<usize> = line
+        .char_indices()
+        .filter(|&(p, c)| p >= from && c.is_ascii_digit())
+        .map(|(p, _)| p)
+        .collect();
+    let Some(&p) = digits.get(rng.below(digits.len())) else {
+        return false;
+    };
+    let d = char::from(b'0' + rng.below(10) as u8);
+    line.replace_range(p..p + 1, &d.to_string());
+    true
+}
+
+/// One seeded edit of `text`, and its kind when it is one the replay counts (with the name of
+/// the declaration edited).
+fn edit(rng: &mut SplitMix64, text: &str) -> (String, Option<(Kind, String)>) {
     let lines: Vec<&str> = text.split_inclusive('\n').collect();
     let line = rng.below(lines.len());
     let mut out: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
-    match rng.below(12) {
+    match rng.below(18) {
         // The common edit: a number of an object changes.
         0..=3 => {
             let objects: Vec<usize> = (0..lines.len())
                 .filter(|&i| lines[i].starts_with("object"))
                 .collect();
             if let Some(&i) = objects.get(rng.below(objects.len())) {
-                let digits: Vec<usize> = out[i]
-                    .char_indices()
-                    .filter(|(_, c)| c.is_ascii_digit())
-                    .map(|(p, _)| p)
-                    .collect();
-                if let Some(&p) = digits.get(rng.below(digits.len())) {
-                    let d = char::from(b'0' + rng.below(10) as u8);
-                    out[i].replace_range(p..p + 1, &d.to_string());
-                    return (out.concat(), true);
+                if replace_digit(rng, &mut out[i], 0) {
+                    return (out.concat(), Some((Kind::ObjectNumber, String::new())));
+                }
+            }
+        }
+        // A value of a declaration changes: a `let`, a `material`, a `mesh`, a `texture`.
+        12..=17 => {
+            let (kind, word) = KINDS[rng.below(KINDS.len())];
+            let decls: Vec<usize> = (0..lines.len())
+                .filter(|&i| lines[i].starts_with(word))
+                .collect();
+            if let Some(&i) = decls.get(rng.below(decls.len())) {
+                let value = out[i].find('=').unwrap_or(0);
+                let name = out[i][word.len()..].split_whitespace().next();
+                let name = name.unwrap_or_default().to_string();
+                if replace_digit(rng, &mut out[i], value) {
+                    return (out.concat(), Some((kind, name)));
                 }
             }
         }
@@ -90,7 +141,7 @@ fn edit(rng: &mut SplitMix64, text: &str) -> (String, bool) {
                     t.insert_str(p, c);
                 }
             }
-            return (t, false);
+            return (t, None);
         }
         // A line deleted, duplicated or moved.
         5 => {
@@ -128,7 +179,7 @@ fn edit(rng: &mut SplitMix64, text: &str) -> (String, bool) {
             } else {
                 t.replace(from, to)
             };
-            return (renamed, false);
+            return (renamed, None);
         }
         // Includes added and removed.
         8 => {
@@ -147,7 +198,7 @@ fn edit(rng: &mut SplitMix64, text: &str) -> (String, bool) {
             out[line].truncate(cut);
             out[line].push('\n');
         }
-        10 => return (base_scene(), false),
+        10 => return (base_scene(), None),
         // An object's material changed (a material may become used or unused).
         _ => {
             if let Some(i) = (0..out.len()).find(|&i| out[i].contains("material m0 ")) {
@@ -155,7 +206,7 @@ fn edit(rng: &mut SplitMix64, text: &str) -> (String, bool) {
             }
         }
     }
-    (out.concat(), false)
+    (out.concat(), None)
 }
 
 fn same(label: &str, incremental: &SourceMap, full: &SourceMap) -> Option<String> {
@@ -176,6 +227,21 @@ struct Replayed {
     number_edits_of_clean_scenes: usize,
     /// Those of them that took the fast path.
     number_edits_fast: usize,
+    /// Per declaration kind (`let`, `material`, `mesh`, `texture`): value edits made to a scene that
+    /// compiled without an error which left it without one, and those that took the fast path.
+    decl_edits: [(usize, usize); 4],
+}
+
+impl Replayed {
+    fn add(&mut self, r: &Replayed) {
+        self.fast += r.fast;
+        self.number_edits_of_clean_scenes += r.number_edits_of_clean_scenes;
+        self.number_edits_fast += r.number_edits_fast;
+        for (a, b) in self.decl_edits.iter_mut().zip(r.decl_edits) {
+            a.0 += b.0;
+            a.1 += b.1;
+        }
+    }
 }
 
 fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
@@ -184,7 +250,8 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
     let mut text = base_scene();
     let mut inc = Incremental::new(overrides.clone());
     let mut replayed = Replayed::default();
-    let mut number_edit_of_clean_scene = false;
+    // The kind of the last edit, when it was made to a scene without an error.
+    let mut clean_edit: Option<(Kind, String)> = None;
     // Every other step holds its scene across the next edit, as `scnc watch` may: the memo
     // then edits a copy (`Arc::make_mut`), and the held scene must not change.
     let mut held: Option<(std::sync::Arc<scnc::ir::SceneDesc>, String)> = None;
@@ -214,7 +281,8 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
             "{label}: IR differs (all bits) on\n{text}"
         );
         // The fast path covers one file without includes (`Incremental`'s memo).
-        let clean = !got.has_errors() && !text.contains("include");
+        let failed = got.has_errors();
+        let clean = !failed && !text.contains("include");
         if let Some((scene, debug)) = held.take() {
             assert_eq!(format!("{scene:?}"), debug, "{label}: a held scene changed");
         }
@@ -227,12 +295,26 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
         let fast = matches!(inc.reuse, Reuse::Statements { .. });
         let reused = fast || matches!(inc.reuse, Reuse::Unchanged);
         replayed.fast += usize::from(fast);
-        if number_edit_of_clean_scene {
-            replayed.number_edits_of_clean_scenes += 1;
-            replayed.number_edits_fast += usize::from(reused);
+        // A `let` a `--define` overrides keeps the define's value: its edit takes the full path.
+        let overridden = |kind, name: &str| {
+            kind == Kind::Let && overrides.defines.iter().any(|(n, _)| n == name)
+        };
+        match clean_edit.take() {
+            Some((Kind::ObjectNumber, _)) => {
+                replayed.number_edits_of_clean_scenes += 1;
+                replayed.number_edits_fast += usize::from(reused);
+            }
+            Some((kind, name)) if !failed && !overridden(kind, &name) => {
+                let at = KINDS.iter().position(|(k, _)| *k == kind).unwrap_or(0);
+                let counts = &mut replayed.decl_edits[at];
+                counts.0 += 1;
+                counts.1 += usize::from(reused);
+                assert!(reused, "{label}: a {kind:?} value edit took the full path");
+            }
+            _ => {}
         }
-        let (edited, number_edit) = edit(&mut rng, &text);
-        number_edit_of_clean_scene = clean && number_edit;
+        let (edited, kind) = edit(&mut rng, &text);
+        clean_edit = kind.filter(|_| clean);
         text = edited;
     }
     replayed
@@ -247,15 +329,21 @@ fn seeded_edits_compile_as_a_fresh_compile_does() {
             100,
             Overrides::default(),
         );
-        total.fast += r.fast;
-        total.number_edits_of_clean_scenes += r.number_edits_of_clean_scenes;
-        total.number_edits_fast += r.number_edits_fast;
+        total.add(&r);
     }
     eprintln!(
-        "fast {} of 800; number edits of clean scenes {}, fast {}",
-        total.fast, total.number_edits_of_clean_scenes, total.number_edits_fast
+        "fast {} of 800; number edits of clean scenes {}, fast {}; let, material, mesh, \
+         texture value edits of clean scenes (made, fast) {:?}",
+        total.fast, total.number_edits_of_clean_scenes, total.number_edits_fast, total.decl_edits
     );
     assert_fast_path_taken(&total, 20);
+    for (kind, (made, _)) in KINDS.iter().zip(total.decl_edits) {
+        assert!(
+            made >= 5,
+            "only {made} {:?} value edits of clean scenes",
+            kind.0
+        );
+    }
 }
 
 /// The common edit (one object's number) of a scene without errors always takes the fast
@@ -309,4 +397,75 @@ fn an_object_edit_rechecks_that_object_alone() {
     );
     let _ = inc.compile(path, &loader, &mut sources);
     assert_eq!(inc.reuse, Reuse::Unchanged);
+}
+
+#[test]
+fn a_declaration_edit_rechecks_it_and_what_names_it() {
+    let path = Path::new("edit.scn");
+    let text = base_scene();
+    let mut inc = Incremental::new(Overrides::default());
+    let mut loader = MemLoader::new();
+    loader.insert(path, text.clone());
+    let mut sources = SourceMap::new();
+    let _ = inc.compile(path, &loader, &mut sources);
+    assert_eq!(inc.reuse, Reuse::Full);
+    let mut edit = |from: &str, to: &str, text: &mut String| {
+        let edited = text.replacen(from, to, 1);
+        assert_ne!(&edited, text);
+        *text = edited;
+        loader.insert(path, text.clone());
+        let got = inc.compile(path, &loader, &mut sources);
+        let want = compile_with(path, &loader, &mut SourceMap::new(), &Overrides::default());
+        assert_eq!(
+            format!("{:?}", got.value),
+            format!("{:?}", want.value.map(Arc::new))
+        );
+        inc.reuse
+    };
+    let mut text = text;
+    let material = edit("rgb(0.2, 0.5", "rgb(0.7, 0.5", &mut text);
+    assert_eq!(
+        material,
+        Reuse::Statements {
+            parsed: 2,
+            checked: 1
+        }
+    );
+    // `k` is named by the 24 objects of the row (not by the floor, the groups or the camera).
+    let constant = edit("let k = 2", "let k = 3", &mut text);
+    assert_eq!(
+        constant,
+        Reuse::Statements {
+            parsed: 2,
+            checked: 25
+        }
+    );
+    // The same value written otherwise: nothing names a changed constant.
+    let same = edit("let k = 3", "let k = 1 + 2", &mut text);
+    assert_eq!(
+        same,
+        Reuse::Statements {
+            parsed: 2,
+            checked: 1
+        }
+    );
+    let mesh = edit("radius 1", "radius 2", &mut text);
+    assert_eq!(
+        mesh,
+        Reuse::Statements {
+            parsed: 2,
+            checked: 1
+        }
+    );
+    let texture = edit("scale 8", "scale 6", &mut text);
+    assert_eq!(
+        texture,
+        Reuse::Statements {
+            parsed: 2,
+            checked: 1
+        }
+    );
+    // A renamed material is not the same declaration.
+    let renamed = edit("material m3 =", "material m7 =", &mut text);
+    assert_eq!(renamed, Reuse::Full);
 }

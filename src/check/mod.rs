@@ -34,7 +34,7 @@ pub mod vocabulary;
 
 pub use early::{Placed, PreCheck};
 pub use eval::FUNCTIONS;
-pub use recheck::{check_tracked, CheckMemo};
+pub use recheck::{check_tracked, CheckMemo, Dependents};
 
 use std::collections::HashMap;
 
@@ -79,6 +79,7 @@ pub struct Checker<'s> {
     mesh_uses: Vec<u32>,
     /// Table index → index in the IR (`None`: dropped), set by `finish`.
     material_map: Vec<Option<u32>>,
+    texture_map: Vec<Option<u32>>,
     mesh_map: Vec<Option<u32>>,
     /// Index into `cameras` chosen by `render { camera NAME }`.
     active_camera: usize,
@@ -106,6 +107,7 @@ impl<'s> Checker<'s> {
             material_uses: Vec::new(),
             mesh_uses: Vec::new(),
             material_map: Vec::new(),
+            texture_map: Vec::new(),
             mesh_map: Vec::new(),
             active_camera: 0,
         }

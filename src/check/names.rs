@@ -208,6 +208,7 @@ impl Checker<'_> {
         self.mark_override_materials_used();
         let (textures, texture_map) = self.keep_used_textures();
         let (materials, material_map) = self.keep_used_materials(&texture_map);
+        self.texture_map = texture_map;
         let (meshes, mesh_map) = self.keep_used_meshes(&material_map);
         let mut objects = std::mem::take(&mut self.objects);
         for o in &mut objects {
@@ -303,14 +304,7 @@ impl Checker<'_> {
         let materials = (all.into_iter().enumerate())
             .filter_map(|(i, m)| {
                 let mut m = m.filter(|_| used[i])?;
-                remap_color(&mut m.diffuse, texture_map);
-                remap_color(&mut m.specular, texture_map);
-                if let ir::ScalarInput::Texture(t) = &mut m.shininess {
-                    *t = texture_map[*t as usize].unwrap_or(0);
-                }
-                if let Some(n) = &mut m.normal_map {
-                    n.texture = texture_map[n.texture as usize].unwrap_or(0);
-                }
+                remap_textures(&mut m, texture_map);
                 material_map[i] = Some(kept);
                 kept += 1;
                 Some(m)
@@ -367,8 +361,18 @@ impl Names {
     }
 }
 
-fn remap_color(c: &mut ir::ColorInput, map: &[Option<u32>]) {
-    if let ir::ColorInput::Texture(t) = c {
-        *t = map[*t as usize].unwrap_or(0);
+/// A material's texture inputs from table indices to the IR's (`map`: table → IR index).
+pub(super) fn remap_textures(m: &mut ir::Material, map: &[Option<u32>]) {
+    let at = |t: u32| map.get(t as usize).copied().flatten().unwrap_or(0);
+    for c in [&mut m.diffuse, &mut m.specular] {
+        if let ir::ColorInput::Texture(t) = c {
+            *t = at(*t);
+        }
+    }
+    if let ir::ScalarInput::Texture(t) = &mut m.shininess {
+        *t = at(*t);
+    }
+    if let Some(n) = &mut m.normal_map {
+        n.texture = at(n.texture);
     }
 }

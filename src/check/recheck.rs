@@ -2,7 +2,9 @@
 //! constants, the declaration tables, the IR, every diagnostic in the order it was found, and
 //! one [`StmtRecord`] per statement) so that after an edit that changed only top-level `object`
 //! statements, those alone are checked again and spliced in (`compile::incremental` decides
-//! when an edit is such an edit; everything else is a full check).
+//! when an edit is such an edit). An edit of `let`, `material` and `mesh` declarations that
+//! keeps their names is re-checked in place with what names a changed constant
+//! ([`decls`]); everything else is a full check.
 //!
 //! Why the result is the full check's: an `object` is checked in the placement phase, after
 //! every constant and declaration, reading only constants, the `frame`, the name tables and the
@@ -16,6 +18,10 @@
 use std::ops::Range;
 use std::sync::Arc;
 
+mod decls;
+
+pub use decls::Dependents;
+
 use super::names::Table;
 use super::{Checker, PlacementStart, StmtRecord};
 use crate::diag::Diagnostic;
@@ -23,7 +29,8 @@ use crate::ir;
 use crate::source::{Shift, SourceMap};
 use crate::syntax::Stmt;
 
-/// What a full check of one statement list leaves for re-checking its `object`s.
+/// What a full check of one statement list leaves for re-checking its `object`s and
+/// declarations.
 pub struct CheckMemo {
     frame: f64,
     lets: super::Constants,
@@ -36,6 +43,9 @@ pub struct CheckMemo {
     used_before: PlacementStart,
     material_uses: Vec<u32>,
     mesh_uses: Vec<u32>,
+    /// The materials that refer to textures: (material, texture table indices), ascending.
+    material_textures: Vec<(u32, Vec<usize>)>,
+    texture_map: Vec<Option<u32>>,
     /// One per statement, in statement order.
     pub records: Vec<StmtRecord>,
     /// Every diagnostic of the check, in the order it was found.
@@ -77,6 +87,8 @@ pub fn check_tracked(
         used_before,
         material_uses: std::mem::take(&mut cx.material_uses),
         mesh_uses: std::mem::take(&mut cx.mesh_uses),
+        material_textures: std::mem::take(&mut cx.material_textures),
+        texture_map: std::mem::take(&mut cx.texture_map),
         records,
         diagnostics: std::mem::take(&mut cx.diags),
         scene: scene.map(Arc::new),
@@ -91,6 +103,15 @@ struct Rechecked {
 }
 
 impl CheckMemo {
+    /// Whether the statements `old` (indices into the old list) and `new` are all top-level
+    /// `object`s: the edit [`CheckMemo::recheck`] takes.
+    pub fn only_objects(&self, old: Range<usize>, new: &[Stmt]) -> bool {
+        self.records
+            .get(old)
+            .is_some_and(|rs| rs.iter().all(|r| r.object))
+            && new.iter().all(|s| matches!(s, Stmt::Object(_)))
+    }
+
     /// Replaces the check of the statements `old` (indices into the old list, every one a
     /// top-level `object`) by that of `new` (every one a top-level `object`), all other spans
     /// moving by `shift`; `sources` holds the new text. `false` when the result could differ
@@ -195,16 +216,7 @@ impl CheckMemo {
     /// Checks `new` (top-level `object`s) as the placement phase would, against the memo's
     /// constants and tables, counting their uses.
     fn check_objects(&mut self, sources: &SourceMap, new: &[Stmt]) -> Rechecked {
-        let mut cx = Checker::new(sources);
-        cx.frame = self.frame;
-        cx.lets = std::mem::take(&mut self.lets);
-        cx.poisoned = std::mem::take(&mut self.poisoned);
-        cx.defines = std::mem::take(&mut self.defines);
-        cx.tables = std::mem::take(&mut self.tables);
-        cx.used_meshes = vec![false; self.mesh_uses.len()];
-        cx.used_materials = vec![false; self.material_uses.len()];
-        cx.mesh_uses = std::mem::take(&mut self.mesh_uses);
-        cx.material_uses = std::mem::take(&mut self.material_uses);
+        let mut cx = self.lend(sources);
         let mut records = Vec::with_capacity(new.len());
         for stmt in new {
             let (diags, objects) = (cx.diags.len(), cx.objects.len());
@@ -217,17 +229,38 @@ impl CheckMemo {
                 material: material.map(|m| m as u32),
             });
         }
+        self.take_back(&mut cx);
+        Rechecked {
+            diags: std::mem::take(&mut cx.diags),
+            objects: std::mem::take(&mut cx.objects),
+            records,
+        }
+    }
+
+    /// A checker in the state the full check left (constants, names, use counts), to check
+    /// statements again; [`CheckMemo::take_back`] returns that state.
+    fn lend<'s>(&mut self, sources: &'s SourceMap) -> Checker<'s> {
+        let mut cx = Checker::new(sources);
+        cx.frame = self.frame;
+        cx.lets = std::mem::take(&mut self.lets);
+        cx.poisoned = std::mem::take(&mut self.poisoned);
+        cx.defines = std::mem::take(&mut self.defines);
+        cx.tables = std::mem::take(&mut self.tables);
+        cx.used_meshes = vec![false; self.mesh_uses.len()];
+        cx.used_materials = vec![false; self.material_uses.len()];
+        cx.mesh_uses = std::mem::take(&mut self.mesh_uses);
+        cx.material_uses = std::mem::take(&mut self.material_uses);
+        cx
+    }
+
+    /// Takes back what [`CheckMemo::lend`] lent (`cx` keeps its diagnostics and objects).
+    fn take_back(&mut self, cx: &mut Checker) {
         self.lets = std::mem::take(&mut cx.lets);
         self.poisoned = std::mem::take(&mut cx.poisoned);
         self.defines = std::mem::take(&mut cx.defines);
         self.tables = std::mem::take(&mut cx.tables);
         self.mesh_uses = std::mem::take(&mut cx.mesh_uses);
         self.material_uses = std::mem::take(&mut cx.material_uses);
-        Rechecked {
-            diags: std::mem::take(&mut cx.diags),
-            objects: std::mem::take(&mut cx.objects),
-            records,
-        }
     }
 
     /// Which meshes are used (by an object, or by something checked before the objects).

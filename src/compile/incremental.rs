@@ -6,15 +6,21 @@
 //! [`CheckMemo`]. After an edit of the scene file it parses only the statements around the
 //! edited bytes ([`super::edit`]) and, when every statement that changed is a top-level
 //! `object`, re-checks those alone ([`CheckMemo::recheck`]) and moves every other span by the
-//! edit. Anything else is a full compile, which is always correct: a scene with includes or any
-//! syntax error or file-level diagnostic, an edit of a declaration, a constant, a camera or the
-//! render block, an edit that makes a mesh or material used or unused, and any edit where a
-//! kept span would reach into the edited bytes. `scnc watch` and `scnc lsp` compile through it;
+//! edit. When the changed statements are `let`s, `material`s, `mesh`es (not `obj`), `texture`s
+//! (not `image`) and `object`s, one for one and each keeping its name, it re-checks them and the statements that
+//! name a constant whose value changed ([`CheckMemo::recheck_decls`], which finds them through
+//! [`super::dependents`]). Anything else is a full compile, which is always correct: a scene
+//! with includes or any syntax error or file-level diagnostic, a statement added, removed or
+//! renamed among declarations, an edit of a light, a camera or the render block (or
+//! of a constant one of them names), a declaration or `let` with a diagnostic, an edit that
+//! makes a mesh or material used or unused, and any edit where a kept span would reach into the
+//! edited bytes. `scnc watch` and `scnc lsp` compile through it;
 //! `tests/incremental.rs` replays seeded edits and compares every result with a fresh compile.
 
 use std::path::Path;
 use std::sync::Arc;
 
+use super::dependents;
 use super::edit::{self, Region};
 use super::{decode, reading_order, Driver, Overrides};
 use crate::assets::Loader;
@@ -32,11 +38,12 @@ pub enum Reuse {
     Full,
     /// The text was the same: the last result again.
     Unchanged,
-    /// Only the edited statements were parsed, and only changed `object`s checked again.
+    /// Only the edited statements were parsed, and only they and what names a changed constant
+    /// checked again.
     Statements {
-        /// Statements parsed again.
+        /// Statements parsed again (besides those found to name a changed constant).
         parsed: usize,
-        /// `object` statements checked again.
+        /// Statements checked again.
         checked: usize,
     },
 }
@@ -198,18 +205,39 @@ impl Memo {
             return None;
         }
         let sources = self.new_sources(text);
-        if !self
-            .check
-            .recheck(&sources, old_range.clone(), &new, &region.shift)
-        {
-            return None;
-        }
-        self.move_spans(&region, old_range, &new)?;
+        let checked = if self.check.only_objects(old_range.clone(), &new) {
+            if !(self.check).recheck(&sources, old_range.clone(), &new, &region.shift) {
+                return None;
+            }
+            self.move_spans(&region, old_range, &new)?;
+            new.len()
+        } else {
+            let old_stmts = self.parse_old(&old, old_range.clone())?;
+            self.move_spans(&region, old_range.clone(), &new)?;
+            let spans = &self.spans;
+            let mut naming = |name: &str| dependents::naming(text, spans, name);
+            let shift = &region.shift;
+            (self.check).recheck_decls(&sources, old_range, &old_stmts, new, shift, &mut naming)?
+        };
         self.sources = sources;
         Some(Reuse::Statements {
             parsed: parsed_count,
-            checked: new.len(),
+            checked,
         })
+    }
+
+    /// The old statements `range` (of the old text `old`), parsed again.
+    fn parse_old(&self, old: &str, range: std::ops::Range<usize>) -> Option<Vec<Stmt>> {
+        let start = match self.spans.get(range.start) {
+            Some(&(s, _)) => s as usize,
+            None => return range.is_empty().then(Vec::new),
+        };
+        let end = self
+            .spans
+            .get(range.end)
+            .map_or(old.len(), |&(s, _)| s as usize);
+        let parsed = syntax::parse_region(FileId(0), old, start, end)?;
+        (parsed.len() == range.len()).then_some(parsed)
     }
 
     /// The sources of a compile of `text`: the scene file's entry with the new text, the

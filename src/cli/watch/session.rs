@@ -1,8 +1,9 @@
 //! `scnc watch`: one compile of the loop. Reads the scene and its includes and assets through a
 //! recording loader (every path asked for, with the content hash of the bytes it got, or
 //! `None` if missing: that is the next watch set), builds through the [`BuildCache`], and says
-//! what was rebuilt. The front end is incremental: an edit of some `object`s re-parses and
-//! re-checks those alone.
+//! what was rebuilt. The front end is incremental: an edit of some `object`s, or of the values
+//! of `let`s, materials, meshes or textures, re-parses and re-checks those alone (with what
+//! names a changed constant; `compile::Incremental`).
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};

@@ -1,0 +1,395 @@
+//! Stage 2, check, incrementally: an edit of declarations that keep their names — a `let`'s
+//! value, a `material`'s, a `mesh`'s or a `texture`'s properties (`let k = 3` → `let k = 4`,
+//! `material m = phong { diffuse #f00 }` → `... #0f0 }`), and `object`s beside them — re-checked in place,
+//! with every statement that names a constant whose value changed (found by name through
+//! [`Dependents`]), and spliced into the [`CheckMemo`].
+//!
+//! Why the result is the full check's: the memo is of a check with no diagnostic before its
+//! placement phase (no duplicate, no error in a `let` or a declaration), and the re-check keeps
+//! it so: a re-checked `let` or declaration with a diagnostic, a renamed one, a redeclaration
+//! (not the first of its name), an `obj` mesh, an `image` texture, a material that comes to refer to other
+//! textures than it did or that has a normal map (its warning reads the texture), a `let`
+//! that a `--define` overrides or that names a constant declared after it, and a constant
+//! named by any other kind of statement (a camera, a light, a group, the render block) make it
+//! decline. So the names, their table indices and the diagnostics before the placements stay;
+//! a `let` is evaluated again as the check evaluates it (the constants before it are the
+//! check's), then the declarations and `object`s that name it, which the check lowers after
+//! every `let`, against all constants. A texture, material or mesh keeps its table index and, since
+//! which are used is unchanged (the re-check declines otherwise, as `recheck` does), its IR
+//! index: its IR entry is replaced there. An `object` re-checked gives its diagnostics and IR
+//! objects, put in place of its old ones in the placement phase's statement order.
+
+use std::collections::BTreeMap;
+use std::ops::Range;
+
+use super::super::names::Namespace;
+use super::super::{Checker, StmtRecord};
+use super::CheckMemo;
+use crate::diag::Diagnostic;
+use crate::ir;
+use crate::source::{Shift, SourceMap};
+use crate::syntax::{DeclKind, Expr, ExprKind, Stmt};
+
+/// The statements of the new text that name `name` (index among all top-level statements, and
+/// the statement parsed), in order; `None` when one cannot be parsed alone. It may give more
+/// than those that name it (a word in a comment or a string): those are checked again too.
+pub type Dependents<'a> = dyn FnMut(&str) -> Option<Vec<(usize, Stmt)>> + 'a;
+
+/// What a re-check of declarations and objects produced.
+#[derive(Default)]
+struct Redone {
+    /// Per `object` statement checked again: its record, diagnostics and IR objects.
+    objects: BTreeMap<usize, (StmtRecord, Vec<Diagnostic>, Vec<ir::Object>)>,
+    /// Materials lowered again (table index, IR).
+    materials: Vec<(usize, ir::Material)>,
+    /// Meshes lowered again (table index, IR).
+    meshes: Vec<(usize, ir::Mesh)>,
+    /// Textures lowered again (table index, IR).
+    textures: Vec<(usize, ir::Texture)>,
+    /// Statements checked again.
+    checked: usize,
+}
+
+impl CheckMemo {
+    /// Replaces the check of the statements `old` (indices into the old list; `old_stmts`, as
+    /// parsed from the old text) by that of `new`, one for one, each the same declaration
+    /// (kind and name) or an `object`; every other span moves by `shift`, and `sources` holds
+    /// the new text. The number of statements checked again, or `None` when the result could
+    /// differ from a full check's: the memo is then spoiled, and the caller checks in full.
+    pub fn recheck_decls(
+        &mut self,
+        sources: &SourceMap,
+        old: Range<usize>,
+        old_stmts: &[Stmt],
+        new: Vec<Stmt>,
+        shift: &Shift,
+        dependents: &mut Dependents,
+    ) -> Option<usize> {
+        let same = old_stmts.len() == new.len() && old.len() == new.len();
+        if !same || self.used_before.diags != 0 || self.records.len() < old.end {
+            return None;
+        }
+        if !old_stmts
+            .iter()
+            .zip(&new)
+            .all(|(o, n)| same_declaration(o, n))
+        {
+            return None;
+        }
+        // The names and constants to the new text first: the re-check reports against them.
+        if !self.shift_names(shift) {
+            return None;
+        }
+        let was_used = (self.used_meshes(), self.used_materials());
+        let changed = (old.start..).zip(new).collect();
+        let mut cx = self.lend(sources);
+        let textures = &self.material_textures;
+        let redone = redo(&mut cx, changed, &self.records, textures, dependents);
+        self.take_back(&mut cx);
+        let redone = redone?;
+        if was_used != (self.used_meshes(), self.used_materials()) {
+            return None;
+        }
+        self.splice_decls(redone, shift)
+    }
+
+    /// Moves the spans of the name tables and constants by `shift`.
+    fn shift_names(&mut self, shift: &Shift) -> bool {
+        let mut ok = true;
+        for span in self.lets.spans_mut() {
+            ok &= shift.apply(span);
+        }
+        for t in &mut self.tables {
+            for span in &mut t.spans {
+                ok &= shift.apply(span);
+            }
+        }
+        ok
+    }
+
+    /// Puts what was checked again in place of the old, moving every other span by `shift`.
+    fn splice_decls(&mut self, redone: Redone, shift: &Shift) -> Option<usize> {
+        let Redone {
+            objects,
+            materials,
+            meshes,
+            textures,
+            checked,
+        } = redone;
+        let mut ok = true;
+        // Every diagnostic lies in the placement phase (the memo has none before it) or after.
+        let placed: usize = self.records.iter().map(|r| r.diags as usize).sum();
+        if placed > self.diagnostics.len() {
+            return None;
+        }
+        let mut tail = self.diagnostics.split_off(placed);
+        for d in &mut tail {
+            ok &= d.shift_spans(shift);
+        }
+        let diags = std::mem::take(&mut self.diagnostics);
+        let new_diags = objects.iter().map(|(&i, (_, d, _))| (i, d.clone()));
+        let mut diags = merge_runs(
+            diags,
+            &self.records,
+            |r| r.diags,
+            new_diags,
+            |d| d.shift_spans(shift),
+        )?;
+        diags.append(&mut tail);
+        self.diagnostics = diags;
+        if let Some(scene) = &mut self.scene {
+            let scene = std::sync::Arc::make_mut(scene);
+            let old_objects = std::mem::take(&mut scene.objects);
+            ok &= scene.shift_spans(shift);
+            for (i, m) in materials {
+                let at = self.material_map.get(i).copied().flatten();
+                if let Some(slot) = at.and_then(|k| scene.materials.get_mut(k as usize)) {
+                    *slot = m;
+                    super::super::names::remap_textures(slot, &self.texture_map);
+                }
+            }
+            for (i, t) in textures {
+                let at = self.texture_map.get(i).copied().flatten();
+                if let Some(slot) = at.and_then(|k| scene.textures.get_mut(k as usize)) {
+                    *slot = t;
+                }
+            }
+            for (i, m) in meshes {
+                let at = self.mesh_map.get(i).copied().flatten();
+                if let Some(slot) = at.and_then(|k| scene.meshes.get_mut(k as usize)) {
+                    *slot = m;
+                }
+            }
+            let (material_map, mesh_map) = (&self.material_map, &self.mesh_map);
+            let new_objects = objects.iter().map(|(&i, (_, _, objects))| {
+                let mut objects = objects.clone();
+                for o in &mut objects {
+                    o.mesh = mesh_map
+                        .get(o.mesh as usize)
+                        .copied()
+                        .flatten()
+                        .unwrap_or(0);
+                    let material = material_map.get(o.material as usize).copied();
+                    o.material = material.flatten().unwrap_or(0);
+                }
+                (i, objects)
+            });
+            scene.objects = merge_runs(
+                old_objects,
+                &self.records,
+                |r| r.objects,
+                new_objects,
+                |o| shift.apply(&mut o.span),
+            )?;
+        }
+        for (i, (record, _, _)) in objects {
+            *self.records.get_mut(i)? = record;
+        }
+        ok.then_some(checked)
+    }
+}
+
+/// Checks the statements `changed` (index → new statement) again against the memo's state in
+/// `cx`, then those that name a constant whose value changed: `None` when it must decline.
+fn redo(
+    cx: &mut Checker,
+    changed: BTreeMap<usize, Stmt>,
+    records: &[StmtRecord],
+    material_textures: &[(u32, Vec<usize>)],
+    dependents: &mut Dependents,
+) -> Option<Redone> {
+    let (mut lets, mut others): (BTreeMap<_, _>, BTreeMap<_, _>) = changed
+        .into_iter()
+        .partition(|(_, s)| matches!(s, Stmt::Let { .. }));
+    let mut redone = Redone::default();
+    // `let`s in statement order: each reads only constants before it.
+    while let Some((i, stmt)) = lets.pop_first() {
+        redone.checked += 1;
+        let Stmt::Let { name, value, .. } = &stmt else {
+            return None;
+        };
+        if !reevaluate(cx, name, value)? {
+            continue;
+        }
+        for (j, s) in dependents(&name.name)? {
+            match s {
+                // A `let` before this one cannot name it (the check would have reported it).
+                Stmt::Let { .. } if j <= i => {}
+                Stmt::Let { .. } => {
+                    lets.entry(j).or_insert(s);
+                }
+                _ => {
+                    others.entry(j).or_insert(s);
+                }
+            }
+        }
+    }
+    // Declarations and objects, in statement order, against every constant.
+    for (i, stmt) in others {
+        redone.checked += 1;
+        match &stmt {
+            Stmt::Object(_) => {
+                let old = *records.get(i)?;
+                if !old.object {
+                    return None;
+                }
+                let (mesh, material) = cx.placement(&stmt);
+                forget_use(&mut cx.mesh_uses, old.mesh)?;
+                forget_use(&mut cx.material_uses, old.material)?;
+                let objects = std::mem::take(&mut cx.objects);
+                let record = StmtRecord {
+                    object: true,
+                    diags: cx.diags.len() as u32,
+                    objects: objects.len() as u32,
+                    mesh: mesh.map(|m| m as u32),
+                    material: material.map(|m| m as u32),
+                };
+                let diags = std::mem::take(&mut cx.diags);
+                redone.objects.insert(i, (record, diags, objects));
+            }
+            Stmt::Decl(d) if d.kind == DeclKind::Material => {
+                let at = declared_at(cx, Namespace::Material, d)?;
+                let (material, textures) = cx.material(d);
+                let material = material?;
+                let old = material_textures.binary_search_by_key(&(at as u32), |(m, _)| *m);
+                let old_textures = old.map_or(&[][..], |k| &material_textures[k].1);
+                // The textures used stay the same; a normal map's warning reads the texture's
+                // IR, which the memo does not keep.
+                let same = textures == old_textures && material.normal_map.is_none();
+                if !cx.diags.is_empty() || !same {
+                    return None;
+                }
+                redone.materials.push((at, material));
+            }
+            Stmt::Decl(d) if d.kind == DeclKind::Mesh && d.ctor.args.is_none() => {
+                let at = declared_at(cx, Namespace::Mesh, d)?;
+                let mesh = cx.mesh(d);
+                if !cx.diags.is_empty() {
+                    return None;
+                }
+                redone.meshes.push((at, mesh?));
+            }
+            // Not an image: a normal map's warning reads only an image's encoding.
+            Stmt::Decl(d) if d.kind == DeclKind::Texture && d.ctor.args.is_none() => {
+                let at = declared_at(cx, Namespace::Texture, d)?;
+                let texture = cx.texture(d);
+                if !cx.diags.is_empty() {
+                    return None;
+                }
+                redone.textures.push((at, texture?));
+            }
+            _ => return None,
+        }
+    }
+    Some(redone)
+}
+
+/// Evaluates the `let` of `name` again: whether its value changed (`None`: decline).
+fn reevaluate(cx: &mut Checker, name: &crate::syntax::Ident, value: &Expr) -> Option<bool> {
+    let (old, at) = cx.lets.get(&name.name)?.clone();
+    let overridden = cx.defines.contains_key(&name.name);
+    if at != name.span || overridden || !names_only_earlier(cx, value, at.start) {
+        return None;
+    }
+    let new = cx.eval(value)?;
+    if !cx.diags.is_empty() {
+        return None;
+    }
+    // Bit for bit (`-0` is not `0` in the IR), not `==`.
+    if format!("{new:?}") == format!("{old:?}") {
+        return Some(false);
+    }
+    cx.lets.insert(&name.name, new, name.span);
+    Some(true)
+}
+
+/// Whether every constant `e` names was declared before `before` (in the full check, a later
+/// one is unknown to it), and `e` holds no array (read from the text by its own parser).
+fn names_only_earlier(cx: &Checker, e: &Expr, before: u32) -> bool {
+    match &e.kind {
+        ExprKind::Name(n) => cx.lets.get(n).is_none_or(|(_, at)| at.start < before),
+        ExprKind::Paren(e) | ExprKind::Neg(e) => names_only_earlier(cx, e, before),
+        ExprKind::Tuple(es) => es.iter().all(|e| names_only_earlier(cx, e, before)),
+        ExprKind::Call(c) => c.args.iter().all(|e| names_only_earlier(cx, e, before)),
+        ExprKind::Binary { lhs, rhs, .. } => {
+            names_only_earlier(cx, lhs, before) && names_only_earlier(cx, rhs, before)
+        }
+        ExprKind::Array | ExprKind::Error => false,
+        ExprKind::Number { .. } | ExprKind::HexColor(_) | ExprKind::Str(_) => true,
+    }
+}
+
+/// The table index of the declaration `d`, if it is the one its name resolves to.
+fn declared_at(cx: &Checker, ns: Namespace, d: &crate::syntax::Decl) -> Option<usize> {
+    let table = &cx.tables[ns as usize];
+    let at = table.get(&d.name.name)?;
+    (table.spans.get(at) == Some(&d.name.span)).then_some(at)
+}
+
+/// One use fewer of the declaration `at` (`None` when it had none: the memo is not this one).
+fn forget_use(uses: &mut [u32], at: Option<u32>) -> Option<()> {
+    if let Some(at) = at {
+        let n = uses.get_mut(at as usize)?;
+        *n = n.checked_sub(1)?;
+    }
+    Some(())
+}
+
+/// Whether `new` may stand in for `old` in [`CheckMemo::recheck_decls`]: the same `let`,
+/// `material`, (not `obj`) `mesh` or (not `image`) `texture` by name, or two `object`s.
+fn same_declaration(old: &Stmt, new: &Stmt) -> bool {
+    match (old, new) {
+        (Stmt::Let { name: a, .. }, Stmt::Let { name: b, .. }) => a.name == b.name,
+        (Stmt::Decl(a), Stmt::Decl(b)) => {
+            let kind = matches!(
+                a.kind,
+                DeclKind::Material | DeclKind::Mesh | DeclKind::Texture
+            );
+            let not_obj = a.ctor.args.is_none() && b.ctor.args.is_none();
+            kind && a.kind == b.kind && a.name.name == b.name.name && not_obj
+        }
+        (Stmt::Object(_), Stmt::Object(_)) => true,
+        _ => false,
+    }
+}
+
+/// `items`, one run per statement (`count` of its record long, in statement order), with the
+/// runs of the statements in `new` (index → run) put in place of theirs and every other item
+/// kept where `keep` (which moves its spans) allows; `None` when the counts do not add up or
+/// `keep` refuses one.
+fn merge_runs<T>(
+    items: Vec<T>,
+    records: &[StmtRecord],
+    count: fn(&StmtRecord) -> u32,
+    new: impl Iterator<Item = (usize, Vec<T>)>,
+    mut keep: impl FnMut(&mut T) -> bool,
+) -> Option<Vec<T>> {
+    let mut out = Vec::with_capacity(items.len());
+    let mut items = items.into_iter();
+    let mut ok = true;
+    let mut next = 0;
+    let mut take = |n: usize, out: &mut Vec<T>, items: &mut std::vec::IntoIter<T>| {
+        for mut item in items.by_ref().take(n) {
+            ok &= keep(&mut item);
+            out.push(item);
+        }
+    };
+    for (i, run) in new {
+        let before: usize = records
+            .get(next..i)?
+            .iter()
+            .map(|r| count(r) as usize)
+            .sum();
+        let old = count(records.get(i)?) as usize;
+        if items.len() < before + old {
+            return None;
+        }
+        take(before, &mut out, &mut items);
+        items.by_ref().take(old).for_each(drop);
+        out.extend(run);
+        next = i + 1;
+    }
+    let rest = items.len();
+    take(rest, &mut out, &mut items);
+    ok.then_some(out)
+}

@@ -1,0 +1,77 @@
+//! The incremental compile's look-up of what names something: the top-level statements of the
+//! new text in which a name occurs as a whole word (letters, digits and `_` on neither side),
+//! each parsed alone, for [`crate::check::CheckMemo::recheck_decls`] to check again those
+//! that name a constant whose value an edit changed.
+//!
+//! A text search (memchr's `memmem`, some GB/s) instead of a record of every statement's
+//! names: it costs a few milliseconds on the 8.8 MB scene of issue 22, keeps no index between
+//! edits, and can only find too much (the word in a comment or a string), never too little.
+//! A statement parsed from its start to the next statement's start parses as in the whole
+//! file (`edit.rs`).
+
+use crate::source::FileId;
+use crate::syntax::{self, Stmt};
+
+/// The statements of `text` (whose top-level statements lie at `spans`, in order) in which
+/// `name` occurs as a word: index and statement, in order; `None` when one of them does not
+/// parse alone into one statement.
+pub(super) fn naming(text: &str, spans: &[(u32, u32)], name: &str) -> Option<Vec<(usize, Stmt)>> {
+    let bytes = text.as_bytes();
+    let word = |b: Option<&u8>| b.is_some_and(|b| b.is_ascii_alphanumeric() || *b == b'_');
+    let mut found = Vec::new();
+    for at in memchr::memmem::find_iter(bytes, name.as_bytes()) {
+        let before = at.checked_sub(1).and_then(|i| bytes.get(i));
+        if word(before) || word(bytes.get(at + name.len())) {
+            continue;
+        }
+        let i = spans.partition_point(|&(_, end)| end as usize <= at);
+        let inside = spans.get(i).is_some_and(|&(start, _)| start as usize <= at);
+        if inside && found.last().is_none_or(|(last, _)| *last != i) {
+            found.push((i, parse_one(text, spans, i)?));
+        }
+    }
+    Some(found)
+}
+
+/// Top-level statement `i` of `text`, parsed alone.
+fn parse_one(text: &str, spans: &[(u32, u32)], i: usize) -> Option<Stmt> {
+    let start = spans.get(i)?.0 as usize;
+    let end = spans.get(i + 1).map_or(text.len(), |&(s, _)| s as usize);
+    let mut parsed = syntax::parse_region(FileId(0), text, start, end)?;
+    match parsed.len() {
+        1 => parsed.pop(),
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn spans_of(text: &str) -> Vec<(u32, u32)> {
+        let (file, _) = crate::syntax::parse(FileId(0), text).into_parts();
+        file.map(|f| {
+            f.statements
+                .iter()
+                .map(|s| (s.span().start, s.span().end))
+                .collect()
+        })
+        .unwrap_or_default()
+    }
+
+    #[test]
+    fn finds_the_statements_that_name_a_word_and_no_others() {
+        let text = "scnc 1\nlet k = 2\nlet kk = k * 2\n// k in a comment\nlet j = kk\n\
+                    object box { transform { translate (k, 0, 0) } }\n";
+        let spans = spans_of(text);
+        let found: Vec<usize> = naming(text, &spans, "k")
+            .expect("parses")
+            .into_iter()
+            .map(|(i, _)| i)
+            .collect();
+        assert_eq!(found, vec![1, 2, 4]);
+        let found = naming(text, &spans, "kk").expect("parses");
+        assert_eq!(found.len(), 2);
+        assert!(matches!(&found[1].1, Stmt::Let { name, .. } if name.name == "j"));
+    }
+}
