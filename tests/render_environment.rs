@@ -403,3 +403,121 @@ fn the_example_sky_has_its_sun_where_the_benchmark_puts_it() {
         }
     }
 }
+
+/// A 128 × 64 sky like the benchmark's (shared/bench/scenes/gen.py): a blue gradient above the
+/// horizon, a dim constant below, a step between them.
+fn gradient_sky() -> Vec<u8> {
+    let (w, h) = (128usize, 64usize);
+    let mut px = Vec::with_capacity(w * h);
+    for row in 0..h {
+        let cos_theta = (PI * (row as f32 + 0.5) / h as f32).cos();
+        for _ in 0..w {
+            let up = cos_theta.max(0.0);
+            px.push(if cos_theta >= 0.0 {
+                Vec3::new(0.25 + 0.35 * up, 0.35 + 0.45 * up, 0.55 + 0.75 * up)
+            } else {
+                Vec3::new(0.12, 0.1, 0.08)
+            });
+        }
+    }
+    pfm_bytes(w, h, &px)
+}
+
+/// A diffuse ground with a sphere on it under `sky` (16 × 12 pixels).
+fn ground_and_ball(sky: EnvSource) -> SceneDesc {
+    let mut desc = empty_desc(
+        camera(
+            Vec3::new(0.0, 2.5, -4.0),
+            Vec3::new(0.0, 0.3, 0.0),
+            Vec3::Y,
+            50.0,
+        ),
+        settings(16, 12, 1),
+    );
+    desc.meshes = vec![
+        quad("ground", 20.0, 20.0),
+        builtin(
+            "ball",
+            BuiltinShape::Sphere {
+                radius: 0.7,
+                segments: 16,
+            },
+        ),
+    ];
+    desc.materials = vec![phong("grey", Vec3::splat(0.6), 0.0, 1.0)];
+    desc.objects = vec![
+        object(0, 0, Mat4::IDENTITY),
+        object(1, 0, Mat4::from_translation(Vec3::new(0.0, 0.7, 0.0))),
+    ];
+    desc.lights = vec![environment(sky, 1.0, 0.3, true)];
+    desc
+}
+
+#[test]
+fn the_sky_control_variate_is_unbiased_where_the_sky_is_partly_hidden() {
+    // MIS on a diffuse surface under a sky alone subtracts the sky's spherical-harmonic fit
+    // and adds its closed-form integral (`env_harmonics`); cosine sampling alone (BrdfOnly)
+    // does not. Both must agree on pixels whose sky the ball hides in part.
+    let mut loader = MemLoader::new();
+    loader.insert("sky.pfm", gradient_sky());
+    let file = AssetPath {
+        path: "sky.pfm".into(),
+        written: "sky.pfm".into(),
+        span: span(),
+    };
+    let desc = ground_and_ball(EnvSource::Image(file));
+    let (mut scene, warnings) = build_with(&desc, &loader).expect("builds");
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let cam = PinholeCamera::new(&desc.cameras[0], 16, 12);
+    let mut checked = 0;
+    // Ground beside and in front of the ball, the ball's lower side and its top.
+    for (x, y) in [(4, 9), (11, 10), (8, 10), (8, 7), (8, 4), (3, 11)] {
+        let ray = cam.ray(Vec2::new(x as f32 + 0.5, y as f32 + 0.5));
+        scene.strategy = DirectStrategy::Mis;
+        let (cv, se_cv) = estimate(&scene, &ray, x, y, 8192);
+        scene.strategy = DirectStrategy::BrdfOnly;
+        let (cosine, se_cos) = estimate(&scene, &ray, x, y, 8192);
+        for c in 0..3 {
+            let se = se_cv[c].hypot(se_cos[c]);
+            assert!(
+                se < 0.02 * cosine[c].abs().max(0.05),
+                "pixel ({x},{y}): not sharp, {se} against {}",
+                cosine[c]
+            );
+            assert!(
+                (cv[c] - cosine[c]).abs() <= 4.0 * se + 1e-5,
+                "pixel ({x},{y}) channel {c}: {} ± {} with the fit, {} ± {} without",
+                cv[c],
+                se_cv[c],
+                cosine[c],
+                se_cos[c]
+            );
+        }
+        checked += 1;
+    }
+    assert_eq!(checked, 6);
+}
+
+#[test]
+fn under_a_constant_sky_an_open_diffuse_surface_renders_without_noise() {
+    // The fit of a constant sky is exact, so where nothing hides the sky the samples only
+    // estimate zero: open ground is noise-free (light sampling alone, uniform over the sphere
+    // for a constant sky, is not).
+    let sky = Vec3::new(0.5, 1.0, 2.0);
+    let mut desc = ground_and_ball(EnvSource::Constant(sky));
+    desc.objects.truncate(1);
+    let mut scene = build(&desc, AccelKind::Bvh);
+    let cam = PinholeCamera::new(&desc.cameras[0], 16, 12);
+    let (x, y) = (0, 11);
+    let ray = cam.ray(Vec2::new(x as f32 + 0.5, y as f32 + 0.5));
+    scene.strategy = DirectStrategy::Mis;
+    let (mean, se) = estimate(&scene, &ray, x, y, 256);
+    scene.strategy = DirectStrategy::LightOnly;
+    let (_, se_light) = estimate(&scene, &ray, x, y, 256);
+    for c in 0..3 {
+        let expected = 0.6 * sky[c] as f64;
+        assert!((mean[c] - expected).abs() < 1e-4 * expected, "{mean:?}");
+        assert!(se[c] < 1e-5 * expected, "noise {se:?}");
+        assert!(se_light[c] > 1e-3 * expected, "light sampling {se_light:?}");
+    }
+}

@@ -10,7 +10,9 @@
 //! an emitter or the sky they reach adds its radiance. The two strategies are combined by
 //! multiple importance sampling with the power heuristic (see `mis`); point lights (a delta
 //! distribution no BRDF ray can hit) keep pure light sampling. [`DirectStrategy`] switches to
-//! one strategy alone for tests and measurements.
+//! one strategy alone for tests and measurements. Under a sky alone, a diffuse surface adds the
+//! closed-form integral of the sky's smooth fit and its samples estimate only the rest (a
+//! control variate, `mis::sky_control`).
 //!
 //! Textured materials look their inputs up with the pixel's ray-cone footprint
 //! (`shade::texture::footprint`: an ellipse, scaled down as the pixel's sample count grows, so
@@ -35,11 +37,14 @@
 
 use glam::Vec3;
 
-use super::mis::strategy_at;
+use std::f32::consts::FRAC_1_PI;
+
+use super::mis::{sky_control, strategy_at};
 use super::rng::Sampler;
 use crate::geom::Ray;
 use crate::scene::{DirectStrategy, Scene, Surface};
 use crate::shade::brdf::Phong;
+use crate::shade::light::env_harmonics::SkyHarmonics;
 use crate::shade::normal_map;
 use crate::shade::surface::{emitter_hit, offset_origin, surface_hit, SurfaceHit};
 use crate::shade::texture::footprint::{self, Footprint};
@@ -200,16 +205,23 @@ fn shade(
     if phong.specular != Vec3::ZERO {
         counts.specular += 1;
     }
+    let strategy = strategy_at(scene, &phong);
     let at = Shading {
         scene,
         hit,
         ng,
         ns,
         wo,
-        strategy: strategy_at(scene, &phong),
+        sky_fit: sky_control(scene, &phong, strategy),
+        strategy,
         phong,
     };
-    mat.ambient + at.lights(sampler, counts) + at.brdf_rays(sampler, counts)
+    let direct = mat.ambient + at.lights(sampler, counts) + at.brdf_rays(sampler, counts);
+    match at.sky_fit {
+        // The control variate's closed-form part (`mis`): the samples above estimated the rest.
+        Some(fit) => direct + at.phong.diffuse * FRAC_1_PI * fit.irradiance(ns),
+        None => direct,
+    }
 }
 
 pub(super) struct Shading<'a> {
@@ -223,6 +235,9 @@ pub(super) struct Shading<'a> {
     /// The scene's strategy, or light sampling alone where BRDF rays cannot help
     /// ([`strategy_at`]).
     pub(super) strategy: DirectStrategy,
+    /// The sky's smooth fit, when the environment's light is estimated as its closed-form
+    /// integral plus sampled residuals ([`sky_control`]).
+    pub(super) sky_fit: Option<&'a SkyHarmonics>,
 }
 
 impl Shading<'_> {

@@ -29,9 +29,10 @@ use super::rng::Sampler;
 use crate::geom::Ray;
 use crate::scene::{DirectStrategy, LightSampling, Scene, Surface};
 use crate::shade::brdf::Phong;
+use crate::shade::light::env_harmonics::SkyHarmonics;
 use crate::shade::light::EnvSample;
 use crate::shade::sampling::power_heuristic;
-use crate::shade::{Environment, Light};
+use crate::shade::{Environment, Light, Picked};
 
 /// The strategy at a shading point with BRDF `phong`: the scene's, except that MIS falls back
 /// to light sampling alone on a purely diffuse surface in a scene without an environment whose
@@ -55,7 +56,37 @@ pub(super) fn strategy_at(scene: &Scene, phong: &Phong) -> DirectStrategy {
     }
 }
 
+/// The sky's fit for a control variate at a shading point with BRDF `phong` and strategy
+/// `strategy` (`shade::light::env_harmonics`): used when the environment is the scene's only
+/// light, the surface is purely diffuse (the fit's cosine-weighted integral is then known in
+/// closed form) and both strategies are combined by MIS (cosine-sampled BRDF rays cover every
+/// direction above the shading normal's horizon, where the fit is subtracted). Then the
+/// point's direct light is `ρ/π · E(n_s)` from the fit plus the MIS estimate of
+/// `∫ (L V [ω·n_g > 0] − L̃) ρ/π cos⁺`: every sample that lands in that hemisphere adds
+/// `(seen − fit)` where it used to add `seen` (a blocked or below-the-geometric-horizon sample
+/// adds `−fit`), and no ray is traced that was not before. Unbiased; where the whole sky is
+/// seen, only the sky's departure from its smooth fit is left to the samples.
+pub(super) fn sky_control<'a>(
+    scene: &'a Scene,
+    phong: &Phong,
+    strategy: DirectStrategy,
+) -> Option<&'a SkyHarmonics> {
+    if strategy != DirectStrategy::Mis || phong.specular != Vec3::ZERO {
+        return None;
+    }
+    match scene.lights.single() {
+        Some((Picked::Environment(env), _)) if !scene.lights.has_emitters() => env.harmonics(),
+        _ => None,
+    }
+}
+
 impl Shading<'_> {
+    /// The fitted sky radiance from unit direction `wi` subtracted by the control variate
+    /// ([`sky_control`]); zero without it.
+    fn sky_fit_towards(&self, wi: Vec3) -> Vec3 {
+        self.sky_fit.map_or(Vec3::ZERO, |fit| fit.radiance(wi))
+    }
+
     /// The MIS weight of a light sample in direction `wi` whose effective density is
     /// `light_density`.
     pub(super) fn light_weight(&self, light_density: f32, wi: Vec3) -> f32 {
@@ -87,9 +118,11 @@ impl Shading<'_> {
             sum += self.environment_sample(&s, pmf, other, counts);
         }
         // A sun below the horizon of either normal adds nothing (`environment_sample` would
-        // drop each of its samples): skip drawing them.
-        let sun_up =
-            !(env.bright_below_horizon_of(self.ns) || env.bright_below_horizon_of(self.ng));
+        // drop each of its samples): skip drawing them. Under the control variate a sample
+        // below the geometric horizon still subtracts the fit, so only the shading normal's
+        // horizon counts then.
+        let below_ng = self.sky_fit.is_none() && env.bright_below_horizon_of(self.ng);
+        let sun_up = !(env.bright_below_horizon_of(self.ns) || below_ng);
         if env.has_bright() && sun_up {
             let u = sampler.stratified_2d(STREAM_ENVIRONMENT_BRIGHT, pick, picks);
             if let Some((s, other)) = env.sample_bright(u) {
@@ -109,12 +142,17 @@ impl Shading<'_> {
         counts: &mut RayCounts,
     ) -> Vec3 {
         let cos = self.ns.dot(s.wi);
-        if s.pdf_solid_angle <= 0.0 || cos <= 0.0 || s.wi.dot(self.ng) <= 0.0 {
+        if s.pdf_solid_angle <= 0.0 || cos <= 0.0 {
             return Vec3::ZERO;
         }
-        if s.radiance == Vec3::ZERO || self.blocked(s.wi, counts) {
-            return Vec3::ZERO;
-        }
+        let seen =
+            s.wi.dot(self.ng) > 0.0 && s.radiance != Vec3::ZERO && !self.blocked(s.wi, counts);
+        let radiance = match (seen, self.sky_fit.is_some()) {
+            (true, false) => s.radiance,
+            (true, true) => s.radiance - self.sky_fit_towards(s.wi),
+            (false, true) => -self.sky_fit_towards(s.wi),
+            (false, false) => return Vec3::ZERO,
+        };
         let f = self.phong.eval(self.ns, s.wi, self.wo);
         let w = match self.strategy {
             DirectStrategy::Mis => {
@@ -126,7 +164,7 @@ impl Shading<'_> {
                 power_heuristic(s.pdf_solid_angle, other)
             }
         };
-        s.radiance * f * (cos * w / s.pdf_solid_angle)
+        radiance * f * (cos * w / s.pdf_solid_angle)
     }
 
     /// The sky's radiance in direction `wi` (unit) and the effective density of the
@@ -136,6 +174,19 @@ impl Shading<'_> {
         let (radiance, sky, bright) = env.radiance_and_densities_facing(wi, Some(self.ns));
         let light = if bright > 0.0 { sky.hypot(bright) } else { sky };
         (radiance, pmf * light)
+    }
+
+    /// A cosine-sampled BRDF direction `wi` whose sky is not seen, under the control
+    /// variate: `radiance` (minus the fit) weighted as the sky it would have seen.
+    fn brdf_residual(&self, env: &Environment, wi: Vec3, radiance: Vec3) -> Vec3 {
+        let pdf = self.phong.pdf(self.ns, self.wo, wi);
+        if pdf <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let (_, light_density) = self.sky_seen(env, wi);
+        let w = power_heuristic(pdf, light_density);
+        let f = self.phong.eval(self.ns, wi, self.wo);
+        radiance * f * (self.ns.dot(wi) * w / pdf)
     }
 
     /// Whether anything lies along `ray` (any-hit).
@@ -174,7 +225,15 @@ impl Shading<'_> {
                 continue;
             };
             let cos = self.ns.dot(wi);
-            if cos <= 0.0 || wi.dot(self.ng) <= 0.0 || !wi.is_finite() {
+            if cos <= 0.0 || !wi.is_finite() {
+                continue;
+            }
+            if wi.dot(self.ng) <= 0.0 {
+                // Below the geometric horizon nothing is seen; the control variate still
+                // subtracts its fit there.
+                if let (Some(e), Some(fit)) = (env, self.sky_fit) {
+                    sum += self.brdf_residual(e, wi, -fit.radiance(wi));
+                }
                 continue;
             }
             let origin = self.hit.ray_origin(self.ng, wi);
@@ -196,10 +255,14 @@ impl Shading<'_> {
                     continue;
                 };
                 if self.blocked_ray(&ray) {
+                    if let Some(fit) = self.sky_fit {
+                        sum += self.brdf_residual(e, wi, -fit.radiance(wi));
+                    }
                     continue;
                 }
                 counts.environment += 1;
-                self.sky_seen(e, wi)
+                let (radiance, density) = self.sky_seen(e, wi);
+                (radiance - self.sky_fit_towards(wi), density)
             } else {
                 match self.scene.accel.as_ref().and_then(|a| a.closest_hit(&ray)) {
                     None => match env {

@@ -30,9 +30,13 @@ use glam::{Vec2, Vec3};
 
 use super::env_angles::TexelGrid;
 use super::env_bright::BrightTexels;
+use super::env_harmonics::SkyHarmonics;
 use super::env_sampler::{EnvSampler, TexelSample};
 use super::env_texels::Texels;
 use crate::shade::color::luminance;
+
+/// Texels per side of the blocks [`EnvMap::sky_harmonics`] projects.
+pub const HARMONICS_BLOCK: usize = 4;
 
 /// An equirectangular radiance map (intensity already applied), row 0 at the top (+y).
 #[derive(Debug, Clone)]
@@ -194,6 +198,50 @@ impl EnvMap {
         }
         self.distribution = EnvSampler::new(self.width, self.height, &weights, direction);
         self.has_distribution()
+    }
+
+    /// The map's sky, its bright set left out (that is sampled on its own), projected onto
+    /// spherical harmonics in world space (`env_harmonics`). The quadrature takes blocks of up
+    /// to [`HARMONICS_BLOCK`]² texels: their radiance summed over the texels' exact solid
+    /// angles, the basis read at the block's centre. The fit only needs to be close to the sky
+    /// (the render's estimate is unbiased for any coefficients), and the blocks keep this
+    /// build step to a few milliseconds.
+    pub fn sky_harmonics(&self) -> Option<SkyHarmonics> {
+        let (w, h) = (self.width, self.height);
+        let b = HARMONICS_BLOCK;
+        let row_edges: Vec<f64> = (0..=h)
+            .map(|r| (std::f64::consts::PI * r as f64 / h as f64).cos())
+            .collect();
+        let col_span = std::f64::consts::TAU / w as f64;
+        let blocks = (0..h.div_ceil(b)).flat_map(|by| (0..w.div_ceil(b)).map(move |bx| (bx, by)));
+        let points = blocks.map(|(bx, by)| {
+            let (c0, c1) = (bx * b, ((bx + 1) * b).min(w));
+            let (r0, r1) = (by * b, ((by + 1) * b).min(h));
+            let mut sum = glam::DVec3::ZERO;
+            for row in r0..r1 {
+                let solid_angle = col_span * (row_edges[row] - row_edges[row + 1]);
+                for col in c0..c1 {
+                    if !self.bright.as_ref().is_some_and(|t| t.contains(col, row)) {
+                        sum += self.texels.get(row * w + col).as_dvec3() * solid_angle;
+                    }
+                }
+            }
+            let solid_angle = col_span * (c1 - c0) as f64 * (row_edges[r0] - row_edges[r1]);
+            let theta = std::f64::consts::PI * (r0 + r1) as f64 / (2 * h) as f64;
+            let phi = std::f64::consts::PI * (c0 + c1) as f64 / w as f64;
+            let m = glam::DVec3::new(
+                theta.sin() * phi.cos(),
+                theta.cos(),
+                theta.sin() * phi.sin(),
+            );
+            let radiance = (sum / solid_angle.max(f64::MIN_POSITIVE)).as_vec3();
+            (
+                self.to_world(m.as_vec3()).normalize(),
+                radiance,
+                solid_angle,
+            )
+        });
+        SkyHarmonics::project(points)
     }
 
     /// Whether the sampling table was built.

@@ -13,6 +13,7 @@ use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
+use super::env_harmonics::SkyHarmonics;
 use super::env_map::{EnvMap, EnvSample};
 use crate::shade::color::luminance;
 use crate::shade::sampling::uniform_sphere;
@@ -31,6 +32,9 @@ pub struct Environment {
     map_fraction: f32,
     /// Whether the sampling tables were built (only for scenes with geometry).
     sampled: bool,
+    /// The sky without the map's bright set, as spherical harmonics (set by
+    /// [`Environment::prepare_sampling`]; `env_harmonics`).
+    harmonics: Option<SkyHarmonics>,
 }
 
 impl Environment {
@@ -43,6 +47,7 @@ impl Environment {
             visible,
             map_fraction: 0.0,
             sampled: false,
+            harmonics: None,
         }
     }
 
@@ -68,8 +73,18 @@ impl Environment {
         } else {
             0.0
         };
+        self.harmonics = match &self.map {
+            Some(map) => map.sky_harmonics().map(|h| h.with_constant(self.constant)),
+            None => Some(SkyHarmonics::constant(self.constant)),
+        };
         self.sampled = true;
         !black_map
+    }
+
+    /// The smooth fit of the sky without the map's bright set (`env_harmonics`), for the
+    /// render's control variate; `None` before [`Environment::prepare_sampling`].
+    pub fn harmonics(&self) -> Option<&SkyHarmonics> {
+        self.harmonics.as_ref()
     }
 
     /// Solid-angle-weighted mean radiance (for picking lights by power).

@@ -21,6 +21,7 @@ pub mod area;
 pub mod emitter_bounds;
 pub mod env_angles;
 pub mod env_bright;
+pub mod env_harmonics;
 pub mod env_map;
 pub mod env_sampler;
 pub mod env_texels;
