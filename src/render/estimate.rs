@@ -22,11 +22,12 @@
 //! one an area light's outline crosses samples until it has seen the light or could not miss
 //! it (`render::emitter_coverage`).
 //!
-//! A pixel takes two first batches of [`FIRST_BATCH`] samples (one per replicate), then
+//! A pixel takes batches of 2, 2 and 4 samples (the first round of one point per replicate,
+//! jointly stratified, in two halves; then one point of each replicate's own sequence), then
 //! batches of [`BATCH`], and stops after the first batch at which its relative error is at most
 //! the target (from [`min_samples`] on) or its count reached `max_samples`. Before
-//! [`min_samples`], after 4 or 8 samples, a flat, directly lit pixel may stop on the stricter
-//! rule of `render::early_stop`, which pools its neighbours' first batches. Every decision uses
+//! [`min_samples`], after 2, 4 or 8 samples, a flat, directly lit pixel may stop on the
+//! stricter rule of `render::early_stop`, which asks its neighbours' first batches. Every decision uses
 //! the pixel's own samples, its neighbours' first batches and the light's projected outline
 //! (`render::emitter_coverage`) only,
 //! so the image does not depend on threads or tiles.
@@ -37,9 +38,10 @@ use crate::shade::color::luminance_f64;
 
 pub use super::rng::REPLICATES;
 
-/// Samples of each of the first two batches: one per replicate, so that a pixel that needs
-/// little (a flat, directly lit wall) can stop after 4 or 8 samples (`render::early_stop`).
-pub const FIRST_BATCH: u32 = REPLICATES;
+/// Samples of the first batch: half of the first round (one point of each replicate, the round
+/// jointly stratified: `rng::PixelSequences`), so that a pixel that needs little (a flat,
+/// directly lit wall) can stop after 2, 4 or 8 samples (`render::early_stop`).
+pub const FIRST_BATCH: u32 = REPLICATES / 2;
 /// Samples per later batch.
 pub const BATCH: u32 = 4 * REPLICATES;
 /// Weight, in degrees of freedom, of the per-sample variance estimate (conservative for
@@ -373,14 +375,17 @@ impl NoiseStats {
     }
 }
 
-/// The batch sizes of an adaptive pixel with cap `max_samples`: two of [`FIRST_BATCH`], then
-/// batches of [`BATCH`] until the cap is reached or passed.
+/// The batch sizes of an adaptive pixel with cap `max_samples`: [`FIRST_BATCH`], the rest of
+/// the first round, a round of [`REPLICATES`], then batches of [`BATCH`] until the cap is
+/// reached or passed.
 pub fn batch_sizes(max_samples: u32) -> Vec<u32> {
     let mut sizes = vec![FIRST_BATCH];
     let mut total = FIRST_BATCH;
-    if total < max_samples {
-        sizes.push(FIRST_BATCH);
-        total += FIRST_BATCH;
+    for size in [REPLICATES - FIRST_BATCH, REPLICATES] {
+        if total < max_samples {
+            sizes.push(size);
+            total += size;
+        }
     }
     while total < max_samples {
         sizes.push(BATCH);
@@ -461,9 +466,10 @@ mod tests {
         // samples before it may stop.
         assert!(a.relative_error() < 1e-3, "{}", a.relative_error());
         assert!((b.relative_error() - 1.0 / 16.0).abs() < 1e-9);
-        assert_eq!(batch_sizes(4), vec![4]);
-        assert_eq!(batch_sizes(8), vec![4, 4]);
-        assert_eq!(batch_sizes(9), vec![4, 4, 16]);
+        assert_eq!(batch_sizes(2), vec![2]);
+        assert_eq!(batch_sizes(4), vec![2, 2]);
+        assert_eq!(batch_sizes(8), vec![2, 2, 4]);
+        assert_eq!(batch_sizes(9), vec![2, 2, 4, 16]);
         assert_eq!(batch_sizes(4096).iter().sum::<u32>(), 4104);
         assert_eq!(emitter_min_samples(0.1), 80);
         assert_eq!(black_min_samples(0.1), 30);

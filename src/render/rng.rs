@@ -56,15 +56,23 @@ impl PixelBatch {
 }
 
 /// Independent progressive sequences of one pixel for adaptive sampling: sample `g` of the
-/// pixel belongs to replicate `g mod REPLICATES` and is point `g / REPLICATES` of that
-/// replicate's Owen-scrambled Sobol' sequences ([`Sampler::point_2d`]), so each replicate's
-/// samples stay one low-discrepancy set however many batches the pixel takes (the sequence
-/// continues instead of restarting), while the replicates, scrambled independently, give
-/// independent estimates of the pixel whose spread measures the error of their mean.
+/// pixel belongs to replicate `g mod REPLICATES`. The first round (`g < REPLICATES`, one
+/// sample of each replicate) is points `0..REPLICATES` of one Owen-scrambled Sobol' sequence
+/// shared by the round, so the pixel's first samples are one stratified set (its halves and
+/// the whole a (0,m,2)-net in every stream), as good as a fixed-count render's; after it,
+/// sample `g` is point `g / REPLICATES − 1` of its replicate's own sequences
+/// ([`Sampler::point_2d`]), so each replicate's later samples stay one low-discrepancy set
+/// however many batches the pixel takes (the sequence continues instead of restarting), while
+/// the replicates, scrambled independently, give estimates of the pixel whose spread measures
+/// the error of their mean. The shared round ties the replicates' means a little (their first
+/// points avoid each other), which makes that spread over-state the error slightly, never
+/// under-state it.
 #[derive(Debug, Clone, Copy)]
 pub struct PixelSequences {
     pixel_hash: u64,
     replicate_keys: [u64; REPLICATES as usize],
+    /// The scramble of the first round's shared net (samples `0..REPLICATES`).
+    first_round_key: u64,
 }
 
 /// Independent replicates of an adaptive pixel's samples.
@@ -80,6 +88,9 @@ impl PixelSequences {
         PixelSequences {
             pixel_hash,
             replicate_keys,
+            first_round_key: mix64(
+                key_of(pixel_hash, u32::MAX - REPLICATES) ^ 0x2f1d_83a5_c3b9_0e47,
+            ),
         }
     }
 
@@ -87,11 +98,15 @@ impl PixelSequences {
     #[inline]
     pub fn sampler(&self, global: u32) -> Sampler {
         let r = (global % REPLICATES) as usize;
+        let (pixel_key, index) = match global / REPLICATES {
+            0 => (self.first_round_key, global),
+            round => (self.replicate_keys[r], round - 1),
+        };
         Sampler {
             key: key_of(self.pixel_hash, global),
             dim: 0,
-            pixel_key: self.replicate_keys[r],
-            index: global / REPLICATES,
+            pixel_key,
+            index,
             count: 0,
             progressive: true,
         }
@@ -452,6 +467,25 @@ mod tests {
                 );
                 // The next block of the same size is a net too (continuation in batches).
                 assert!(is_02_net(&points[1 << k..2 << k]), "block 2^{k}");
+            }
+        }
+    }
+
+    #[test]
+    fn an_adaptive_pixels_first_round_is_one_stratified_set_then_replicates_go_their_own_way() {
+        for (seed, px, py, stream) in [(0, 0, 0, 0), (3, 10, 20, 7), (9, 511, 3, 1 << 40)] {
+            let sequences = PixelSequences::new(seed, px, py);
+            let point = |g: u32| {
+                let sampler = sequences.sampler(g);
+                sampler.point_2d(stream, sampler.index().0)
+            };
+            let first: Vec<Vec2> = (0..REPLICATES).map(point).collect();
+            assert!(is_02_net(&first[..2]) && is_02_net(&first[2..]) && is_02_net(&first));
+            // Replicate r's later samples are its own sequence from its start: a net at every
+            // power of two.
+            for r in 0..REPLICATES {
+                let own: Vec<Vec2> = (1..=8).map(|k| point(k * REPLICATES + r)).collect();
+                assert!(is_02_net(&own[..4]) && is_02_net(&own), "replicate {r}");
             }
         }
     }
