@@ -1,5 +1,5 @@
 //! Stage 4: when an adaptive pixel may stop before `estimate::min_samples` (`1/target`), after
-//! its first 2, 4 or 8 samples, from its own samples and its neighbours' first batches.
+//! its first 2 or 4 samples, from its own samples and its neighbours' first batches.
 //!
 //! Syntax: no syntax of its own; it decides for `render { noise 0.1 }` / `--noise 0.1`.
 //!
@@ -19,14 +19,17 @@
 //! target; it reports the estimate. An edge, a texture or a curved falloff across the block
 //! adds to the scatter: such pixels sample on.
 //!
-//! **After 4 or 8 samples.** The pixel's own per-sample relative variance is shrunk toward its
-//! 8 neighbours' first-batch values (both weighted by their degrees of freedom: the
+//! **After 4 samples** (the whole first round, a 4-point net), it stops if half that spread
+//! passes the same test (assumed: a 4-point net's mean has at most half the variance of its
+//! first two points' mean, as independent samples' has; stratification usually does better,
+//! and cornell at 5% reports 0.82× its measured error with it, the lowest of the calibration),
+//! or on the older rule: the pixel's own per-sample relative variance shrunk toward its 8
+//! neighbours' first-batch values (both weighted by their degrees of freedom: the
 //! [`NeighbourPrior`]; relative, not absolute, so that it carries over between neighbours of
-//! different brightness), and the pixel stops if the upper confidence bound of that estimate
-//! is within the target and its own estimate alone is too. The per-sample formula over-states
-//! the stratified first round here, so these stops are conservative.
+//! different brightness), whose upper confidence bound and its own estimate alone are within
+//! the target (the per-sample formula over-states a net, so this stop is conservative).
 //!
-//! In both cases the pixel and its neighbours together must have taken `1/target` samples (the
+//! Either way the pixel and its neighbours together must have taken `1/target` samples (the
 //! rule of three behind `estimate::min_samples`: the neighbourhood has seen what the pixel
 //! alone could not have yet), and the black-pixel, emitter and sliver rules apply first.
 //!
@@ -41,11 +44,11 @@ pub const CONFIDENCE: f64 = 0.9;
 /// The standard normal quantile of [`CONFIDENCE`] (the chi-square quantile is Wilson and
 /// Hilferty's approximation from it, [`chi_square_lower`]).
 const Z_CONFIDENCE: f64 = 1.281_551_565_5;
-/// The most samples after which a pixel may stop early: its first two rounds (one point of
-/// each replicate each). Later, stratification makes the per-sample variance over-state the
-/// error by more (cornell at 2%, stopping early at 24 and 40 samples: reported 1.27× the
-/// measured, against 1.03× without).
-pub const LAST_EARLY: u32 = 2 * super::estimate::REPLICATES;
+/// The most samples after which a pixel may stop early: its first round (one point of each
+/// replicate). Later the replicates' spread measures the error; the per-sample variance
+/// over-states it for stratified samples (cornell at 2%, stopping early at 24 and 40 samples:
+/// reported 1.27× the measured, against 1.03× without).
+pub const LAST_EARLY: u32 = super::estimate::REPLICATES;
 /// The neighbourhood's half side: 1 is the 3×3 block around the pixel.
 pub const RADIUS: u32 = 1;
 
@@ -168,7 +171,13 @@ pub fn confident_error(
         return None;
     }
     if acc.count() == FIRST_BATCH {
-        return first_batch_error(acc, spread, target);
+        return first_batch_error(acc, spread, target, 1.0);
+    }
+    if acc.count() == 2 * FIRST_BATCH {
+        // Twice the first batch's points: at most half its variance (module doc).
+        if let Some(e) = first_batch_error(acc, spread, target, 0.5) {
+            return Some(e);
+        }
     }
     let (own, own_dof) = acc.relative_sample_variance()?;
     let dof = own_dof + prior.dof;
@@ -180,19 +189,26 @@ pub fn confident_error(
     (within(upper) && within(own)).then(|| (pooled / n + floor).sqrt())
 }
 
-/// After the first batch only: the spread across the neighbourhood ([`FirstBatchSpread`]),
-/// whose upper confidence bound must be within the target. Not the pixel's own per-sample
+/// From the spread across the neighbourhood ([`FirstBatchSpread`]) times `scale` (1 after the
+/// first batch, ½ after the whole first round), whose upper confidence bound must be within the
+/// target. Not the pixel's own per-sample
 /// estimate as well: it over-states a stratified set (requiring it too kept cornell at 10% at
 /// 0.44× the target, docs/quality.md); a pixel whose first batch strays from its neighbours'
 /// plane raises the spread itself.
-fn first_batch_error(acc: &Accumulator, spread: &FirstBatchSpread, target: f64) -> Option<f64> {
+fn first_batch_error(
+    acc: &Accumulator,
+    spread: &FirstBatchSpread,
+    target: f64,
+    scale: f64,
+) -> Option<f64> {
     if spread.dof <= 0.0 || acc.is_black() {
         return None;
     }
     let n = acc.count() as f64;
     let floor = (REL_FLOOR / n / acc.mean_luminance().abs().max(REL_FLOOR)).powi(2);
-    let upper = spread.relative_variance * spread.dof / chi_square_lower(spread.dof);
-    (upper + floor <= target * target).then(|| (spread.relative_variance + floor).sqrt())
+    let var = spread.relative_variance * scale;
+    let upper = var * spread.dof / chi_square_lower(spread.dof);
+    (upper + floor <= target * target).then(|| (var + floor).sqrt())
 }
 
 #[cfg(test)]
@@ -203,7 +219,7 @@ mod tests {
     fn pixel(values: &[f32]) -> Accumulator {
         let mut acc = Accumulator::default();
         for (g, &v) in values.iter().enumerate() {
-            acc.add_replicate(Vec3::splat(v), g % 4);
+            acc.add_replicate(Vec3::splat(v), Some(g % 4));
         }
         acc
     }
@@ -289,6 +305,24 @@ mod tests {
         assert!(confident_error(&flat, &flat_prior, &quiet, 0.1).is_some());
         let loud = block(&|dx, dy| if dx == 1.0 && dy == 0.0 { 3.0 } else { 1.0 });
         assert_eq!(confident_error(&flat, &flat_prior, &loud, 0.1), None);
+        // A scatter too large for a 2-sample stop at 10% but not for a 4-sample one (half the
+        // variance): 1.5·0.06² = 0.0054, whose upper bound is 2.7× that.
+        let middling = block(&|dx, dy| {
+            1.0 + if (dx + dy) as i64 % 2 == 0 {
+                0.06
+            } else {
+                -0.06
+            }
+        });
+        assert_eq!(confident_error(&flat, &flat_prior, &middling, 0.1), None);
+        let four = pixel(&[1.0, 1.02, 0.98, 1.0]);
+        // Neighbours whose own samples disagree a lot: the per-sample rule would not stop.
+        let noisy_prior = NeighbourPrior::pool(&[pixel(&[0.2, 1.8, 0.5, 1.5]); 8]);
+        let e = confident_error(&four, &noisy_prior, &middling, 0.1).expect("half the spread");
+        assert!(
+            (e - (0.5 * middling.relative_variance).sqrt()).abs() < 1e-3,
+            "{e}"
+        );
         // Too few pixels to fit a plane and measure a scatter: no early stop.
         let corner = FirstBatchSpread::fit([(0.0, 0.0, 1.0), (1.0, 0.0, 1.0), (0.0, 1.0, 1.0)]);
         assert_eq!(corner.dof, 0.0);

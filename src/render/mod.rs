@@ -430,7 +430,7 @@ impl Job<'_> {
             for x in t.x0..t.x1 {
                 let sequences = rng::PixelSequences::new(self.scene.settings.seed, x, y);
                 let mut acc = Accumulator::default();
-                // Filtered for the two first batches' samples, as the second batch is.
+                // Filtered for the first round's samples, as its second half is.
                 let scale = footprint_scale(early_stop::LAST_EARLY);
                 self.progressive_batch(x, y, &sequences, 0..size, scale, &mut acc, &mut counts);
                 pixels.push(acc);
