@@ -1,44 +1,54 @@
 //! Stage 4: when an adaptive pixel may stop before `estimate::min_samples` (`1/target`), after
-//! its first 4 or 8 samples, from its own samples and its neighbours' first batches.
+//! its first 2 or 4 samples, from its own samples and its neighbours' first batches.
 //!
 //! Syntax: no syntax of its own; it decides for `render { noise 0.1 }` / `--noise 0.1`.
 //!
-//! A pixel that sees a flat, directly lit wall is done after a few samples (cornell's walls
-//! measure 3.5% after 8), but its own estimate after 4 or 8 samples has 3 or 7 degrees of
-//! freedom: stopping whenever it says "within the target" stops pixels on a luckily small
-//! value (texture_bench at 1.4× its target, docs/quality.md). Its neighbours know more. Every
-//! pixel takes a first batch of one sample per replicate (independent uniform samples), so
-//! before any pixel goes on, each has an unbiased estimate of its per-sample relative variance
-//! with 3 degrees of freedom; the [`NeighbourPrior`] pools those of the `(2·RADIUS+1)²−1`
-//! neighbours (24 degrees of freedom in 3×3). Relative variance, not variance: it carries over
-//! between neighbours of different brightness (a texture, a falloff) where the variance does
-//! not.
+//! A pixel that sees a flat, directly lit wall is done after a few samples, but its own
+//! estimate after so few has 1 to 7 degrees of freedom: stopping whenever it says "within the
+//! target" stops pixels on a luckily small value (texture_bench at 1.4× its target,
+//! docs/quality.md). Its neighbours know more, and every pixel's first batch is taken before
+//! any pixel goes on.
 //!
-//! The pixel's own per-sample estimate is shrunk toward its neighbourhood's (both weighted by
-//! their degrees of freedom), and the pixel stops early only if the **upper confidence bound**
-//! of that estimate, at [`CONFIDENCE`] for the pooled degrees of freedom (chi-square quantile),
-//! is within the target, its own estimate alone is too, and it and its neighbours together have
-//! taken `1/target` samples (the rule of three behind `estimate::min_samples`: the
-//! neighbourhood has seen what the pixel alone could not have yet). The figure reported is the
-//! estimate, not the bound. The black-pixel, emitter and sliver rules still apply first.
+//! **After the first batch (2 samples).** The first round of an adaptive pixel is one jointly
+//! stratified set (`rng::PixelSequences`: as efficient as a fixed-count render's samples, where
+//! independent ones left flat walls with 1.5× the error), so a per-sample variance over-states
+//! its error; but neighbouring pixels' sets are scrambled independently, so the scatter of the
+//! 3×3 block's first-batch means about a plane fitted to them ([`FirstBatchSpread`], 6 degrees
+//! of freedom) measures the error of one such mean. The pixel stops if the **upper confidence
+//! bound** of that relative variance, at [`CONFIDENCE`] (chi-square quantile), is within the
+//! target; it reports the estimate. An edge, a texture or a curved falloff across the block
+//! adds to the scatter: such pixels sample on.
 //!
-//! Deterministic for any thread count and any tiling: the prior uses the neighbours' first
+//! **After 4 samples** (the whole first round, a 4-point net), it stops if half that spread
+//! passes the same test (assumed: a 4-point net's mean has at most half the variance of its
+//! first two points' mean, as independent samples' has; stratification usually does better,
+//! and cornell at 5% reports 0.82× its measured error with it, the lowest of the calibration),
+//! or on the older rule: the pixel's own per-sample relative variance shrunk toward its 8
+//! neighbours' first-batch values (both weighted by their degrees of freedom: the
+//! [`NeighbourPrior`]; relative, not absolute, so that it carries over between neighbours of
+//! different brightness), whose upper confidence bound and its own estimate alone are within
+//! the target (the per-sample formula over-states a net, so this stop is conservative).
+//!
+//! Either way the pixel and its neighbours together must have taken `1/target` samples (the
+//! rule of three behind `estimate::min_samples`: the neighbourhood has seen what the pixel
+//! alone could not have yet), and the black-pixel, emitter and sliver rules apply first.
+//!
+//! Deterministic for any thread count and any tiling: the decisions use the neighbours' first
 //! batches only, which every pixel takes whatever happens next and which a render computes for
 //! all pixels (and a one-pixel margin around a `--tile` window) before any pixel goes on.
 
-use super::estimate::{Accumulator, REL_FLOOR};
+use super::estimate::{Accumulator, FIRST_BATCH, REL_FLOOR};
 
 /// One-sided confidence with which an early stop's relative error is within the target.
 pub const CONFIDENCE: f64 = 0.9;
 /// The standard normal quantile of [`CONFIDENCE`] (the chi-square quantile is Wilson and
 /// Hilferty's approximation from it, [`chi_square_lower`]).
 const Z_CONFIDENCE: f64 = 1.281_551_565_5;
-/// The most samples after which a pixel may stop early: its first two batches, whose samples
-/// are independent (4) or nearly (8: two points of each replicate's sequence), so that the
-/// per-sample variance is the right estimate. Later, stratification makes it over-state the
-/// error (cornell at 2%, stopping early at 24 and 40 samples: reported 1.27× the measured,
-/// against 1.03× without).
-pub const LAST_EARLY: u32 = 2 * super::estimate::FIRST_BATCH;
+/// The most samples after which a pixel may stop early: its first round (one point of each
+/// replicate). Later the replicates' spread measures the error; the per-sample variance
+/// over-states it for stratified samples (cornell at 2%, stopping early at 24 and 40 samples:
+/// reported 1.27× the measured, against 1.03× without).
+pub const LAST_EARLY: u32 = super::estimate::REPLICATES;
 /// The neighbourhood's half side: 1 is the 3×3 block around the pixel.
 pub const RADIUS: u32 = 1;
 
@@ -74,6 +84,72 @@ impl NeighbourPrior {
     }
 }
 
+/// The error of the first batch's mean, measured across the neighbourhood: the first batch is
+/// one jointly stratified set (`rng::PixelSequences`), which a per-sample variance over-states,
+/// but the neighbours' sets are scrambled independently, so the scatter of the `(2·RADIUS+1)²`
+/// first-batch means about a plane fitted to them (least squares in the pixel offsets)
+/// estimates the variance of one such mean, with `k − 3` degrees of freedom; relative to the
+/// block's squared mean luminance. Shading that is not a plane over the block (an edge, a
+/// texture, a curved falloff) adds to the scatter: the estimate errs on the side of sampling on.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct FirstBatchSpread {
+    /// Variance of a first-batch mean over the block's squared mean luminance.
+    relative_variance: f64,
+    /// Degrees of freedom (0: too few pixels, or a black block).
+    dof: f64,
+}
+
+impl FirstBatchSpread {
+    /// Fits `mean ≈ a + b·dx + c·dy` to the first-batch mean luminances at offsets
+    /// (`dx`, `dy`) from the pixel (the pixel's own included).
+    pub fn fit(block: impl IntoIterator<Item = (f64, f64, f64)>) -> FirstBatchSpread {
+        // Normal equations of the plane, accumulated.
+        let (mut k, mut sx, mut sy, mut sxx, mut syy, mut sxy) = (0.0f64, 0.0, 0.0, 0.0, 0.0, 0.0);
+        let (mut sm, mut sxm, mut sym, mut smm) = (0.0, 0.0, 0.0, 0.0);
+        for (dx, dy, m) in block {
+            k += 1.0;
+            sx += dx;
+            sy += dy;
+            sxx += dx * dx;
+            syy += dy * dy;
+            sxy += dx * dy;
+            sm += m;
+            sxm += dx * m;
+            sym += dy * m;
+            smm += m * m;
+        }
+        let mean = sm / k.max(1.0);
+        if k < 4.0 || mean <= REL_FLOOR {
+            return FirstBatchSpread::default();
+        }
+        let det3 = |a: [f64; 9]| {
+            a[0] * (a[4] * a[8] - a[5] * a[7]) - a[1] * (a[3] * a[8] - a[5] * a[6])
+                + a[2] * (a[3] * a[7] - a[4] * a[6])
+        };
+        let normal = [k, sx, sy, sx, sxx, sxy, sy, sxy, syy];
+        let det = det3(normal);
+        if det.abs() < 1e-9 {
+            return FirstBatchSpread::default();
+        }
+        let rhs = [sm, sxm, sym];
+        let solve = |col: usize| {
+            let mut a = normal;
+            for row in 0..3 {
+                a[row * 3 + col] = rhs[row];
+            }
+            det3(a) / det
+        };
+        let coef = [solve(0), solve(1), solve(2)];
+        // Residual sum of squares: Σm² − coef·rhs at the least-squares solution.
+        let rss = (smm - coef[0] * rhs[0] - coef[1] * rhs[1] - coef[2] * rhs[2]).max(0.0);
+        let dof = k - 3.0;
+        FirstBatchSpread {
+            relative_variance: rss / dof / (mean * mean),
+            dof,
+        }
+    }
+}
+
 /// The lower `1 − CONFIDENCE` quantile of the chi-square distribution with `dof` degrees of
 /// freedom (Wilson–Hilferty: within 2% of the exact value from 3 degrees of freedom on; 0.577
 /// against 0.584 at 3).
@@ -84,10 +160,24 @@ pub fn chi_square_lower(dof: f64) -> f64 {
 
 /// The pixel's relative standard error if it may stop now, after `acc.count()` samples, at
 /// `target`; `None` if it must go on. See the module doc for the rule.
-pub fn confident_error(acc: &Accumulator, prior: &NeighbourPrior, target: f64) -> Option<f64> {
+pub fn confident_error(
+    acc: &Accumulator,
+    prior: &NeighbourPrior,
+    spread: &FirstBatchSpread,
+    target: f64,
+) -> Option<f64> {
     let n = acc.count() as f64;
     if acc.count() > LAST_EARLY || n + (prior.samples as f64) < 1.0 / target {
         return None;
+    }
+    if acc.count() == FIRST_BATCH {
+        return first_batch_error(acc, spread, target, 1.0);
+    }
+    if acc.count() == 2 * FIRST_BATCH {
+        // Twice the first batch's points: at most half its variance (module doc).
+        if let Some(e) = first_batch_error(acc, spread, target, 0.5) {
+            return Some(e);
+        }
     }
     let (own, own_dof) = acc.relative_sample_variance()?;
     let dof = own_dof + prior.dof;
@@ -99,6 +189,28 @@ pub fn confident_error(acc: &Accumulator, prior: &NeighbourPrior, target: f64) -
     (within(upper) && within(own)).then(|| (pooled / n + floor).sqrt())
 }
 
+/// From the spread across the neighbourhood ([`FirstBatchSpread`]) times `scale` (1 after the
+/// first batch, ½ after the whole first round), whose upper confidence bound must be within the
+/// target. Not the pixel's own per-sample
+/// estimate as well: it over-states a stratified set (requiring it too kept cornell at 10% at
+/// 0.44× the target, docs/quality.md); a pixel whose first batch strays from its neighbours'
+/// plane raises the spread itself.
+fn first_batch_error(
+    acc: &Accumulator,
+    spread: &FirstBatchSpread,
+    target: f64,
+    scale: f64,
+) -> Option<f64> {
+    if spread.dof <= 0.0 || acc.is_black() {
+        return None;
+    }
+    let n = acc.count() as f64;
+    let floor = (REL_FLOOR / n / acc.mean_luminance().abs().max(REL_FLOOR)).powi(2);
+    let var = spread.relative_variance * scale;
+    let upper = var * spread.dof / chi_square_lower(spread.dof);
+    (upper + floor <= target * target).then(|| (var + floor).sqrt())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -107,7 +219,7 @@ mod tests {
     fn pixel(values: &[f32]) -> Accumulator {
         let mut acc = Accumulator::default();
         for (g, &v) in values.iter().enumerate() {
-            acc.add_replicate(Vec3::splat(v), g % 4);
+            acc.add_replicate(Vec3::splat(v), Some(g % 4));
         }
         acc
     }
@@ -131,19 +243,90 @@ mod tests {
         let prior = NeighbourPrior::pool(&neighbours);
         assert_eq!(prior.samples, 32);
         assert!((prior.dof - 24.0).abs() < 1e-12);
-        let e = confident_error(&flat, &prior, 0.1).expect("a flat pixel in flat company stops");
+        let e = confident_error(&flat, &prior, &FirstBatchSpread::default(), 0.1)
+            .expect("a flat pixel in flat company stops");
         assert!(e < 0.05, "{e}");
         // Alone, its 4 samples are fewer than 1/target: it has not seen enough to stop.
         assert_eq!(
-            confident_error(&flat, &NeighbourPrior::default(), 0.1),
+            confident_error(
+                &flat,
+                &NeighbourPrior::default(),
+                &FirstBatchSpread::default(),
+                0.1
+            ),
             None
         );
         // A noisy pixel among flat ones does not stop on their say.
         let noisy = pixel(&[0.2, 1.8, 0.5, 1.5]);
-        assert_eq!(confident_error(&noisy, &prior, 0.1), None);
+        assert_eq!(
+            confident_error(&noisy, &prior, &FirstBatchSpread::default(), 0.1),
+            None
+        );
         // Flat pixels next to noisy ones do not either.
         let noisy_prior = NeighbourPrior::pool(&[noisy; 8]);
-        assert_eq!(confident_error(&flat, &noisy_prior, 0.1), None);
+        assert_eq!(
+            confident_error(&flat, &noisy_prior, &FirstBatchSpread::default(), 0.1),
+            None
+        );
+    }
+
+    #[test]
+    fn the_first_batch_spread_is_the_scatter_about_a_plane() {
+        let block = |f: &dyn Fn(f64, f64) -> f64| {
+            let cells: Vec<(f64, f64, f64)> = (-1..=1)
+                .flat_map(|dy| (-1..=1).map(move |dx| (dx as f64, dy as f64)))
+                .map(|(dx, dy)| (dx, dy, f(dx, dy)))
+                .collect();
+            FirstBatchSpread::fit(cells)
+        };
+        // A plane (a falloff across the block) has no scatter, with 9 − 3 degrees of freedom.
+        let plane = block(&|dx, dy| 1.0 + 0.1 * dx - 0.05 * dy);
+        assert!(
+            plane.relative_variance < 1e-12 && plane.dof == 6.0,
+            "{plane:?}"
+        );
+        // ±e in a checkerboard on a flat mean of 1: orthogonal to every plane, so the fit is
+        // the block's mean and the residuals are ±e about it.
+        let e = 0.05;
+        let checker = block(&|dx, dy| 1.0 + if (dx + dy) as i64 % 2 == 0 { e } else { -e });
+        let mean = 1.0 + e / 9.0;
+        let rss = 5.0 * (e - e / 9.0).powi(2) + 4.0 * (e + e / 9.0).powi(2);
+        let expected = rss / 6.0 / (mean * mean);
+        let got = checker.relative_variance;
+        assert!(
+            (got - expected).abs() < 1e-9 * expected,
+            "{got} against {expected}"
+        );
+        // A flat pixel stops after its first batch among neighbours that scatter little, and
+        // not among neighbours that scatter a lot (one bright pixel in the block).
+        let flat = pixel(&[1.0, 1.02]);
+        let flat_prior = NeighbourPrior::pool(&[flat; 8]);
+        let quiet = block(&|dx, dy| 1.0 + 0.002 * (dx - dy));
+        assert!(confident_error(&flat, &flat_prior, &quiet, 0.1).is_some());
+        let loud = block(&|dx, dy| if dx == 1.0 && dy == 0.0 { 3.0 } else { 1.0 });
+        assert_eq!(confident_error(&flat, &flat_prior, &loud, 0.1), None);
+        // A scatter too large for a 2-sample stop at 10% but not for a 4-sample one (half the
+        // variance): 1.5·0.06² = 0.0054, whose upper bound is 2.7× that.
+        let middling = block(&|dx, dy| {
+            1.0 + if (dx + dy) as i64 % 2 == 0 {
+                0.06
+            } else {
+                -0.06
+            }
+        });
+        assert_eq!(confident_error(&flat, &flat_prior, &middling, 0.1), None);
+        let four = pixel(&[1.0, 1.02, 0.98, 1.0]);
+        // Neighbours whose own samples disagree a lot: the per-sample rule would not stop.
+        let noisy_prior = NeighbourPrior::pool(&[pixel(&[0.2, 1.8, 0.5, 1.5]); 8]);
+        let e = confident_error(&four, &noisy_prior, &middling, 0.1).expect("half the spread");
+        assert!(
+            (e - (0.5 * middling.relative_variance).sqrt()).abs() < 1e-3,
+            "{e}"
+        );
+        // Too few pixels to fit a plane and measure a scatter: no early stop.
+        let corner = FirstBatchSpread::fit([(0.0, 0.0, 1.0), (1.0, 0.0, 1.0), (0.0, 1.0, 1.0)]);
+        assert_eq!(corner.dof, 0.0);
+        assert_eq!(confident_error(&flat, &flat_prior, &corner, 0.1), None);
     }
 
     #[test]
@@ -155,6 +338,9 @@ mod tests {
         assert_eq!(prior.samples, 32);
         // 4 + 32 samples are fewer than 1/target at 2%.
         let flat_prior = NeighbourPrior::pool(&[flat; 8]);
-        assert_eq!(confident_error(&flat, &flat_prior, 0.02), None);
+        assert_eq!(
+            confident_error(&flat, &flat_prior, &FirstBatchSpread::default(), 0.02),
+            None
+        );
     }
 }

@@ -3,10 +3,11 @@
 //! max_samples 4096 }` / `--noise 0.01`.
 //!
 //! **The error estimate is right for low-discrepancy samples.** An adaptive pixel's samples
-//! are dealt round-robin to [`REPLICATES`] independent replicates, each one progressive
-//! Owen-scrambled Sobol' sequence continued from batch to batch (`rng::PixelSequences`). The
-//! replicates' means are independent, identically distributed estimates, so the spread between
-//! them measures the real error of their average, stratification included (the classic error
+//! after its first round (a stratified set of its own, in the mean only) are dealt round-robin
+//! to [`REPLICATES`] independent replicates, each one progressive Owen-scrambled Sobol'
+//! sequence continued from batch to batch (`rng::PixelSequences`). The replicates' means are
+//! independent, identically distributed estimates, so the spread between them measures the
+//! real error of their average, stratification included (the classic error
 //! estimate of randomised quasi-Monte Carlo: independent replicates, as Owen and L'Ecuyer use
 //! them). The samples' own spread (`σ̂² / n`, the formula for independent samples) over-states
 //! the error of stratified samples, by 2–6× on cornell, which is why adaptive renders used to
@@ -22,11 +23,12 @@
 //! one an area light's outline crosses samples until it has seen the light or could not miss
 //! it (`render::emitter_coverage`).
 //!
-//! A pixel takes two first batches of [`FIRST_BATCH`] samples (one per replicate), then
-//! batches of [`BATCH`], and stops after the first batch at which its relative error is at most
-//! the target (from [`min_samples`] on) or its count reached `max_samples`. Before
-//! [`min_samples`], after 4 or 8 samples, a flat, directly lit pixel may stop on the stricter
-//! rule of `render::early_stop`, which pools its neighbours' first batches. Every decision uses
+//! A pixel takes batches of 2 and 2 samples (the first round, one jointly stratified set kept
+//! out of the replicates, in two halves), then batches of [`BATCH`], and stops after the first
+//! batch at which its relative error is at most the target (from [`min_samples`] on) or its
+//! count reached `max_samples`. Before [`min_samples`], after 2 or 4 samples, a flat, directly
+//! lit pixel may stop on the stricter rule of `render::early_stop`, which asks its
+//! neighbours' first batches. Every decision uses
 //! the pixel's own samples, its neighbours' first batches and the light's projected outline
 //! (`render::emitter_coverage`) only,
 //! so the image does not depend on threads or tiles.
@@ -37,9 +39,10 @@ use crate::shade::color::luminance_f64;
 
 pub use super::rng::REPLICATES;
 
-/// Samples of each of the first two batches: one per replicate, so that a pixel that needs
-/// little (a flat, directly lit wall) can stop after 4 or 8 samples (`render::early_stop`).
-pub const FIRST_BATCH: u32 = REPLICATES;
+/// Samples of the first batch: half of the first round (one point of each replicate, the round
+/// jointly stratified: `rng::PixelSequences`), so that a pixel that needs little (a flat,
+/// directly lit wall) can stop after 2 or 4 samples (`render::early_stop`).
+pub const FIRST_BATCH: u32 = REPLICATES / 2;
 /// Samples per later batch.
 pub const BATCH: u32 = 4 * REPLICATES;
 /// Weight, in degrees of freedom, of the per-sample variance estimate (conservative for
@@ -141,10 +144,14 @@ impl Accumulator {
         y
     }
 
-    /// Adds one sample of replicate `replicate` (`rng::PixelSequences::replicate`).
-    pub fn add_replicate(&mut self, l: Vec3, replicate: usize) {
+    /// Adds one sample of an adaptive pixel, of replicate `replicate`
+    /// (`rng::PixelSequences::replicate`; `None`: a shared round's, in the mean only).
+    pub fn add_replicate(&mut self, l: Vec3, replicate: Option<usize>) {
         let y = self.add(l);
         self.brightest = self.brightest.max(y);
+        let Some(replicate) = replicate else {
+            return;
+        };
         if let (Some(sum), Some(n)) = (
             self.replicate_luma.get_mut(replicate),
             self.replicate_n.get_mut(replicate),
@@ -373,14 +380,15 @@ impl NoiseStats {
     }
 }
 
-/// The batch sizes of an adaptive pixel with cap `max_samples`: two of [`FIRST_BATCH`], then
-/// batches of [`BATCH`] until the cap is reached or passed.
+/// The batch sizes of an adaptive pixel with cap `max_samples`: the shared first round in two
+/// halves ([`FIRST_BATCH`] each), then batches of [`BATCH`] (a 4-point block of each
+/// replicate's own sequence) until the cap is reached or passed.
 pub fn batch_sizes(max_samples: u32) -> Vec<u32> {
     let mut sizes = vec![FIRST_BATCH];
     let mut total = FIRST_BATCH;
     if total < max_samples {
-        sizes.push(FIRST_BATCH);
-        total += FIRST_BATCH;
+        sizes.push(REPLICATES - FIRST_BATCH);
+        total = REPLICATES;
     }
     while total < max_samples {
         sizes.push(BATCH);
@@ -402,7 +410,7 @@ mod tests {
         let mut b = Accumulator::default();
         for g in 0..64 * REPLICATES {
             let x = [0.0f32, 2.0, 1.0, 1.0][(g / REPLICATES % 4) as usize];
-            a.add_replicate(Vec3::splat(x), (g % REPLICATES) as usize);
+            a.add_replicate(Vec3::splat(x), Some((g % REPLICATES) as usize));
             b.add(Vec3::splat(x));
         }
         let per_sample = b.relative_error();
@@ -423,7 +431,10 @@ mod tests {
         let n = 100 * REPLICATES;
         for g in 0..n {
             let r = (g % REPLICATES) as usize;
-            c.add_replicate(Vec3::splat(if r.is_multiple_of(2) { 0.9 } else { 1.1 }), r);
+            c.add_replicate(
+                Vec3::splat(if r.is_multiple_of(2) { 0.9 } else { 1.1 }),
+                Some(r),
+            );
         }
         let between = 0.01 / dof;
         let per = 0.01 / (n as f64 - 1.0);
@@ -461,10 +472,12 @@ mod tests {
         // samples before it may stop.
         assert!(a.relative_error() < 1e-3, "{}", a.relative_error());
         assert!((b.relative_error() - 1.0 / 16.0).abs() < 1e-9);
-        assert_eq!(batch_sizes(4), vec![4]);
-        assert_eq!(batch_sizes(8), vec![4, 4]);
-        assert_eq!(batch_sizes(9), vec![4, 4, 16]);
-        assert_eq!(batch_sizes(4096).iter().sum::<u32>(), 4104);
+        assert_eq!(batch_sizes(2), vec![2]);
+        assert_eq!(batch_sizes(4), vec![2, 2]);
+        assert_eq!(batch_sizes(8), vec![2, 2, 16]);
+        assert_eq!(batch_sizes(20), vec![2, 2, 16]);
+        assert_eq!(batch_sizes(21), vec![2, 2, 16, 16]);
+        assert_eq!(batch_sizes(4096).iter().sum::<u32>(), 4100);
         assert_eq!(emitter_min_samples(0.1), 80);
         assert_eq!(black_min_samples(0.1), 30);
         assert!(b.is_black() && !a.is_black());

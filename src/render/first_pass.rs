@@ -6,7 +6,7 @@
 //!
 //! Syntax: none of its own; `render { noise 0.05 }` / `--noise 0.05` renders this way.
 
-use super::early_stop::{self, NeighbourPrior};
+use super::early_stop::{self, FirstBatchSpread, NeighbourPrior};
 use super::estimate::Accumulator;
 use super::integrator::RayCounts;
 use super::{Cancelled, PixelWindow, Tile};
@@ -79,5 +79,20 @@ impl FirstBatches {
             .filter(|&(nx, ny)| (nx, ny) != (x, y) && nx >= 0 && ny >= 0)
             .filter_map(|(nx, ny)| self.at(nx as u32, ny as u32));
         NeighbourPrior::pool(neighbours)
+    }
+
+    /// The scatter of the first-batch means over the block around (`x`, `y`), its own
+    /// included ([`FirstBatchSpread`]).
+    pub(super) fn spread(&self, x: u32, y: u32) -> FirstBatchSpread {
+        let r = early_stop::RADIUS as i64;
+        let (x, y) = (i64::from(x), i64::from(y));
+        let block = (y - r..=y + r)
+            .flat_map(|ny| (x - r..=x + r).map(move |nx| (nx, ny)))
+            .filter(|&(nx, ny)| nx >= 0 && ny >= 0)
+            .filter_map(|(nx, ny)| {
+                let acc = self.at(nx as u32, ny as u32)?;
+                Some(((nx - x) as f64, (ny - y) as f64, acc.mean_luminance()))
+            });
+        FirstBatchSpread::fit(block)
     }
 }

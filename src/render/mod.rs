@@ -420,8 +420,8 @@ impl Job<'_> {
         (pixels, counts)
     }
 
-    /// The first batch of every pixel of the tile (adaptive renders): one sample per
-    /// replicate, taken before any pixel decides (`early_stop`).
+    /// The first batch of every pixel of the tile (adaptive renders): the first half of the
+    /// jointly stratified first round, taken before any pixel decides (`early_stop`).
     fn first_batches(&self, t: Tile) -> FirstTileResult {
         let mut counts = RayCounts::default();
         let mut pixels = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
@@ -430,7 +430,7 @@ impl Job<'_> {
             for x in t.x0..t.x1 {
                 let sequences = rng::PixelSequences::new(self.scene.settings.seed, x, y);
                 let mut acc = Accumulator::default();
-                // Filtered for the two first batches' samples, as the second batch is.
+                // Filtered for the first round's samples, as its second half is.
                 let scale = footprint_scale(early_stop::LAST_EARLY);
                 self.progressive_batch(x, y, &sequences, 0..size, scale, &mut acc, &mut counts);
                 pixels.push(acc);
@@ -471,6 +471,7 @@ impl Job<'_> {
             luminance: luminance as f64,
         });
         let prior = first.prior(x, y);
+        let spread = first.spread(x, y);
         let mut taken = 0;
         for (batch, &size) in a.batch_sizes.iter().enumerate() {
             if batch == 0 {
@@ -490,7 +491,7 @@ impl Job<'_> {
                 continue;
             }
             if taken < a.min {
-                if let Some(e) = early_stop::confident_error(&acc, &prior, a.target) {
+                if let Some(e) = early_stop::confident_error(&acc, &prior, &spread, a.target) {
                     return acc.finish_with(taken, false, e);
                 }
             } else if acc.relative_error() <= a.target {

@@ -55,20 +55,30 @@ impl PixelBatch {
     }
 }
 
-/// Independent progressive sequences of one pixel for adaptive sampling: sample `g` of the
-/// pixel belongs to replicate `g mod REPLICATES` and is point `g / REPLICATES` of that
-/// replicate's Owen-scrambled Sobol' sequences ([`Sampler::point_2d`]), so each replicate's
-/// samples stay one low-discrepancy set however many batches the pixel takes (the sequence
-/// continues instead of restarting), while the replicates, scrambled independently, give
-/// independent estimates of the pixel whose spread measures the error of their mean.
+/// Progressive sequences of one pixel for adaptive sampling. The first [`SHARED_ROUNDS`] round
+/// (samples `g < REPLICATES`) is points `0..REPLICATES` of one Owen-scrambled Sobol' sequence of
+/// the pixel, so its first 2 and 4 samples are (0,m,2)-nets in every stream, as good as a
+/// fixed-count render's (independent first samples left flat walls with 1.5× the error); those
+/// samples are in the pixel's mean but in no replicate ([`PixelSequences::replicate`]). After
+/// it, sample `g` belongs to replicate `g mod REPLICATES` and is point `g / REPLICATES − 1` of
+/// that replicate's own sequences ([`Sampler::point_2d`]), so each replicate's samples are one
+/// low-discrepancy set however many batches the pixel takes (the sequence continues instead of
+/// restarting; each batch of 16 adds a whole 4-point block to each replicate), while the
+/// replicates, scrambled independently, give independent estimates whose spread measures the
+/// error.
 #[derive(Debug, Clone, Copy)]
 pub struct PixelSequences {
     pixel_hash: u64,
     replicate_keys: [u64; REPLICATES as usize],
+    /// The scramble of the shared rounds' sequence (samples `0..SHARED_ROUNDS·REPLICATES`).
+    shared_key: u64,
 }
 
 /// Independent replicates of an adaptive pixel's samples.
 pub const REPLICATES: u32 = 4;
+/// Rounds (one sample per replicate each) at the start of an adaptive pixel that are one
+/// stratified set of the pixel's rather than points of the replicates' own sequences.
+pub const SHARED_ROUNDS: u32 = 1;
 
 impl PixelSequences {
     /// The sequences of pixel (`px`, `py`).
@@ -80,6 +90,7 @@ impl PixelSequences {
         PixelSequences {
             pixel_hash,
             replicate_keys,
+            shared_key: mix64(key_of(pixel_hash, u32::MAX - REPLICATES) ^ 0x2f1d_83a5_c3b9_0e47),
         }
     }
 
@@ -87,20 +98,25 @@ impl PixelSequences {
     #[inline]
     pub fn sampler(&self, global: u32) -> Sampler {
         let r = (global % REPLICATES) as usize;
+        let (pixel_key, index) = match global / REPLICATES {
+            round if round < SHARED_ROUNDS => (self.shared_key, global),
+            round => (self.replicate_keys[r], round - SHARED_ROUNDS),
+        };
         Sampler {
             key: key_of(self.pixel_hash, global),
             dim: 0,
-            pixel_key: self.replicate_keys[r],
-            index: global / REPLICATES,
+            pixel_key,
+            index,
             count: 0,
             progressive: true,
         }
     }
 
-    /// The replicate sample `global` belongs to.
+    /// The replicate sample `global` belongs to; `None` for the shared rounds' samples, which
+    /// are in the pixel's mean but in no replicate.
     #[inline]
-    pub fn replicate(global: u32) -> usize {
-        (global % REPLICATES) as usize
+    pub fn replicate(global: u32) -> Option<usize> {
+        (global >= SHARED_ROUNDS * REPLICATES).then_some((global % REPLICATES) as usize)
     }
 }
 
@@ -452,6 +468,35 @@ mod tests {
                 );
                 // The next block of the same size is a net too (continuation in batches).
                 assert!(is_02_net(&points[1 << k..2 << k]), "block 2^{k}");
+            }
+        }
+    }
+
+    #[test]
+    fn an_adaptive_pixels_shared_rounds_are_one_stratified_set_then_replicates_go_their_own_way() {
+        let shared = (SHARED_ROUNDS * REPLICATES) as usize;
+        for (seed, px, py, stream) in [(0, 0, 0, 0), (3, 10, 20, 7), (9, 511, 3, 1 << 40)] {
+            let sequences = PixelSequences::new(seed, px, py);
+            let point = |g: u32| {
+                let sampler = sequences.sampler(g);
+                sampler.point_2d(stream, sampler.index().0)
+            };
+            let first: Vec<Vec2> = (0..shared as u32).map(point).collect();
+            for k in [2, 4].into_iter().filter(|&k| k <= shared) {
+                assert!(is_02_net(&first[..k]), "the first {k}");
+            }
+            assert!((0..shared as u32).all(|g| PixelSequences::replicate(g).is_none()));
+            // Replicate r's later samples are its own sequence from its start: a net at every
+            // power of two, each batch of 16 adding a block of 4.
+            for r in 0..REPLICATES {
+                let own: Vec<u32> = (SHARED_ROUNDS..SHARED_ROUNDS + 8)
+                    .map(|k| k * REPLICATES + r)
+                    .collect();
+                assert!(own
+                    .iter()
+                    .all(|&g| PixelSequences::replicate(g) == Some(r as usize)));
+                let own: Vec<Vec2> = own.into_iter().map(point).collect();
+                assert!(is_02_net(&own[..4]) && is_02_net(&own), "replicate {r}");
             }
         }
     }
