@@ -8,7 +8,8 @@
 //! `mesh` or a (checker) `texture` (a digit after its `=`) that leaves the scene without an
 //! error, an `object` line inserted or deleted (one that leaves every mesh and material as used
 //! as it was), an object's material misspelt (an error: the edit the language server sees while
-//! the user types) and the next edit, which puts the name back.
+//! the user types) and the next edit, which puts the name back, and a `let` nothing names
+//! inserted or deleted.
 
 use scnc::assets::MemLoader;
 use scnc::compile::{compile_with, Incremental, Overrides, Reuse};
@@ -74,14 +75,20 @@ enum Kind {
     ObjectTypo,
     /// The misspelt name put back (the edit after an [`Kind::ObjectTypo`]).
     ObjectTypoFixed,
+    /// A `let` line nothing names inserted.
+    LetInsert,
+    /// Such a `let` line deleted.
+    LetDelete,
 }
 
-/// The edits of `object` lines asserted to take the fast path, in [`Replayed::object_edits`].
-const OBJECT_KINDS: [Kind; 4] = [
+/// The edits of whole lines asserted to take the fast path, in [`Replayed::line_edits`].
+const LINE_KINDS: [Kind; 6] = [
     Kind::ObjectInsert,
     Kind::ObjectDelete,
     Kind::ObjectTypo,
     Kind::ObjectTypoFixed,
+    Kind::LetInsert,
+    Kind::LetDelete,
 ];
 
 /// The mesh and material an `object` line names (`object MESH { material MATERIAL ...`).
@@ -139,7 +146,18 @@ fn edit(rng: &mut SplitMix64, text: &str) -> (String, Option<(Kind, String)>) {
     let lines: Vec<&str> = text.split_inclusive('\n').collect();
     let line = rng.below(lines.len());
     let mut out: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
-    match rng.below(21) {
+    match rng.below(23) {
+        // A `let` nothing names inserted, or one deleted.
+        21 | 22 => {
+            if let Some(i) = (0..out.len()).find(|&i| out[i].starts_with("let unused")) {
+                out.remove(i);
+                return (out.concat(), Some((Kind::LetDelete, String::new())));
+            }
+            let value = rng.below(100);
+            let stmt = format!("let unused{} = {value} * 2\n", rng.below(1_000_000));
+            out.insert(1 + rng.below(out.len()), stmt);
+            return (out.concat(), Some((Kind::LetInsert, String::new())));
+        }
         // An `object` line inserted (a copy of one), deleted, or its material misspelt.
         18..=20 => {
             let objects: Vec<usize> = (0..lines.len())
@@ -307,10 +325,10 @@ struct Replayed {
     /// Per declaration kind (`let`, `material`, `mesh`, `texture`): value edits made to a scene that
     /// compiled without an error which left it without one, and those that took the fast path.
     decl_edits: [(usize, usize); 4],
-    /// Per `object` line edit of [`OBJECT_KINDS`] (insert, delete, misspell a material, put it
-    /// back) made to a scene that compiled without an error: made, and those that took the
-    /// fast path.
-    object_edits: [(usize, usize); 4],
+    /// Per line edit of [`LINE_KINDS`] (an object inserted, deleted, its material misspelt and
+    /// put back; a `let` nothing names inserted, deleted) made to a scene that compiled without
+    /// an error: made, and those that took the fast path.
+    line_edits: [(usize, usize); 6],
 }
 
 impl Replayed {
@@ -318,8 +336,8 @@ impl Replayed {
         self.fast += r.fast;
         self.number_edits_of_clean_scenes += r.number_edits_of_clean_scenes;
         self.number_edits_fast += r.number_edits_fast;
-        let counts = self.decl_edits.iter_mut().chain(&mut self.object_edits);
-        for (a, b) in counts.zip(r.decl_edits.iter().chain(&r.object_edits)) {
+        let counts = self.decl_edits.iter_mut().chain(&mut self.line_edits);
+        for (a, b) in counts.zip(r.decl_edits.iter().chain(&r.line_edits)) {
             a.0 += b.0;
             a.1 += b.1;
         }
@@ -388,9 +406,9 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
             }
             // The misspelling is an error; the edit after it (the name put back) too must be
             // fast, in a scene whose memo holds that error.
-            Some((kind, before)) if OBJECT_KINDS.contains(&kind) => {
-                let at = OBJECT_KINDS.iter().position(|k| *k == kind).unwrap_or(0);
-                let counts = &mut replayed.object_edits[at];
+            Some((kind, before)) if LINE_KINDS.contains(&kind) => {
+                let at = LINE_KINDS.iter().position(|k| *k == kind).unwrap_or(0);
+                let counts = &mut replayed.line_edits[at];
                 counts.0 += 1;
                 counts.1 += usize::from(reused);
                 assert!(reused, "{label}: an {kind:?} edit took the full path");
@@ -423,22 +441,23 @@ fn seeded_edits_compile_as_a_fresh_compile_does() {
     for seed in 1..=8u64 {
         let r = replay(
             seed.wrapping_mul(0xD1B5_4A32_D192_ED03),
-            100,
+            200,
             Overrides::default(),
         );
         total.add(&r);
     }
     eprintln!(
-        "fast {} of 800; number edits of clean scenes {}, fast {}; let, material, mesh, \
+        "fast {} of 1600; number edits of clean scenes {}, fast {}; let, material, mesh, \
          texture value edits of clean scenes (made, fast) {:?}",
         total.fast, total.number_edits_of_clean_scenes, total.number_edits_fast, total.decl_edits
     );
     eprintln!(
-        "object line inserted, deleted, material misspelt, put back (made, fast) {:?}",
-        total.object_edits
+        "object line inserted, deleted, material misspelt, put back; unused let inserted, \
+         deleted (made, fast) {:?}",
+        total.line_edits
     );
-    for (kind, (made, _)) in OBJECT_KINDS.iter().zip(total.object_edits) {
-        assert!(made >= 5, "only {made} {kind:?} edits of clean scenes");
+    for (kind, (made, _)) in LINE_KINDS.iter().zip(total.line_edits) {
+        assert!(made >= 4, "only {made} {kind:?} edits of clean scenes");
     }
     assert_fast_path_taken(&total, 20);
     for (kind, (made, _)) in KINDS.iter().zip(total.decl_edits) {
@@ -572,4 +591,45 @@ fn a_declaration_edit_rechecks_it_and_what_names_it() {
     // A renamed material is not the same declaration.
     let renamed = edit("material m3 =", "material m7 =", &mut text);
     assert_eq!(renamed, Reuse::Full);
+}
+
+#[test]
+fn a_let_nothing_names_added_or_removed_is_checked_alone() {
+    let path = Path::new("edit.scn");
+    let text = base_scene();
+    let mut inc = Incremental::new(Overrides::default());
+    let mut loader = MemLoader::new();
+    let mut sources = SourceMap::new();
+    let mut compile = |text: &str| {
+        loader.insert(path, text.to_string());
+        let got = inc.compile(path, &loader, &mut sources);
+        let want = compile_with(path, &loader, &mut SourceMap::new(), &Overrides::default());
+        assert_eq!(
+            format!("{:?}", got.diagnostics),
+            format!("{:?}", want.diagnostics)
+        );
+        assert_eq!(
+            format!("{:?}", got.value),
+            format!("{:?}", want.value.map(Arc::new))
+        );
+        inc.reuse
+    };
+    assert_eq!(compile(&text), Reuse::Full);
+    // Before a `light` line: the inserted line is found at its line's start, not after the `l`.
+    let added = text.replacen("light sun", "let q = k * 2\nlight sun", 1);
+    let checked = |checked| Reuse::Statements { parsed: 2, checked };
+    assert_eq!(compile(&added), checked(1));
+    assert_eq!(
+        compile(&text),
+        Reuse::Statements {
+            parsed: 1,
+            checked: 0
+        }
+    );
+    // One that names a later constant, or that something names, is not checked alone.
+    let later = text.replacen("let k = 2", "let q = spin\nlet k = 2", 1);
+    assert_eq!(compile(&later), Reuse::Full);
+    assert_eq!(compile(&text), Reuse::Full);
+    let named = text.replacen("let k = 2\n", "", 1);
+    assert_eq!(compile(&named), Reuse::Full);
 }
