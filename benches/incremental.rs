@@ -2,9 +2,12 @@
 //! [-- --edits N] [-- --objects N] [-- --no-watch]`.
 //!
 //! The scene of issue 22: 100,000 `object` statements, each with a rotate and a translate, over
-//! three meshes and 100 materials that name one constant, `gloss` (about 9 MB). Three kinds of
-//! edit, one line each: one object's translate in the middle of the file (a person nudging one
-//! object), one material's colour, and the value of `gloss` (its 100 materials re-checked).
+//! three meshes and 100 materials that name one constant, `gloss` (about 9 MB). Seven kinds
+//! of edit, one line each: one object's translate in the middle of the file (a person nudging one
+//! object), one material's colour, the value of `gloss` (its 100 materials re-checked), an
+//! `object` line inserted, one deleted, an object's material misspelt then put back (every
+//! other edit an error: what the language server sees while the user types; in process only,
+//! as `scnc watch` builds nothing then), and a `let` nothing names inserted then deleted.
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
 //!    each edit (the text served from memory; diagnostics are ready when it returns).
@@ -93,16 +96,55 @@ enum Kind {
     Material,
     /// The constant `gloss`, which every material names, changes.
     Let,
+    /// An `object` line (a copy of one near the middle) is inserted beside it.
+    Insert,
+    /// An `object` line near the middle is deleted.
+    Delete,
+    /// Edits 0, 2, 4, …: one object's material misspelt (an error); 1, 3, 5, …: put back.
+    Typo,
+    /// Edits 0, 2, 4, …: a `let` nothing names inserted after `gloss`; 1, 3, 5, …: deleted.
+    UnusedLet,
 }
 
-const KINDS: [Kind; 3] = [Kind::Object, Kind::Material, Kind::Let];
+const KINDS: [Kind; 7] = [
+    Kind::Object,
+    Kind::Material,
+    Kind::Let,
+    Kind::Insert,
+    Kind::Delete,
+    Kind::UnusedLet,
+    // Last: an odd number of edits leaves the misspelling.
+    Kind::Typo,
+];
 
 /// Edit `k` of kind `kind` of `lines`. Returns the new text.
-fn edit(lines: &mut [String], objects: usize, kind: Kind, k: usize) -> String {
+fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String {
+    let middle = HEADER + objects / 2 + (k * 7919) % (objects / 4);
     match kind {
         Kind::Object => {
             let i = objects / 2 + (k * 7919) % (objects / 4);
             lines[HEADER + i] = object_line(i, 1 + k % 9);
+        }
+        Kind::Insert => lines.insert(middle, lines[middle].clone()),
+        Kind::Delete => {
+            lines.remove(middle);
+        }
+        Kind::UnusedLet if k.is_multiple_of(2) => {
+            lines.insert(LET_LINE + 1, format!("let unused = 0.{}", k % 10));
+        }
+        Kind::UnusedLet => {
+            lines.remove(LET_LINE + 1);
+        }
+        // The pair of edits 2j, 2j + 1 is of one line.
+        Kind::Typo => {
+            let i = HEADER + objects / 2 + (k / 2 * 7919) % (objects / 4);
+            let (name, typo) = ("{ material m", "{ material mm");
+            let (from, to) = if k.is_multiple_of(2) {
+                (name, typo)
+            } else {
+                (typo, name)
+            };
+            lines[i] = lines[i].replacen(from, to, 1);
         }
         Kind::Material => {
             let m = (k * 37) % 100;
@@ -115,12 +157,14 @@ fn edit(lines: &mut [String], objects: usize, kind: Kind, k: usize) -> String {
     text
 }
 
-/// The statements an edit of `kind` checks again: the edited one, and for the constant every
-/// material (which names it).
-fn checked(kind: Kind) -> usize {
+/// The statements edit `k` of `kind` checks again: the edited one, for the constant every
+/// material (which names it), none for a deleted line.
+fn checked(kind: Kind, k: usize) -> usize {
     match kind {
-        Kind::Object | Kind::Material => 1,
         Kind::Let => 101,
+        Kind::UnusedLet => 1 - k % 2,
+        Kind::Delete => 0,
+        _ => 1,
     }
 }
 
@@ -188,6 +232,15 @@ fn front_end(objects: usize, edits: usize) {
             let t = Instant::now();
             let r = inc.compile(path, &loader, &mut SourceMap::new());
             times.push(t.elapsed().as_secs_f64() * 1e3);
+            if kind == Kind::Typo {
+                assert_eq!(
+                    r.value.is_none(),
+                    k % 2 == 0,
+                    "a misspelt material is an error"
+                );
+                assert!(matches!(inc.reuse, Reuse::Statements { checked: 1, .. }));
+                continue;
+            }
             let desc = r.value.expect("the edit compiles");
             let built = scene::build_cached(&desc, &loader, &opts, &mut cache)
                 .value
@@ -198,12 +251,21 @@ fn front_end(objects: usize, edits: usize) {
             }
             cache.recycle(built);
             assert!(
-                matches!(inc.reuse, Reuse::Statements { checked: n, .. } if n == checked(kind)),
+                matches!(inc.reuse, Reuse::Statements { checked: n, .. } if n == checked(kind, k)),
                 "{kind:?} edit {k} took {:?}",
                 inc.reuse
             );
         }
         let [mut total, mut assets, mut accel] = build;
+        if kind == Kind::Typo {
+            println!(
+                "{kind:?} edits ({edits}, every other one an error): incremental compile median \
+                 {:.1} ms (slowest {:.1} ms)",
+                median(&mut times.clone()),
+                max(&times)
+            );
+            continue;
+        }
         println!(
             "{kind:?} edits ({edits}): incremental compile median {:.1} ms (slowest {:.1} ms); \
              scene::build_cached after each: median {:.1} ms (meshes and checks {:.1} ms, \
@@ -234,7 +296,7 @@ fn watch(objects: usize, edits: usize) {
         first["compile_ms"].as_f64().unwrap_or(0.0),
         first["build_ms"].as_f64().unwrap_or(0.0),
     );
-    for kind in KINDS {
+    for kind in KINDS.into_iter().filter(|&k| k != Kind::Typo) {
         let mut figures: [Vec<f64>; 6] = Default::default();
         let mut incremental = 0;
         // What the cached builds made again (`rebuilt` of the `compiled` events), all edits.

@@ -6,7 +6,10 @@
 //! object's numbers) of a scene the fast path covers (one file without includes, no error)
 //! must take it, every time; so must a value edit of a `let`, a `material`, a (built-in)
 //! `mesh` or a (checker) `texture` (a digit after its `=`) that leaves the scene without an
-//! error.
+//! error, an `object` line inserted or deleted (one that leaves every mesh and material as used
+//! as it was), an object's material misspelt (an error: the edit the language server sees while
+//! the user types) and the next edit, which puts the name back, and a `let` nothing names
+//! inserted or deleted.
 
 use scnc::assets::MemLoader;
 use scnc::compile::{compile_with, Incremental, Overrides, Reuse};
@@ -64,6 +67,55 @@ enum Kind {
     Mesh,
     /// A digit after the `=` of a `texture` line replaced.
     Texture,
+    /// An `object` line inserted (a copy of one, so no mesh or material becomes used).
+    ObjectInsert,
+    /// An `object` line deleted whose mesh and material another `object` line names too.
+    ObjectDelete,
+    /// The material of such an `object` line misspelt (an unknown name: an error).
+    ObjectTypo,
+    /// The misspelt name put back (the edit after an [`Kind::ObjectTypo`]).
+    ObjectTypoFixed,
+    /// A `let` line nothing names inserted.
+    LetInsert,
+    /// Such a `let` line deleted.
+    LetDelete,
+}
+
+/// The edits of whole lines asserted to take the fast path, in [`Replayed::line_edits`].
+const LINE_KINDS: [Kind; 6] = [
+    Kind::ObjectInsert,
+    Kind::ObjectDelete,
+    Kind::ObjectTypo,
+    Kind::ObjectTypoFixed,
+    Kind::LetInsert,
+    Kind::LetDelete,
+];
+
+/// The mesh and material an `object` line names (`object MESH { material MATERIAL ...`).
+fn mesh_and_material(line: &str) -> Option<(&str, &str)> {
+    let mesh = line.strip_prefix("object ")?.split_whitespace().next()?;
+    let at = line.find("material ")? + "material ".len();
+    let material = line[at..].split_whitespace().next()?;
+    Some((mesh, material))
+}
+
+/// The `object` lines of `lines` whose mesh and material another `object` line names too.
+fn shared_objects(lines: &[&str]) -> Vec<usize> {
+    let pairs: Vec<Option<(&str, &str)>> = lines.iter().map(|l| mesh_and_material(l)).collect();
+    (0..lines.len())
+        .filter(|&i| {
+            let Some((mesh, material)) = pairs[i] else {
+                return false;
+            };
+            let named_elsewhere = |name: &str, second: bool| {
+                (0..lines.len()).any(|j| {
+                    let p = pairs[j].filter(|_| j != i);
+                    p.is_some_and(|p| if second { p.1 } else { p.0 } == name)
+                })
+            };
+            named_elsewhere(mesh, false) && named_elsewhere(material, true)
+        })
+        .collect()
 }
 
 const KINDS: [(Kind, &str); 4] = [
@@ -94,7 +146,50 @@ fn edit(rng: &mut SplitMix64, text: &str) -> (String, Option<(Kind, String)>) {
     let lines: Vec<&str> = text.split_inclusive('\n').collect();
     let line = rng.below(lines.len());
     let mut out: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
-    match rng.below(18) {
+    match rng.below(23) {
+        // A `let` nothing names inserted, or one deleted.
+        21 | 22 => {
+            if let Some(i) = (0..out.len()).find(|&i| out[i].starts_with("let unused")) {
+                out.remove(i);
+                return (out.concat(), Some((Kind::LetDelete, String::new())));
+            }
+            let value = rng.below(100);
+            let stmt = format!("let unused{} = {value} * 2\n", rng.below(1_000_000));
+            out.insert(1 + rng.below(out.len()), stmt);
+            return (out.concat(), Some((Kind::LetInsert, String::new())));
+        }
+        // An `object` line inserted (a copy of one), deleted, or its material misspelt.
+        18..=20 => {
+            let objects: Vec<usize> = (0..lines.len())
+                .filter(|&i| lines[i].starts_with("object "))
+                .collect();
+            let shared = shared_objects(&lines);
+            let Some(&at) = objects.get(rng.below(objects.len())) else {
+                return (text.to_string(), None);
+            };
+            match rng.below(3) {
+                0 => {
+                    let copy = out[at].clone();
+                    out.insert(1 + rng.below(out.len()), copy);
+                    return (out.concat(), Some((Kind::ObjectInsert, String::new())));
+                }
+                kind => {
+                    let Some(&i) = shared.get(rng.below(shared.len())) else {
+                        return (text.to_string(), None);
+                    };
+                    if kind == 1 {
+                        out.remove(i);
+                        return (out.concat(), Some((Kind::ObjectDelete, String::new())));
+                    }
+                    let Some((_, material)) = mesh_and_material(lines[i]) else {
+                        return (text.to_string(), None);
+                    };
+                    let from = format!("material {material} ");
+                    out[i] = out[i].replacen(&from, &format!("material {material}zz "), 1);
+                    return (out.concat(), Some((Kind::ObjectTypo, text.to_string())));
+                }
+            }
+        }
         // The common edit: a number of an object changes.
         0..=3 => {
             let objects: Vec<usize> = (0..lines.len())
@@ -230,6 +325,10 @@ struct Replayed {
     /// Per declaration kind (`let`, `material`, `mesh`, `texture`): value edits made to a scene that
     /// compiled without an error which left it without one, and those that took the fast path.
     decl_edits: [(usize, usize); 4],
+    /// Per line edit of [`LINE_KINDS`] (an object inserted, deleted, its material misspelt and
+    /// put back; a `let` nothing names inserted, deleted) made to a scene that compiled without
+    /// an error: made, and those that took the fast path.
+    line_edits: [(usize, usize); 6],
 }
 
 impl Replayed {
@@ -237,7 +336,8 @@ impl Replayed {
         self.fast += r.fast;
         self.number_edits_of_clean_scenes += r.number_edits_of_clean_scenes;
         self.number_edits_fast += r.number_edits_fast;
-        for (a, b) in self.decl_edits.iter_mut().zip(r.decl_edits) {
+        let counts = self.decl_edits.iter_mut().chain(&mut self.line_edits);
+        for (a, b) in counts.zip(r.decl_edits.iter().chain(&r.line_edits)) {
             a.0 += b.0;
             a.1 += b.1;
         }
@@ -304,6 +404,21 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
                 replayed.number_edits_of_clean_scenes += 1;
                 replayed.number_edits_fast += usize::from(reused);
             }
+            // The misspelling is an error; the edit after it (the name put back) too must be
+            // fast, in a scene whose memo holds that error.
+            Some((kind, before)) if LINE_KINDS.contains(&kind) => {
+                let at = LINE_KINDS.iter().position(|k| *k == kind).unwrap_or(0);
+                let counts = &mut replayed.line_edits[at];
+                counts.0 += 1;
+                counts.1 += usize::from(reused);
+                assert!(reused, "{label}: an {kind:?} edit took the full path");
+                if kind == Kind::ObjectTypo {
+                    assert!(failed, "{label}: a misspelt material is an error");
+                    text = before;
+                    clean_edit = Some((Kind::ObjectTypoFixed, String::new()));
+                    continue;
+                }
+            }
             Some((kind, name)) if !failed && !overridden(kind, &name) => {
                 let at = KINDS.iter().position(|(k, _)| *k == kind).unwrap_or(0);
                 let counts = &mut replayed.decl_edits[at];
@@ -326,16 +441,24 @@ fn seeded_edits_compile_as_a_fresh_compile_does() {
     for seed in 1..=8u64 {
         let r = replay(
             seed.wrapping_mul(0xD1B5_4A32_D192_ED03),
-            100,
+            200,
             Overrides::default(),
         );
         total.add(&r);
     }
     eprintln!(
-        "fast {} of 800; number edits of clean scenes {}, fast {}; let, material, mesh, \
+        "fast {} of 1600; number edits of clean scenes {}, fast {}; let, material, mesh, \
          texture value edits of clean scenes (made, fast) {:?}",
         total.fast, total.number_edits_of_clean_scenes, total.number_edits_fast, total.decl_edits
     );
+    eprintln!(
+        "object line inserted, deleted, material misspelt, put back; unused let inserted, \
+         deleted (made, fast) {:?}",
+        total.line_edits
+    );
+    for (kind, (made, _)) in LINE_KINDS.iter().zip(total.line_edits) {
+        assert!(made >= 4, "only {made} {kind:?} edits of clean scenes");
+    }
     assert_fast_path_taken(&total, 20);
     for (kind, (made, _)) in KINDS.iter().zip(total.decl_edits) {
         assert!(
@@ -366,9 +489,9 @@ fn defines_and_frame_keep_their_values_across_edits() {
         frame: 3.0,
         defines: vec![("k".into(), "frame * 2".into())],
     };
-    let r = replay(0xDEAD_BEEF, 160, overrides);
+    let r = replay(0xDEAD_BEEF, 320, overrides);
     eprintln!(
-        "fast {} of 160; number edits of clean scenes {}, fast {}",
+        "fast {} of 320; number edits of clean scenes {}, fast {}",
         r.fast, r.number_edits_of_clean_scenes, r.number_edits_fast
     );
     assert_fast_path_taken(&r, 4);
@@ -468,4 +591,45 @@ fn a_declaration_edit_rechecks_it_and_what_names_it() {
     // A renamed material is not the same declaration.
     let renamed = edit("material m3 =", "material m7 =", &mut text);
     assert_eq!(renamed, Reuse::Full);
+}
+
+#[test]
+fn a_let_nothing_names_added_or_removed_is_checked_alone() {
+    let path = Path::new("edit.scn");
+    let text = base_scene();
+    let mut inc = Incremental::new(Overrides::default());
+    let mut loader = MemLoader::new();
+    let mut sources = SourceMap::new();
+    let mut compile = |text: &str| {
+        loader.insert(path, text.to_string());
+        let got = inc.compile(path, &loader, &mut sources);
+        let want = compile_with(path, &loader, &mut SourceMap::new(), &Overrides::default());
+        assert_eq!(
+            format!("{:?}", got.diagnostics),
+            format!("{:?}", want.diagnostics)
+        );
+        assert_eq!(
+            format!("{:?}", got.value),
+            format!("{:?}", want.value.map(Arc::new))
+        );
+        inc.reuse
+    };
+    assert_eq!(compile(&text), Reuse::Full);
+    // Before a `light` line: the inserted line is found at its line's start, not after the `l`.
+    let added = text.replacen("light sun", "let q = k * 2\nlight sun", 1);
+    let checked = |checked| Reuse::Statements { parsed: 2, checked };
+    assert_eq!(compile(&added), checked(1));
+    assert_eq!(
+        compile(&text),
+        Reuse::Statements {
+            parsed: 1,
+            checked: 0
+        }
+    );
+    // One that names a later constant, or that something names, is not checked alone.
+    let later = text.replacen("let k = 2", "let q = spin\nlet k = 2", 1);
+    assert_eq!(compile(&later), Reuse::Full);
+    assert_eq!(compile(&text), Reuse::Full);
+    let named = text.replacen("let k = 2\n", "", 1);
+    assert_eq!(compile(&named), Reuse::Full);
 }

@@ -4,7 +4,8 @@
 //! statements, those alone are checked again and spliced in (`compile::incremental` decides
 //! when an edit is such an edit). An edit of `let`, `material` and `mesh` declarations that
 //! keeps their names is re-checked in place with what names a changed constant
-//! ([`decls`]); everything else is a full check.
+//! ([`decls`]); `let`s added or removed that nothing names are checked alone ([`lets`]);
+//! everything else is a full check.
 //!
 //! Why the result is the full check's: an `object` is checked in the placement phase, after
 //! every constant and declaration, reading only constants, the `frame`, the name tables and the
@@ -19,6 +20,7 @@ use std::ops::Range;
 use std::sync::Arc;
 
 mod decls;
+mod lets;
 
 pub use decls::Dependents;
 

@@ -36,6 +36,7 @@ pub(super) fn region(file: FileId, old: &str, new: &str, spans: &[(u32, u32)]) -
     }
     let max_suffix = a.len().min(b.len()) - prefix;
     let suffix = common_suffix(&a[a.len() - max_suffix..], &b[b.len() - max_suffix..]);
+    let (prefix, suffix) = at_line_start(a, b, prefix, suffix);
     let shift = Shift {
         file,
         start: prefix as u32,
@@ -103,6 +104,37 @@ pub(super) fn changed(
     parsed.truncate(keep_back);
     parsed.drain(..keep_front);
     (old, parsed)
+}
+
+/// The common prefix and suffix again, for a pure insertion or deletion that can as well be
+/// placed at a line's start: the same edit, at the start of the line it adds or removes.
+///
+/// The common prefix runs as far as it can, so a line `let q = 1` inserted before a line
+/// `light …` is found as `et q = 1⏎l` inserted after that line's `l`, and the statement on it
+/// seems edited. The inserted (or deleted) bytes slide left while the byte before them equals
+/// their last one (the text stays the same); the first place so reached that follows a newline
+/// is taken (at most `SLIDE` bytes back), else the edit stays where it was.
+fn at_line_start(a: &[u8], b: &[u8], prefix: usize, suffix: usize) -> (usize, usize) {
+    const SLIDE: usize = 4096;
+    let (old_end, new_end) = (a.len() - suffix, b.len() - suffix);
+    // The text that has the edited bytes (the other has none).
+    let (text, end) = match (old_end == prefix, new_end == prefix) {
+        (true, false) => (b, new_end),
+        (false, true) => (a, old_end),
+        _ => return (prefix, suffix),
+    };
+    let len = end - prefix;
+    let mut start = prefix;
+    for _ in 0..SLIDE {
+        if start > 0 && text[start - 1] == b'\n' {
+            return (start, suffix + (prefix - start));
+        }
+        if start == 0 || text[start - 1] != text[start + len - 1] {
+            break;
+        }
+        start -= 1;
+    }
+    (prefix, suffix)
 }
 
 /// Length of the common prefix, compared in 64-byte blocks (memcmp) before the tail.
@@ -181,6 +213,20 @@ mod tests {
         assert_eq!(spans[1], (7, 17));
         assert_eq!(r.stmts, 0..2);
         assert_eq!(r.bytes, 0..new.len());
+    }
+
+    #[test]
+    fn an_inserted_line_starts_at_a_line_start() {
+        let old = "scnc 1\nlet a = 1\nlight l = point { position (0, 1, 0) }\n";
+        let new = "scnc 1\nlet a = 1\nlet q = 2\nlight l = point { position (0, 1, 0) }\n";
+        let r = region(FileId(0), old, new, &spans_of(old)).expect("an edit");
+        assert_eq!(
+            (r.shift.start, r.shift.old_end, r.shift.new_end),
+            (17, 17, 27)
+        );
+        let deleted = region(FileId(0), new, old, &spans_of(new)).expect("an edit");
+        assert_eq!(deleted.shift.start, 17);
+        assert_eq!((deleted.shift.old_end, deleted.shift.new_end), (27, 17));
     }
 
     #[test]

@@ -9,9 +9,11 @@
 //! edit. When the changed statements are `let`s, `material`s, `mesh`es (not `obj`), `texture`s
 //! (not `image`) and `object`s, one for one and each keeping its name, it re-checks them and the statements that
 //! name a constant whose value changed ([`CheckMemo::recheck_decls`], which finds them through
-//! [`super::dependents`]). Anything else is a full compile, which is always correct: a scene
-//! with includes or any syntax error or file-level diagnostic, a statement added, removed or
-//! renamed among declarations, an edit of a light, a camera or the render block (or
+//! [`super::dependents`]). `let`s added or removed that nothing else names, in a scene without
+//! a diagnostic, are checked alone ([`CheckMemo::add_or_remove_lets`]). Anything else is a full
+//! compile, which is always correct: a scene with includes or any syntax error or file-level
+//! diagnostic, another statement added, removed or renamed among declarations, an edit of a
+//! light, a camera or the render block (or
 //! of a constant one of them names), a declaration or `let` with a diagnostic, an edit that
 //! makes a mesh or material used or unused, and any edit where a kept span would reach into the
 //! edited bytes. `scnc watch` and `scnc lsp` compile through it;
@@ -217,7 +219,20 @@ impl Memo {
             let spans = &self.spans;
             let mut naming = |name: &str| dependents::naming(text, spans, name);
             let shift = &region.shift;
-            (self.check).recheck_decls(&sources, old_range, &old_stmts, new, shift, &mut naming)?
+            if old_stmts.is_empty() != new.is_empty() {
+                let check = &mut self.check;
+                check.add_or_remove_lets(
+                    &sources,
+                    old_range,
+                    &old_stmts,
+                    &new,
+                    shift,
+                    &mut naming,
+                )?
+            } else {
+                let check = &mut self.check;
+                check.recheck_decls(&sources, old_range, &old_stmts, new, shift, &mut naming)?
+            }
         };
         self.sources = sources;
         Some(Reuse::Statements {

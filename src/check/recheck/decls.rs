@@ -305,7 +305,7 @@ fn reevaluate(cx: &mut Checker, name: &crate::syntax::Ident, value: &Expr) -> Op
 
 /// Whether every constant `e` names was declared before `before` (in the full check, a later
 /// one is unknown to it), and `e` holds no array (read from the text by its own parser).
-fn names_only_earlier(cx: &Checker, e: &Expr, before: u32) -> bool {
+pub(super) fn names_only_earlier(cx: &Checker, e: &Expr, before: u32) -> bool {
     match &e.kind {
         ExprKind::Name(n) => cx.lets.get(n).is_none_or(|(_, at)| at.start < before),
         ExprKind::Paren(e) | ExprKind::Neg(e) => names_only_earlier(cx, e, before),
