@@ -361,3 +361,27 @@ fn comment_end(bytes: &[u8], start: usize, depth: usize) -> Result<usize, Option
     }
     Err(None)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn resync_from_stops_where_the_scan_is_at_depth_zero_again() {
+        let text = "scnc 1\nobject a { material m\nobject b { }\nlet k = 1\n";
+        let b = text.find("object b").unwrap_or(0);
+        let k = text.find("let k").unwrap_or(0);
+        // The `{` of `a` is open at `object b` (not a stop, nor a point: `object` nests), and
+        // still at `let k`, a point (a column-0 keyword) but not a stop: the scan runs on to the
+        // end of the text.
+        let a = text.find("object a").unwrap_or(0);
+        let from = resync_from(text, a, &mut [b, k].into_iter());
+        assert_eq!(from, Some((vec![a, k], text.len())));
+        // Closed, it stops at the first stop.
+        let closed = text.replacen("material m", "material m }", 1);
+        let b = closed.find("object b").unwrap_or(0);
+        let k = closed.find("let k").unwrap_or(0);
+        let from = resync_from(&closed, a, &mut [b, k].into_iter());
+        assert_eq!(from, Some((vec![a], b)));
+    }
+}
