@@ -2,12 +2,14 @@
 //! [-- --edits N] [-- --objects N] [-- --no-watch]`.
 //!
 //! The scene of issue 22: 100,000 `object` statements, each with a rotate and a translate, over
-//! three meshes and 100 materials that name one constant, `gloss` (about 9 MB). Seven kinds
+//! three meshes and 100 materials that name one constant, `gloss` (about 9 MB). Nine kinds
 //! of edit, one line each: one object's translate in the middle of the file (a person nudging one
 //! object), one material's colour, the value of `gloss` (its 100 materials re-checked), an
 //! `object` line inserted, one deleted, an object's material misspelt then put back (every
 //! other edit an error: what the language server sees while the user types; in process only,
-//! as `scnc watch` builds nothing then), and a `let` nothing names inserted then deleted.
+//! as `scnc watch` builds nothing then), a `let` nothing names inserted then deleted, and two
+//! syntax errors, each then taken out (in process only too): a stray `=` in an object's line,
+//! and an object's line cut inside its braces (a `{` left open to the end of the file).
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
 //!    each edit (the text served from memory; diagnostics are ready when it returns).
@@ -104,18 +106,31 @@ enum Kind {
     Typo,
     /// Edits 0, 2, 4, …: a `let` nothing names inserted after `gloss`; 1, 3, 5, …: deleted.
     UnusedLet,
+    /// Edits 0, 2, 4, …: a stray `=` typed into one object's line (a syntax error, the line's
+    /// braces still balanced); 1, 3, 5, …: taken out.
+    Stray,
+    /// Edits 0, 2, 4, …: one object's line cut inside its braces (a syntax error that leaves a
+    /// `{` open to the end of the file, as a statement being typed does); 1, 3, 5, …: put back.
+    Cut,
 }
 
-const KINDS: [Kind; 7] = [
+const KINDS: [Kind; 9] = [
     Kind::Object,
     Kind::Material,
     Kind::Let,
     Kind::Insert,
     Kind::Delete,
     Kind::UnusedLet,
-    // Last: an odd number of edits leaves the misspelling.
+    // Last: each error is taken out again (an even number of edits).
     Kind::Typo,
+    Kind::Stray,
+    Kind::Cut,
 ];
+
+/// Kinds whose even edits make an error (in process only: `scnc watch` builds nothing then).
+fn errs(kind: Kind) -> bool {
+    matches!(kind, Kind::Typo | Kind::Stray | Kind::Cut)
+}
 
 /// Edit `k` of kind `kind` of `lines`. Returns the new text.
 fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String {
@@ -145,6 +160,18 @@ fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String
                 (typo, name)
             };
             lines[i] = lines[i].replacen(from, to, 1);
+        }
+        Kind::Stray | Kind::Cut => {
+            let i = HEADER + objects / 2 + (k / 2 * 7919) % (objects / 4);
+            if k.is_multiple_of(2) {
+                let line = &mut lines[i];
+                match kind {
+                    Kind::Stray => *line = line.replacen("{ material", "{ material =", 1),
+                    _ => line.truncate(line.find("translate").unwrap_or(line.len())),
+                }
+            } else {
+                lines[i] = object_line(i - HEADER, 0);
+            }
         }
         Kind::Material => {
             let m = (k * 37) % 100;
@@ -226,19 +253,33 @@ fn front_end(objects: usize, edits: usize) {
     for kind in KINDS {
         let mut times = Vec::new();
         let mut build: [Vec<f64>; 3] = Default::default();
-        for k in 0..edits {
+        // Pairs of edits for the errors, so that each is taken out before the next kind.
+        let count = if errs(kind) { edits + edits % 2 } else { edits };
+        // A full compile of the first error, for comparison.
+        let mut full_error = None;
+        for k in 0..count {
             let mut loader = MemLoader::new();
             loader.insert(path, edit(&mut lines, objects, kind, k));
+            if errs(kind) && k == 0 {
+                let t = Instant::now();
+                let r = compile_with(path, &loader, &mut SourceMap::new(), &overrides);
+                full_error = Some((t.elapsed().as_secs_f64() * 1e3, r.diagnostics.len()));
+            }
             let t = Instant::now();
             let r = inc.compile(path, &loader, &mut SourceMap::new());
             times.push(t.elapsed().as_secs_f64() * 1e3);
-            if kind == Kind::Typo {
-                assert_eq!(
-                    r.value.is_none(),
-                    k % 2 == 0,
-                    "a misspelt material is an error"
+            if errs(kind) {
+                assert_eq!(r.value.is_none(), k % 2 == 0, "{kind:?} edit {k}: an error");
+                // A syntax error is answered from the memo of the text before it (nothing
+                // checked); taking it out gives that text again (`Unchanged`) or another value.
+                let checked = usize::from(kind == Kind::Typo || k % 2 == 1);
+                let unchanged = kind != Kind::Typo && inc.reuse == Reuse::Unchanged;
+                assert!(
+                    unchanged
+                        || matches!(inc.reuse, Reuse::Statements { checked: n, .. } if n == checked),
+                    "{kind:?} edit {k} took {:?}",
+                    inc.reuse
                 );
-                assert!(matches!(inc.reuse, Reuse::Statements { checked: 1, .. }));
                 continue;
             }
             let desc = r.value.expect("the edit compiles");
@@ -257,12 +298,20 @@ fn front_end(objects: usize, edits: usize) {
             );
         }
         let [mut total, mut assets, mut accel] = build;
-        if kind == Kind::Typo {
+        if errs(kind) {
+            let errors: Vec<f64> = times.iter().copied().step_by(2).collect();
+            let fixes: Vec<f64> = times.iter().copied().skip(1).step_by(2).collect();
             println!(
-                "{kind:?} edits ({edits}, every other one an error): incremental compile median \
-                 {:.1} ms (slowest {:.1} ms)",
+                "{kind:?} edits ({count}, every other one an error): incremental compile median \
+                 {:.1} ms (slowest {:.1} ms); the errors {:.1} ms (slowest {:.1}), the edits \
+                 taking them out {:.1} ms (slowest {:.1}); a full compile of the first error \
+                 (ms, diagnostics) {full_error:?}",
                 median(&mut times.clone()),
-                max(&times)
+                max(&times),
+                median(&mut errors.clone()),
+                max(&errors),
+                median(&mut fixes.clone()),
+                max(&fixes)
             );
             continue;
         }
@@ -296,7 +345,7 @@ fn watch(objects: usize, edits: usize) {
         first["compile_ms"].as_f64().unwrap_or(0.0),
         first["build_ms"].as_f64().unwrap_or(0.0),
     );
-    for kind in KINDS.into_iter().filter(|&k| k != Kind::Typo) {
+    for kind in KINDS.into_iter().filter(|&k| !errs(k)) {
         let mut figures: [Vec<f64>; 6] = Default::default();
         let mut incremental = 0;
         // What the cached builds made again (`rebuilt` of the `compiled` events), all edits.

@@ -21,6 +21,7 @@ use crate::ir;
 use crate::source::{FileId, SourceMap, Span};
 use crate::syntax::{self, ExprKind, Stmt};
 
+mod broken;
 mod dependents;
 #[cfg(test)]
 mod early_tests;

@@ -75,6 +75,15 @@ enum Kind {
     ObjectTypo,
     /// The misspelt name put back (the edit after an [`Kind::ObjectTypo`]).
     ObjectTypoFixed,
+    /// An `object` line's syntax broken (cut short, a `}` deleted, a stray `=`): a syntax
+    /// error, its statement lost.
+    ObjectBroken,
+    /// The broken line put back (the edit after an [`Kind::ObjectBroken`]).
+    ObjectBrokenFixed,
+    /// A copy of an `object` line inserted half-typed (cut inside its braces, which stay open).
+    HalfTyped,
+    /// The half-typed line taken out again (the edit after a [`Kind::HalfTyped`]).
+    HalfTypedFixed,
     /// A `let` line nothing names inserted.
     LetInsert,
     /// Such a `let` line deleted.
@@ -82,11 +91,15 @@ enum Kind {
 }
 
 /// The edits of whole lines asserted to take the fast path, in [`Replayed::line_edits`].
-const LINE_KINDS: [Kind; 6] = [
+const LINE_KINDS: [Kind; 10] = [
     Kind::ObjectInsert,
     Kind::ObjectDelete,
     Kind::ObjectTypo,
     Kind::ObjectTypoFixed,
+    Kind::ObjectBroken,
+    Kind::ObjectBrokenFixed,
+    Kind::HalfTyped,
+    Kind::HalfTypedFixed,
     Kind::LetInsert,
     Kind::LetDelete,
 ];
@@ -167,7 +180,36 @@ fn edit(rng: &mut SplitMix64, text: &str) -> (String, Option<(Kind, String)>) {
             let Some(&at) = objects.get(rng.below(objects.len())) else {
                 return (text.to_string(), None);
             };
-            match rng.below(3) {
+            match rng.below(5) {
+                3 => {
+                    let line = &mut out[at];
+                    let (Some(open), Some(end)) = (line.find('{'), line.rfind('}')) else {
+                        return (text.to_string(), None);
+                    };
+                    let body = open + 1;
+                    match rng.below(3) {
+                        0 => {
+                            line.truncate(body + rng.below(end - body));
+                            line.push('\n');
+                        }
+                        1 => {
+                            line.remove(end);
+                        }
+                        _ => *line = line.replacen("material", "material =", 1),
+                    }
+                    return (out.concat(), Some((Kind::ObjectBroken, text.to_string())));
+                }
+                4 => {
+                    let mut copy = out[at].clone();
+                    let (Some(open), Some(end)) = (copy.find('{'), copy.rfind('}')) else {
+                        return (text.to_string(), None);
+                    };
+                    let body = open + 1;
+                    copy.truncate(body + rng.below(end - body));
+                    copy.push('\n');
+                    out.insert(1 + rng.below(out.len()), copy);
+                    return (out.concat(), Some((Kind::HalfTyped, text.to_string())));
+                }
                 0 => {
                     let copy = out[at].clone();
                     out.insert(1 + rng.below(out.len()), copy);
@@ -328,7 +370,7 @@ struct Replayed {
     /// Per line edit of [`LINE_KINDS`] (an object inserted, deleted, its material misspelt and
     /// put back; a `let` nothing names inserted, deleted) made to a scene that compiled without
     /// an error: made, and those that took the fast path.
-    line_edits: [(usize, usize); 6],
+    line_edits: [(usize, usize); 10],
 }
 
 impl Replayed {
@@ -412,10 +454,16 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
                 counts.0 += 1;
                 counts.1 += usize::from(reused);
                 assert!(reused, "{label}: an {kind:?} edit took the full path");
-                if kind == Kind::ObjectTypo {
-                    assert!(failed, "{label}: a misspelt material is an error");
+                let fixed = match kind {
+                    Kind::ObjectTypo => Some(Kind::ObjectTypoFixed),
+                    Kind::ObjectBroken => Some(Kind::ObjectBrokenFixed),
+                    Kind::HalfTyped => Some(Kind::HalfTypedFixed),
+                    _ => None,
+                };
+                if let Some(fixed) = fixed {
+                    assert!(failed, "{label}: a {kind:?} edit is an error");
                     text = before;
-                    clean_edit = Some((Kind::ObjectTypoFixed, String::new()));
+                    clean_edit = Some((fixed, String::new()));
                     continue;
                 }
             }
@@ -438,7 +486,7 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
 #[test]
 fn seeded_edits_compile_as_a_fresh_compile_does() {
     let mut total = Replayed::default();
-    for seed in 1..=8u64 {
+    for seed in 1..=16u64 {
         let r = replay(
             seed.wrapping_mul(0xD1B5_4A32_D192_ED03),
             200,
@@ -447,13 +495,13 @@ fn seeded_edits_compile_as_a_fresh_compile_does() {
         total.add(&r);
     }
     eprintln!(
-        "fast {} of 1600; number edits of clean scenes {}, fast {}; let, material, mesh, \
+        "fast {} of 3200; number edits of clean scenes {}, fast {}; let, material, mesh, \
          texture value edits of clean scenes (made, fast) {:?}",
         total.fast, total.number_edits_of_clean_scenes, total.number_edits_fast, total.decl_edits
     );
     eprintln!(
-        "object line inserted, deleted, material misspelt, put back; unused let inserted, \
-         deleted (made, fast) {:?}",
+        "object line inserted, deleted, material misspelt, put back, syntax broken, put back; \
+         a half-typed object line, taken out; unused let inserted, deleted (made, fast) {:?}",
         total.line_edits
     );
     for (kind, (made, _)) in LINE_KINDS.iter().zip(total.line_edits) {

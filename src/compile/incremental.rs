@@ -10,9 +10,11 @@
 //! (not `image`) and `object`s, one for one and each keeping its name, it re-checks them and the statements that
 //! name a constant whose value changed ([`CheckMemo::recheck_decls`], which finds them through
 //! [`super::dependents`]). `let`s added or removed that nothing else names, in a scene without
-//! a diagnostic, are checked alone ([`CheckMemo::add_or_remove_lets`]). Anything else is a full
-//! compile, which is always correct: a scene with includes or any syntax error or file-level
-//! diagnostic, another statement added, removed or renamed among declarations, an edit of a
+//! a diagnostic, are checked alone ([`CheckMemo::add_or_remove_lets`]). An edit that breaks the
+//! syntax gets the full compile's diagnostics from the memo of the last text that parsed
+//! ([`super::broken`]), which stays for the edit that fixes it (diffed against that text). Anything
+//! else is a full compile, which is always correct: a scene with includes or a file-level
+//! diagnostic, a syntax error [`super::broken`] declines, another statement added, removed or renamed among declarations, an edit of a
 //! light, a camera or the render block (or
 //! of a constant one of them names), a declaration or `let` with a diagnostic, an edit that
 //! makes a mesh or material used or unused, and any edit where a kept span would reach into the
@@ -22,6 +24,7 @@
 use std::path::Path;
 use std::sync::Arc;
 
+use super::broken;
 use super::dependents;
 use super::edit::{self, Region};
 use super::{decode, reading_order, Driver, Overrides};
@@ -67,6 +70,12 @@ struct Memo {
     /// The byte range of every top-level statement of the scene file, in order.
     spans: Vec<(u32, u32)>,
     check: CheckMemo,
+    /// Whether no line inside a statement starts where the error recovery would cut a chunk
+    /// ([`broken::no_inner_resync`]); found when first needed.
+    chunks_whole: Option<bool>,
+    /// The last text compiled, when it had a syntax error that the memo answered (the memo
+    /// itself stays that of the last text that parsed): its sources and diagnostics.
+    broken: Option<(SourceMap, Vec<Diagnostic>)>,
 }
 
 impl Incremental {
@@ -93,7 +102,10 @@ impl Incremental {
         if let (Some(mut memo), Ok(bytes)) = (self.memo.take(), &bytes) {
             if memo.path == path {
                 if let Some(reuse) = memo.edit(bytes) {
-                    *sources = memo.sources.clone();
+                    *sources = match &memo.broken {
+                        Some((broken, _)) => broken.clone(),
+                        None => memo.sources.clone(),
+                    };
                     let result = memo.result();
                     self.reuse = reuse;
                     self.memo = Some(memo);
@@ -157,6 +169,8 @@ impl Driver<'_> {
             sources,
             spans,
             check,
+            chunks_whole: None,
+            broken: None,
         }
     }
 }
@@ -180,6 +194,9 @@ impl Memo {
     /// The compile's result: the check's diagnostics in reading order, and the scene unless
     /// one of them is an error.
     fn result(&self) -> Staged<Arc<ir::SceneDesc>> {
+        if let Some((_, diags)) = &self.broken {
+            return Staged::new(None, diags.clone());
+        }
         let mut diags: Vec<Diagnostic> = self.check.diagnostics.clone();
         reading_order(&mut diags);
         let failed = diags.iter().any(Diagnostic::is_error);
@@ -190,6 +207,7 @@ impl Memo {
     /// Brings the memo to the new text `bytes` of the scene file, or `None` when only a full
     /// compile can (the memo is then spoiled).
     fn edit(&mut self, bytes: &[u8]) -> Option<Reuse> {
+        self.broken = None;
         let text = decode(bytes).ok()?;
         if text.trim().is_empty() {
             return None;
@@ -199,7 +217,10 @@ impl Memo {
         let Some(region) = edit::region(root, &old, text, &self.spans) else {
             return Some(Reuse::Unchanged);
         };
-        let parsed = syntax::parse_region(root, text, region.bytes.start, region.bytes.end)?;
+        let Some(parsed) = syntax::parse_region(root, text, region.bytes.start, region.bytes.end)
+        else {
+            return self.broken(&old, text, &region);
+        };
         let parsed_count = parsed.len();
         let (old_range, new) = edit::changed(&region, &self.spans, parsed);
         // The version header stays the first statement (the driver's check of it is not redone).
@@ -207,6 +228,14 @@ impl Memo {
             return None;
         }
         let sources = self.new_sources(text);
+        if self.chunks_whole == Some(true) {
+            let whole = |s: &Stmt| {
+                let span = s.span();
+                text.get(span.start as usize..span.end as usize)
+                    .is_some_and(broken::whole)
+            };
+            self.chunks_whole = new.iter().all(whole).then_some(true);
+        }
         let checked = if self.check.only_objects(old_range.clone(), &new) {
             if !(self.check).recheck(&sources, old_range.clone(), &new, &region.shift) {
                 return None;
@@ -238,6 +267,23 @@ impl Memo {
         Some(Reuse::Statements {
             parsed: parsed_count,
             checked,
+        })
+    }
+
+    /// A syntax error in `text` (edited from the last text that parsed, `old`, in `region`):
+    /// the full compile's diagnostics when the memo tells them ([`broken::diagnostics`]),
+    /// kept in [`Memo::broken`] while the memo stays that of `old`.
+    fn broken(&mut self, old: &str, text: &str, region: &Region) -> Option<Reuse> {
+        let whole =
+            *(self.chunks_whole).get_or_insert_with(|| broken::no_inner_resync(old, &self.spans));
+        if !whole {
+            return None;
+        }
+        let diags = broken::diagnostics(text, old, &self.spans, region, &self.check.diagnostics)?;
+        self.broken = Some((self.new_sources(text), diags));
+        Some(Reuse::Statements {
+            parsed: region.stmts.len(),
+            checked: 0,
         })
     }
 

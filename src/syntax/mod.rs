@@ -122,17 +122,50 @@ impl Drop for ErrorDetail {
 }
 
 /// Error recovery: parse each chunk between resync points separately.
+fn parse_chunks(file: FileId, text: &str, scanned: &scan::Scan) -> (SceneFile, Vec<Diagnostic>) {
+    let mut starts: Vec<usize> = vec![0];
+    starts.extend(scanned.resync.iter().copied().filter(|&s| s > 0));
+    starts.push(text.len());
+    parse_chunks_between(file, text, &starts, scanned.too_deep_at)
+}
+
+/// [`parse`]'s error recovery over part of a file with a syntax error: from `start`, a
+/// top-level statement's start that [`parse`] of the whole `text` cuts a chunk at (or the
+/// file's start), to the first of `stops` where the whole file's resynchronisation points are
+/// again those of the text it was edited from ([`scan::resync_from`]). The statements and
+/// diagnostics [`parse`] of the whole `text` finds there, and where the part ends; `None` when
+/// `start` is not where [`parse`] cuts, or nesting gets too deep in the part.
+pub fn parse_recovering_from(
+    file: FileId,
+    text: &str,
+    start: usize,
+    stops: &mut dyn Iterator<Item = usize>,
+) -> Option<(Vec<Stmt>, Vec<Diagnostic>, usize)> {
+    let (resync, stop) = scan::resync_from(text, start, stops)?;
+    if start != 0 && resync.first() != Some(&start) {
+        return None;
+    }
+    let mut starts = vec![start];
+    starts.extend(resync.into_iter().filter(|&s| s > start));
+    starts.push(stop);
+    let (parsed, diags) = parse_chunks_between(file, text, &starts, None);
+    Some((parsed.statements, diags, stop))
+}
+
+/// Parses each chunk `text[starts[i]..starts[i + 1]]` on its own.
 #[allow(
     clippy::expect_used,
     reason = "a successful parse of `file` yields exactly one pair"
 )]
-fn parse_chunks(file: FileId, text: &str, scanned: &scan::Scan) -> (SceneFile, Vec<Diagnostic>) {
+fn parse_chunks_between(
+    file: FileId,
+    text: &str,
+    starts: &[usize],
+    too_deep_at: Option<usize>,
+) -> (SceneFile, Vec<Diagnostic>) {
     // Record the literal tokens pest tried at the failure point (`=`, `}`), for the messages.
     // Only the error path turns this on; it never changes whether a parse succeeds.
     let _detail = ErrorDetail::on();
-    let mut starts: Vec<usize> = vec![0];
-    starts.extend(scanned.resync.iter().copied().filter(|&s| s > 0));
-    starts.push(text.len());
     let mut statements = Vec::new();
     let mut diags = Vec::new();
     for w in starts.windows(2) {
@@ -141,7 +174,7 @@ fn parse_chunks(file: FileId, text: &str, scanned: &scan::Scan) -> (SceneFile, V
         if chunk.trim().is_empty() {
             continue;
         }
-        if let Some(deep) = scanned.too_deep_at.filter(|&d| d >= start && d < end) {
+        if let Some(deep) = too_deep_at.filter(|&d| d >= start && d < end) {
             diags.push(
                 Diagnostic::error(
                     Code::SyntaxTooDeep,

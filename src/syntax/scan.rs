@@ -78,6 +78,54 @@ pub fn scan(text: &str) -> Scan {
     s.out
 }
 
+/// The resynchronisation points of `text` from `start` on, for a text whose scan from its
+/// start is at bracket depth 0 in code at `start` (a top-level statement's start in a file that
+/// parses), up to the first of `stops` (ascending) that starts a line where the scan is so
+/// again, or the end of the text: the points (`start` among them when it is one) and where the
+/// scan stopped. From there on a scan of the whole text finds what a scan of the text it was
+/// edited from found. `None` when nesting gets too deep before it stops.
+pub fn resync_from(
+    text: &str,
+    start: usize,
+    stops: &mut dyn Iterator<Item = usize>,
+) -> Option<(Vec<usize>, usize)> {
+    let bytes = text.as_bytes();
+    let mut s = Scanner {
+        out: Scan::default(),
+        state: State::Code,
+        depth: 0,
+    };
+    let before = bytes.get(..start)?;
+    let mut line_start = (before.iter().rev())
+        .take_while(|&&b| b != b'\n')
+        .all(|b| matches!(b, b' ' | b'\t' | b'\r'));
+    let mut stops = stops.peekable();
+    let mut i = start;
+    while i < bytes.len() {
+        while stops.next_if(|&p| p < i).is_some() {}
+        let settled = s.state == State::Code && s.depth == 0;
+        if settled && i > start && stops.peek() == Some(&i) && bytes[i - 1] == b'\n' {
+            break;
+        }
+        let b = bytes[i];
+        if line_start && s.state == State::Code && !matches!(b, b' ' | b'\t' | b'\r') {
+            line_start = false;
+            if starts_statement(bytes, i, s.depth) {
+                s.out.resync.push(i);
+            }
+        }
+        if s.step(b, bytes.get(i + 1).copied(), i) {
+            i += 1;
+        }
+        if b == b'\n' {
+            line_start = true;
+        }
+        i += 1;
+    }
+    let stop = i.min(bytes.len());
+    s.out.too_deep_at.is_none().then_some((s.out.resync, stop))
+}
+
 /// Whether the first non-blank byte of a line, at `i`, may start a statement: a name at
 /// bracket depth 0, or a top-level keyword in column 0 at any depth.
 fn starts_statement(bytes: &[u8], i: usize, depth: usize) -> bool {
@@ -312,4 +360,28 @@ fn comment_end(bytes: &[u8], start: usize, depth: usize) -> Result<usize, Option
         }
     }
     Err(None)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn resync_from_stops_where_the_scan_is_at_depth_zero_again() {
+        let text = "scnc 1\nobject a { material m\nobject b { }\nlet k = 1\n";
+        let b = text.find("object b").unwrap_or(0);
+        let k = text.find("let k").unwrap_or(0);
+        // The `{` of `a` is open at `object b` (not a stop, nor a point: `object` nests), and
+        // still at `let k`, a point (a column-0 keyword) but not a stop: the scan runs on to the
+        // end of the text.
+        let a = text.find("object a").unwrap_or(0);
+        let from = resync_from(text, a, &mut [b, k].into_iter());
+        assert_eq!(from, Some((vec![a, k], text.len())));
+        // Closed, it stops at the first stop.
+        let closed = text.replacen("material m", "material m }", 1);
+        let b = closed.find("object b").unwrap_or(0);
+        let k = closed.find("let k").unwrap_or(0);
+        let from = resync_from(&closed, a, &mut [b, k].into_iter());
+        assert_eq!(from, Some((vec![a], b)));
+    }
 }

@@ -1,0 +1,110 @@
+//! The incremental compile of a text with a syntax error: what [`super::compile_with`] gives
+//! for it, found from the memo of the last text that parsed.
+//!
+//! A full compile of a file with a syntax error parses it by chunks (cut where a line starts
+//! a statement, `syntax::scan`), reports each chunk pest cannot parse, checks every statement
+//! that did parse, keeps the check's diagnostics except those that only say something is
+//! missing, unknown or unused (`super::is_cascade`), and gives no scene. After an edit of a
+//! text that parsed, the chunks outside the edited part are those the old text's scan found;
+//! when each of them is whole statements of the old text (no line inside a statement looks
+//! like a statement's start, [`no_inner_resync`]), they parse as before, without a
+//! diagnostic. So the chunks from the region's start to the first old statement where the
+//! scan is at depth 0 again are parsed alone (`syntax::parse_recovering_from`), and their
+//! diagnostics are the compile's when the statements they lose are top-level `object`s and
+//! `group`s (whose loss the check answers only with cascades: a material or mesh now unused), every other
+//! statement there parses again with its old text, and the old check had no diagnostic but
+//! cascades. Anything else is declined (a full compile).
+
+use super::edit::Region;
+use super::{is_cascade, reading_order};
+use crate::diag::Diagnostic;
+use crate::source::FileId;
+use crate::syntax::{self, scan};
+
+/// The diagnostics of a full compile of `text` (which has a syntax error in `region`), or
+/// `None` when they cannot be told from the memo: `old` is the last text that parsed, `spans`
+/// its statements' byte ranges, `old_diags` the check's diagnostics of it.
+pub(super) fn diagnostics(
+    text: &str,
+    old: &str,
+    spans: &[(u32, u32)],
+    region: &Region,
+    old_diags: &[Diagnostic],
+) -> Option<Vec<Diagnostic>> {
+    if !old_diags.iter().all(|d| is_cascade(d.code)) {
+        return None;
+    }
+    let shift = &region.shift;
+    let (old_end, new_end) = (shift.old_end as usize, shift.new_end as usize);
+    // Old statements after the edited bytes, at their new places: where the chunks may stop.
+    let later = &spans[region.stmts.end..];
+    let mut stops = later
+        .iter()
+        .map(|&(s, _)| s as usize - old_end + new_end)
+        .filter(|&p| p > new_end);
+    let start = region.bytes.start;
+    let (parsed, diags, stop) = syntax::parse_recovering_from(FileId(0), text, start, &mut stops)?;
+    if !diags.iter().any(Diagnostic::is_error) {
+        return None;
+    }
+    // The old statements the parsed part replaces: up to the one now at `stop`.
+    let end = if stop == text.len() {
+        spans.len()
+    } else {
+        let at = later.partition_point(|&(s, _)| (s as usize) < stop - new_end + old_end);
+        let k = region.stmts.end + at;
+        let (s, _) = *spans.get(k)?;
+        (s as usize - old_end + new_end == stop).then_some(k)?
+    };
+    let mut olds = (region.stmts.start..end).map(|i| spans[i]);
+    for stmt in &parsed {
+        let span = stmt.span();
+        let now = text.get(span.start as usize..span.end as usize)?;
+        // Old statements passed over are lost: each must be an object.
+        loop {
+            let (s, e) = olds.next()?;
+            let was = old.get(s as usize..e as usize)?;
+            if was == now {
+                break;
+            }
+            if !is_placement(was) {
+                return None;
+            }
+        }
+    }
+    for (s, e) in olds {
+        if !is_placement(old.get(s as usize..e as usize)?) {
+            return None;
+        }
+    }
+    let mut diags = diags;
+    reading_order(&mut diags);
+    Some(diags)
+}
+
+/// Whether a top-level statement's text is an `object` or a `group`: statements no other
+/// statement names (a group's name is declared only to be told apart from others).
+fn is_placement(stmt: &str) -> bool {
+    let keyword = |word: &str| {
+        stmt.strip_prefix(word)
+            .is_some_and(|rest| !rest.starts_with(|c: char| c.is_ascii_alphanumeric() || c == '_'))
+    };
+    keyword("object") || keyword("group")
+}
+
+/// Whether no line inside a statement of `text` (statements at `spans`) starts where the
+/// error recovery's scan would cut a chunk: every resynchronisation point is a statement's
+/// start.
+pub(super) fn no_inner_resync(text: &str, spans: &[(u32, u32)]) -> bool {
+    let points = scan::scan(text).resync;
+    let mut starts = spans.iter().map(|&(s, _)| s as usize).peekable();
+    points.into_iter().all(|p| {
+        while starts.next_if(|&s| s < p).is_some() {}
+        starts.peek() == Some(&p)
+    })
+}
+
+/// Whether a statement's text `stmt` has no resynchronisation point but its start.
+pub(super) fn whole(stmt: &str) -> bool {
+    scan::scan(stmt).resync.iter().all(|&p| p == 0)
+}
