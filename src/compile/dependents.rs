@@ -46,18 +46,8 @@ fn parse_one(text: &str, spans: &[(u32, u32)], i: usize) -> Option<Stmt> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::edit::tests::spans_of;
     use super::*;
-
-    fn spans_of(text: &str) -> Vec<(u32, u32)> {
-        let (file, _) = crate::syntax::parse(FileId(0), text).into_parts();
-        file.map(|f| {
-            f.statements
-                .iter()
-                .map(|s| (s.span().start, s.span().end))
-                .collect()
-        })
-        .unwrap_or_default()
-    }
 
     #[test]
     fn finds_the_statements_that_name_a_word_and_no_others() {

@@ -168,10 +168,11 @@ fn common_suffix(a: &[u8], b: &[u8]) -> usize {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
-    fn spans_of(text: &str) -> Vec<(u32, u32)> {
+    /// The spans of `text`'s statements (none when it does not parse).
+    pub(in crate::compile) fn spans_of(text: &str) -> Vec<(u32, u32)> {
         let (file, _) = crate::syntax::parse(FileId(0), text).into_parts();
         file.map(|f| {
             f.statements

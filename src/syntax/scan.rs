@@ -60,20 +60,7 @@ pub fn scan(text: &str) -> Scan {
     let mut line_start = true;
     let mut i = 0;
     while i < bytes.len() {
-        let b = bytes[i];
-        if line_start && s.state == State::Code && !matches!(b, b' ' | b'\t' | b'\r') {
-            line_start = false;
-            if starts_statement(bytes, i, s.depth) {
-                s.out.resync.push(i);
-            }
-        }
-        if s.step(b, bytes.get(i + 1).copied(), i) {
-            i += 1;
-        }
-        if b == b'\n' {
-            line_start = true;
-        }
-        i += 1;
+        i = s.visit(bytes, i, &mut line_start);
     }
     s.out
 }
@@ -107,20 +94,7 @@ pub fn resync_from(
         if settled && i > start && stops.peek() == Some(&i) && bytes[i - 1] == b'\n' {
             break;
         }
-        let b = bytes[i];
-        if line_start && s.state == State::Code && !matches!(b, b' ' | b'\t' | b'\r') {
-            line_start = false;
-            if starts_statement(bytes, i, s.depth) {
-                s.out.resync.push(i);
-            }
-        }
-        if s.step(b, bytes.get(i + 1).copied(), i) {
-            i += 1;
-        }
-        if b == b'\n' {
-            line_start = true;
-        }
-        i += 1;
+        i = s.visit(bytes, i, &mut line_start);
     }
     let stop = i.min(bytes.len());
     s.out.too_deep_at.is_none().then_some((s.out.resync, stop))
@@ -149,6 +123,25 @@ struct Scanner {
 }
 
 impl Scanner {
+    /// Scans the byte at `i` (`line_start`: whether only blanks precede it on its line),
+    /// noting a resynchronisation point where a line's first byte may start a statement;
+    /// returns the index of the next byte to scan.
+    #[inline]
+    fn visit(&mut self, bytes: &[u8], i: usize, line_start: &mut bool) -> usize {
+        let b = bytes[i];
+        if *line_start && self.state == State::Code && !matches!(b, b' ' | b'\t' | b'\r') {
+            *line_start = false;
+            if starts_statement(bytes, i, self.depth) {
+                self.out.resync.push(i);
+            }
+        }
+        let skip = self.step(b, bytes.get(i + 1).copied(), i);
+        if b == b'\n' {
+            *line_start = true;
+        }
+        i + 1 + usize::from(skip)
+    }
+
     /// Takes byte `b` at `i` (`next` follows it); true when `next` belongs to the same token
     /// (`//`, `/*`, `*/`, an escape) and is consumed too.
     fn step(&mut self, b: u8, next: Option<u8>, i: usize) -> bool {
