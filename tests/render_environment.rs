@@ -179,36 +179,14 @@ fn with_a_tiny_bright_sun_mis_beats_cosine_sampling_tenfold() {
     let (bytes, _) = sun_sky();
     let mut loader = MemLoader::new();
     loader.insert("sky.pfm", bytes);
-    let mut desc = empty_desc(
-        camera(
-            Vec3::new(0.0, 2.5, -4.0),
-            Vec3::new(0.0, 0.3, 0.0),
-            Vec3::Y,
-            50.0,
-        ),
-        settings(16, 12, 1),
-    );
-    desc.meshes = vec![
-        quad("ground", 20.0, 20.0),
-        builtin(
-            "ball",
-            BuiltinShape::Sphere {
-                radius: 0.7,
-                segments: 16,
-            },
-        ),
-    ];
-    desc.materials = vec![phong("grey", Vec3::splat(0.6), 0.2, 30.0)];
-    desc.objects = vec![
-        object(0, 0, Mat4::IDENTITY),
-        object(1, 0, Mat4::from_translation(Vec3::new(0.0, 0.7, 0.0))),
-    ];
     let file = AssetPath {
         path: "sky.pfm".into(),
         written: "sky.pfm".into(),
         span: span(),
     };
-    desc.lights = vec![environment(EnvSource::Image(file), 1.0, 0.3, true)];
+    let mut desc = ground_and_ball(EnvSource::Image(file));
+    // The glossy grey this test was calibrated with (the helper's is purely diffuse).
+    desc.materials = vec![phong("grey", Vec3::splat(0.6), 0.2, 30.0)];
     let (mut scene, warnings) = build_with(&desc, &loader).expect("builds");
     assert!(warnings.is_empty(), "{warnings:?}");
 
