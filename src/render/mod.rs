@@ -490,11 +490,13 @@ impl Job<'_> {
             if taken < min || black || unseen {
                 continue;
             }
-            if taken < a.min {
+            if taken < a.min && taken <= early_stop::LAST_EARLY {
                 if let Some(e) = early_stop::confident_error(&acc, &prior, &spread, a.target) {
                     return acc.finish_with(taken, false, e);
                 }
-            } else if acc.relative_error() <= a.target {
+            } else if prior.seen(taken) >= a.min && acc.relative_error() <= a.target {
+                // `1/target` samples counted over the pixel and its neighbours' first batches
+                // (the rule of three, as for the early stop).
                 return acc.finish(taken, false);
             }
         }
