@@ -90,6 +90,8 @@ fn stats_report_every_phase_and_the_ray_counts() {
         "camera",
         "shadow",
         "Mrays/s",
+        "Mrays/CPU-s",
+        "render cpu",
         "nodes",
         "leaves",
         "peak memory",

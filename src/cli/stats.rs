@@ -38,6 +38,11 @@ impl PhaseStats {
         ] {
             let _ = writeln!(s, "  {name:<12} {:>9.2} ms", ms(d));
         }
+        // The render's own CPU time (every thread's): what its ray rate is per CPU-second of,
+        // comparable with `cargo bench --bench rays` on a loaded machine.
+        if let Some(cpu) = render.cpu {
+            let _ = writeln!(s, "  render cpu   {:>9.2} ms", ms(cpu));
+        }
         let _ = writeln!(
             s,
             "image          {}x{}, {} spp, {} threads",
@@ -67,13 +72,17 @@ impl PhaseStats {
         }
         let _ = writeln!(
             s,
-            "rays           {} camera, {} shadow, {} BRDF, {} total, {:.2} Mrays/s; {} BRDF \
+            "rays           {} camera, {} shadow, {} BRDF, {} total, {:.2} Mrays/s{}; {} BRDF \
              directions not traced (they miss every light)",
             render.camera_rays,
             render.shadow_rays,
             render.brdf_rays,
             render.rays(),
             render.mrays_per_sec(),
+            render
+                .mrays_per_cpu_sec()
+                .map(|r| format!(", {r:.2} Mrays/CPU-s"))
+                .unwrap_or_default(),
             render.counts.brdf_skipped
         );
         let _ = writeln!(

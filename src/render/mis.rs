@@ -23,7 +23,7 @@
 use glam::Vec3;
 
 use super::integrator::{
-    RayCounts, Shading, STREAM_BRDF, STREAM_ENVIRONMENT, STREAM_ENVIRONMENT_BRIGHT,
+    divided, RayCounts, Shading, STREAM_BRDF, STREAM_ENVIRONMENT, STREAM_ENVIRONMENT_BRIGHT,
 };
 use super::rng::Sampler;
 use crate::geom::Ray;
@@ -301,6 +301,6 @@ impl Shading<'_> {
             let f = self.phong.eval(self.ns, wi, self.wo);
             sum += radiance * f * (cos * w / pdf);
         }
-        sum / picks as f32
+        divided(sum, picks as f32)
     }
 }

@@ -70,8 +70,12 @@ pub struct RenderStats {
     pub shadow_rays: u64,
     /// BRDF-sampled rays (multiple importance sampling of area lights and the environment).
     pub brdf_rays: u64,
-    /// Wall time of the render.
+    /// Wall time of the render: from the pre-pass that finds the pixels seeing a light, through
+    /// the pixel loop, to the assembled films (not the scene's build nor the image's writing).
     pub wall: Duration,
+    /// CPU time of the process over the same span (every thread's), if the platform tells:
+    /// on a loaded machine the wall time counts other processes' turns, this does not.
+    pub cpu: Option<Duration>,
     /// Worker threads used.
     pub threads: usize,
     /// Samples per pixel: the fixed count, or the mean of an adaptive render.
@@ -104,12 +108,23 @@ impl RenderStats {
 
     /// Millions of rays (camera + shadow + BRDF) per second of wall time.
     pub fn mrays_per_sec(&self) -> f64 {
-        let secs = self.wall.as_secs_f64();
-        if secs > 0.0 {
-            self.rays() as f64 / secs / 1e6
-        } else {
-            0.0
-        }
+        mrays_per(self.rays(), self.wall)
+    }
+
+    /// Millions of rays per CPU-second of the render (comparable with `benches/rays.rs`'s
+    /// Mrays/CPU-s, the traversal alone), if the CPU time is known.
+    pub fn mrays_per_cpu_sec(&self) -> Option<f64> {
+        self.cpu.map(|cpu| mrays_per(self.rays(), cpu))
+    }
+}
+
+/// Millions of `rays` per second of `time` (0 for no time).
+fn mrays_per(rays: u64, time: Duration) -> f64 {
+    let secs = time.as_secs_f64();
+    if secs > 0.0 {
+        rays as f64 / secs / 1e6
+    } else {
+        0.0
     }
 }
 
@@ -155,6 +170,7 @@ pub fn render_window(
     cancel: &AtomicBool,
 ) -> Result<Rendered, Cancelled> {
     let start = Instant::now();
+    let cpu_start = cpu_time::ProcessTime::try_now().ok();
     let settings = &scene.settings;
     let side = pattern::side_for(settings.samples_per_pixel);
     let offsets = pattern::offsets(side, settings.pattern);
@@ -254,6 +270,7 @@ pub fn render_window(
     rendered.stats.shadow_rays += first_counts.shadow;
     rendered.stats.brdf_rays += first_counts.brdf;
     rendered.stats.wall = start.elapsed();
+    rendered.stats.cpu = cpu_start.and_then(|t| t.try_elapsed().ok());
     rendered.stats.threads = used_threads;
     Ok(rendered)
 }
@@ -392,6 +409,7 @@ impl Job<'_> {
             shadow_rays: counts.shadow,
             brdf_rays: counts.brdf,
             wall: Duration::ZERO,
+            cpu: None,
             threads: 0,
             samples_per_pixel,
             emitter_pixels: match self.emitter_pixels.boosted() {

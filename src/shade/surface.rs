@@ -12,7 +12,7 @@
 use glam::{Affine3A, Vec2, Vec3, Vec3A};
 
 use crate::bvh::Hit;
-use crate::scene::{Scene, Surface};
+use crate::scene::{Scene, SceneInstance, Surface, TriMesh};
 
 /// γ(n) = n·ε / (1 − n·ε) with ε = 2⁻²⁴: the classic bound on n rounded f32 operations.
 pub fn gamma(n: u32) -> f32 {
@@ -87,12 +87,66 @@ pub fn terminator_offsets(
     [side(1.0), side(-1.0)]
 }
 
+/// What a camera ray found, from one look-up of its instance, mesh and triangle: an emitter
+/// (the light's index and the triangle's unit face normal, all a camera ray that sees a light
+/// needs; the same bits as [`SurfaceHit::ng`]) or a surface to shade, rebuilt in full.
+#[derive(Debug, Clone, Copy)]
+pub enum SeenHit {
+    /// A hit on an area light's triangle.
+    Emitter {
+        /// Index of the light in the scene's lights.
+        light: u32,
+        /// Unit face normal of the hit triangle.
+        ng: Vec3,
+    },
+    /// A hit on a surface with a material.
+    Surface(SurfaceHit),
+}
+
 /// Rebuilds the hit from the scene's own data. `None` only if the accel returned an index the
 /// scene does not have (an internal bug; the ray then counts as a miss).
 pub fn surface_hit(scene: &Scene, hit: &Hit) -> Option<SurfaceHit> {
     let inst = scene.instances.get(hit.instance as usize)?;
     let mesh = scene.meshes.get(inst.mesh as usize)?;
     let tri = *mesh.triangles.get(hit.prim as usize)?;
+    let surface = scene.surface_of(inst, mesh, hit.prim);
+    Some(rebuild(inst, mesh, tri, surface, hit))
+}
+
+/// [`surface_hit`], except that a hit on an emitter reconstructs only its face normal (a tenth
+/// of cornell's camera samples: the light's pixels take 16× the samples), from the same
+/// look-up of instance, mesh and triangle.
+pub fn seen_hit(scene: &Scene, hit: &Hit) -> Option<SeenHit> {
+    let inst = scene.instances.get(hit.instance as usize)?;
+    let mesh = scene.meshes.get(inst.mesh as usize)?;
+    let tri = *mesh.triangles.get(hit.prim as usize)?;
+    let surface = scene.surface_of(inst, mesh, hit.prim);
+    if let Surface::Emitter(light) = surface {
+        let m = inst.world_from_object;
+        let world = tri.map(|i| {
+            let q = mesh.positions[i as usize];
+            // `rebuild`'s corners, the same bits.
+            if m == Affine3A::IDENTITY {
+                q + Vec3::ZERO
+            } else {
+                m.transform_point3(q)
+            }
+        });
+        let ng = face_normal(world);
+        return Some(SeenHit::Emitter { light, ng });
+    }
+    Some(SeenHit::Surface(rebuild(inst, mesh, tri, surface, hit)))
+}
+
+/// The [`SurfaceHit`] of triangle `tri` (vertex indices) of `mesh` placed by `inst`.
+#[inline(always)] // reason: one body for `surface_hit` and `seen_hit`, each as fast as when it was its own
+fn rebuild(
+    inst: &SceneInstance,
+    mesh: &TriMesh,
+    tri: [u32; 3],
+    surface: Surface,
+    hit: &Hit,
+) -> SurfaceHit {
     let obj = tri.map(|i| mesh.positions[i as usize]);
     let m = inst.world_from_object;
     let (world, transform_error) = if m == Affine3A::IDENTITY {
@@ -142,16 +196,16 @@ pub fn surface_hit(scene: &Scene, hit: &Hit) -> Option<SurfaceHit> {
         let t = tri.map(|i| mesh.uvs[i as usize]);
         b[0] * t[0] + b[1] * t[1] + b[2] * t[2]
     };
-    Some(SurfaceHit {
+    SurfaceHit {
         p,
         p_error,
         ng,
         ns,
         uv,
-        surface: scene.surface_of(inst, mesh, hit.prim),
+        surface,
         bulge,
         hit: *hit,
-    })
+    }
 }
 
 /// The unit face normal `(p1 − p0) × (p2 − p0)` of a world-space triangle (zero if degenerate).
@@ -160,28 +214,6 @@ fn face_normal(world: [Vec3; 3]) -> Vec3 {
     (world[1] - world[0])
         .cross(world[2] - world[0])
         .normalize_or_zero()
-}
-
-/// For a hit on an emitter, the light's index and the triangle's unit face normal
-/// ([`SurfaceHit::ng`], the same bits): all a camera ray that sees a light needs, without the
-/// rest of [`surface_hit`]. `None` for any other hit.
-pub fn emitter_hit(scene: &Scene, hit: &Hit) -> Option<(u32, Vec3)> {
-    let inst = scene.instances.get(hit.instance as usize)?;
-    let mesh = scene.meshes.get(inst.mesh as usize)?;
-    let Surface::Emitter(light) = scene.surface_of(inst, mesh, hit.prim) else {
-        return None;
-    };
-    let tri = *mesh.triangles.get(hit.prim as usize)?;
-    let m = inst.world_from_object;
-    let world = tri.map(|i| {
-        let q = mesh.positions[i as usize];
-        if m == Affine3A::IDENTITY {
-            q + Vec3::ZERO
-        } else {
-            m.transform_point3(q)
-        }
-    });
-    Some((light, face_normal(world)))
 }
 
 /// A point off the surface at `p` (error bound `p_error`, unit normal `n`), on the side that

@@ -205,7 +205,7 @@ impl AreaLight {
             return None;
         }
         if let Some(rect) = self.rect_in_range(p, mode) {
-            return self.sample_rect(p, &rect, u);
+            return self.sample_rect(&rect, u);
         }
         let (t, pmf_triangle, u0) = self.pick(u.x);
         let u = Vec2::new(u0, u.y);
@@ -283,12 +283,10 @@ impl AreaLight {
         range.contains(&rect.solid_angle()).then_some(rect)
     }
 
-    /// A direction uniform over the spherical rectangle `rect` (`pdf = 1 / Ω`). `None` for
-    /// the back of a one-sided emitter, or a direction that rounds off both triangles.
-    fn sample_rect(&self, p: Vec3, rect: &SphericalRect, u: Vec2) -> Option<AreaSample> {
-        if !self.rect_front_faces(p) {
-            return None;
-        }
+    /// A direction uniform over the spherical rectangle `rect` (`pdf = 1 / Ω`), from a `p` the
+    /// light faces (the caller, [`AreaLight::sample`], checked). `None` for a direction that
+    /// rounds off both triangles.
+    fn sample_rect(&self, rect: &SphericalRect, u: Vec2) -> Option<AreaSample> {
         let sample = rect.sample(u);
         let wi = sample.offset.normalize_or_zero();
         if wi == Vec3::ZERO {
