@@ -16,7 +16,9 @@
 //! 2. `scnc watch --events json --no-serve` (the release binary, a real process) on the file:
 //!    save → `checked` event (the front end's diagnostics, before the build), save →
 //!    `compiled` event (after the build) and save → first `pass` event (the preview
-//!    image is written before that event), with the compile, build and pass times it reports.
+//!    image is written before that event), with the compile, build and pass times it reports;
+//!    for the errors, save → `error` event (the diagnostics), and for the edit taking each out,
+//!    save → `checked` and save → first `pass`.
 //!
 //! Medians (and the slowest) per kind of edit are printed; figures go to docs/watch.md by hand.
 
@@ -388,6 +390,39 @@ fn watch(objects: usize, edits: usize) {
             median(&mut compile),
             median(&mut build),
             median(&mut pass)
+        );
+    }
+    // The errors, each then taken out: save -> the `error` event (the diagnostics; nothing is
+    // built) and, for the edit taking it out, save -> `checked`, and the first pass after it.
+    for kind in KINDS.into_iter().filter(|&k| errs(k)) {
+        let mut figures: [Vec<f64>; 3] = Default::default();
+        for k in 0..edits + edits % 2 {
+            let text = edit(&mut lines, objects, kind, 1000 + k);
+            let t0 = Instant::now();
+            std::fs::write(&scn, text).expect("save");
+            if k.is_multiple_of(2) {
+                let (t1, _) = wait("error", false);
+                figures[0].push((t1 - t0).as_secs_f64() * 1e3);
+                continue;
+            }
+            let (t1, _) = wait("checked", false);
+            let (t2, _) = wait("pass", false);
+            figures[1].push((t1 - t0).as_secs_f64() * 1e3);
+            figures[2].push((t2 - t0).as_secs_f64() * 1e3);
+            wait("pass", true);
+        }
+        let [mut error, mut fixed, mut image] = figures;
+        println!(
+            "  {kind:?} edits ({}, every other one an error): save -> diagnostics (error event) \
+             median {:.1} ms (slowest {:.1}); taken out: save -> checked median {:.1} ms \
+             (slowest {:.1}), save -> first image median {:.1} ms (slowest {:.1})",
+            edits + edits % 2,
+            median(&mut error),
+            max(&error),
+            median(&mut fixed),
+            max(&fixed),
+            median(&mut image),
+            max(&image)
         );
     }
     drop(watch);

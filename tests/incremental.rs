@@ -681,3 +681,93 @@ fn a_let_nothing_names_added_or_removed_is_checked_alone() {
     let named = text.replacen("let k = 2\n", "", 1);
     assert_eq!(compile(&named), Reuse::Full);
 }
+
+/// A scene whose `object`s and `group`s (groups over several lines, a group inside a group,
+/// comments between) run to the end of the file, or to a `light` after them.
+fn nesting_scene(rng: &mut SplitMix64) -> String {
+    let mut s = String::from(
+        "scnc 1\nlet k = 2\ncamera main { eye (0, 5, -20)  target (0, 0, 0)  fov 40deg }\n\
+         render { resolution 8 x 6 }\nmesh box1 = box { size (1, 2, 1) }\n\
+         material m0 = phong { diffuse rgb(0.2, 0.5, 0.2) }\n\
+         material m1 = phong { diffuse #888  specular 0.1 }\n",
+    );
+    for i in 0..40 {
+        match rng.below(6) {
+            0 => s.push_str(&format!(
+                "group g{i} {{ transform {{ translate (0, {i}, k) }}\n  object box1 {{ material m1 }}\n  \
+                 group h{i} {{ object box1 {{ material m0  transform {{ scale (1, 2, 3) }} }} }}\n}}\n"
+            )),
+            1 => s.push_str("// between the objects\n"),
+            _ => {}
+        }
+        s.push_str(&format!(
+            "object box1 {{ material m{}  transform {{ rotate y {i}deg  translate ({i}.5, k, 1) }} }}\n",
+            i % 2
+        ));
+    }
+    if rng.below(2) == 0 {
+        s.push_str("light sun = point { position (0, 10, 0)  intensity 100 }\n");
+    }
+    s
+}
+
+/// An `object` or `group` cut inside its braces (inside a nested group or transform too), so
+/// that a `{` stays open over every statement after it: the diagnostics are the full
+/// compile's, and the statements after it are not parsed again (`tail.rs` in src/syntax tells
+/// pest's error for them). The edit taking the cut out gives the text before it again.
+#[test]
+fn an_unclosed_brace_spares_the_statements_after_it() {
+    let path = Path::new("edit.scn");
+    let mut rng = SplitMix64(0xB4AC_E5ED);
+    let (mut cuts, mut spared) = (0, 0);
+    for _ in 0..24 {
+        let text = nesting_scene(&mut rng);
+        let mut inc = Incremental::new(Overrides::default());
+        let mut loader = MemLoader::new();
+        let mut compile = |text: &str, inc: &mut Incremental| {
+            loader.insert(path, text.to_string());
+            let got = inc.compile(path, &loader, &mut SourceMap::new());
+            let want = compile_with(path, &loader, &mut SourceMap::new(), &Overrides::default());
+            assert_eq!(
+                format!("{:#?}", got.diagnostics),
+                format!("{:#?}", want.diagnostics),
+                "{:?} on\n{text}",
+                inc.reuse
+            );
+            assert_eq!(
+                format!("{:?}", got.value),
+                format!("{:?}", want.value.map(Arc::new))
+            );
+            inc.reuse
+        };
+        let first = compile(&text, &mut inc);
+        assert_eq!(first, Reuse::Full);
+        // Statement starts: lines that start with `object` or `group`.
+        let starts: Vec<usize> = text
+            .match_indices('\n')
+            .map(|(i, _)| i + 1)
+            .filter(|&i| text[i..].starts_with("object") || text[i..].starts_with("group"))
+            .collect();
+        for _ in 0..8 {
+            // One with at least three statements after it.
+            let at = starts[rng.below(starts.len() - 3)];
+            let next = |w: &str| text[at..].find(w);
+            let after = next("\nobject").into_iter().chain(next("\ngroup")).min();
+            let after = after.map_or(text.len(), |n| at + n + 1);
+            // Anywhere from after its first `{` to before its last `}`.
+            let end = text[..after].rfind('}').unwrap_or(0);
+            let open = at + text[at..].find('{').unwrap_or(0) + 1;
+            let cut = open + rng.below(end - open);
+            let edited = format!("{}\n{}", &text[..cut], &text[after..]);
+            let reuse = compile(&edited, &mut inc);
+            let Reuse::Statements { parsed, checked: 0 } = reuse else {
+                panic!("a cut took {reuse:?} on\n{edited}");
+            };
+            assert!(parsed <= 4, "{parsed} statements parsed again on\n{edited}");
+            cuts += 1;
+            spared += usize::from(parsed <= 4);
+            assert_eq!(compile(&text, &mut inc), Reuse::Unchanged);
+        }
+    }
+    eprintln!("{cuts} cuts, {spared} with the statements after them spared");
+}
