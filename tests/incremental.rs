@@ -9,7 +9,7 @@
 //! error, an `object` line inserted or deleted (one that leaves every mesh and material as used
 //! as it was), an object's material misspelt (an error: the edit the language server sees while
 //! the user types) and the next edit, which puts the name back, and a `let` nothing names
-//! inserted or deleted.
+//! inserted, deleted, or cut after its `=` (a syntax error that loses it) and put back.
 
 use scnc::assets::MemLoader;
 use scnc::compile::{compile_with, Incremental, Overrides, Reuse};
@@ -88,10 +88,14 @@ enum Kind {
     LetInsert,
     /// Such a `let` line deleted.
     LetDelete,
+    /// Such a `let` line cut after its `=` (a syntax error that loses it).
+    LetBroken,
+    /// The cut `let` put back (the edit after a [`Kind::LetBroken`]).
+    LetBrokenFixed,
 }
 
 /// The edits of whole lines asserted to take the fast path, in [`Replayed::line_edits`].
-const LINE_KINDS: [Kind; 10] = [
+const LINE_KINDS: [Kind; 12] = [
     Kind::ObjectInsert,
     Kind::ObjectDelete,
     Kind::ObjectTypo,
@@ -102,6 +106,8 @@ const LINE_KINDS: [Kind; 10] = [
     Kind::HalfTypedFixed,
     Kind::LetInsert,
     Kind::LetDelete,
+    Kind::LetBroken,
+    Kind::LetBrokenFixed,
 ];
 
 /// The mesh and material an `object` line names (`object MESH { material MATERIAL ...`).
@@ -159,10 +165,16 @@ fn edit(rng: &mut SplitMix64, text: &str) -> (String, Option<(Kind, String)>) {
     let lines: Vec<&str> = text.split_inclusive('\n').collect();
     let line = rng.below(lines.len());
     let mut out: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
-    match rng.below(23) {
-        // A `let` nothing names inserted, or one deleted.
-        21 | 22 => {
+    match rng.below(25) {
+        // A `let` nothing names inserted, or one deleted or cut.
+        21..=24 => {
             if let Some(i) = (0..out.len()).find(|&i| out[i].starts_with("let unused")) {
+                if line.is_multiple_of(3) {
+                    let cut = out[i].find('=').unwrap_or(0) + 1;
+                    out[i].truncate(cut);
+                    out[i].push('\n');
+                    return (out.concat(), Some((Kind::LetBroken, text.to_string())));
+                }
                 out.remove(i);
                 return (out.concat(), Some((Kind::LetDelete, String::new())));
             }
@@ -370,7 +382,7 @@ struct Replayed {
     /// Per line edit of [`LINE_KINDS`] (an object inserted, deleted, its material misspelt and
     /// put back; a `let` nothing names inserted, deleted) made to a scene that compiled without
     /// an error: made, and those that took the fast path.
-    line_edits: [(usize, usize); 10],
+    line_edits: [(usize, usize); 12],
 }
 
 impl Replayed {
@@ -458,6 +470,7 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
                     Kind::ObjectTypo => Some(Kind::ObjectTypoFixed),
                     Kind::ObjectBroken => Some(Kind::ObjectBrokenFixed),
                     Kind::HalfTyped => Some(Kind::HalfTypedFixed),
+                    Kind::LetBroken => Some(Kind::LetBrokenFixed),
                     _ => None,
                 };
                 if let Some(fixed) = fixed {
@@ -477,7 +490,9 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
             _ => {}
         }
         let (edited, kind) = edit(&mut rng, &text);
-        clean_edit = kind.filter(|_| clean);
+        // A cut `let` is a full compile when there is a `--define` (it may name it).
+        let defined = |k: &(Kind, String)| k.0 == Kind::LetBroken && !overrides.defines.is_empty();
+        clean_edit = kind.filter(|k| clean && !defined(k));
         text = edited;
     }
     replayed
@@ -501,11 +516,19 @@ fn seeded_edits_compile_as_a_fresh_compile_does() {
     );
     eprintln!(
         "object line inserted, deleted, material misspelt, put back, syntax broken, put back; \
-         a half-typed object line, taken out; unused let inserted, deleted (made, fast) {:?}",
+         a half-typed object line, taken out; unused let inserted, deleted, cut, put back \
+         (made, fast) {:?}",
         total.line_edits
     );
     for (kind, (made, _)) in LINE_KINDS.iter().zip(total.line_edits) {
-        assert!(made >= 4, "only {made} {kind:?} edits of clean scenes");
+        // A cut `let` needs one inserted first and a clean scene in between: fewer are made
+        // (a_let_nothing_names_added_or_removed_is_checked_alone asserts one directly).
+        let least = if matches!(kind, Kind::LetBroken | Kind::LetBrokenFixed) {
+            3
+        } else {
+            4
+        };
+        assert!(made >= least, "only {made} {kind:?} edits of clean scenes");
     }
     assert_fast_path_taken(&total, 20);
     for (kind, (made, _)) in KINDS.iter().zip(total.decl_edits) {
@@ -679,6 +702,17 @@ fn a_let_nothing_names_added_or_removed_is_checked_alone() {
     assert_eq!(compile(&later), Reuse::Full);
     assert_eq!(compile(&text), Reuse::Full);
     let named = text.replacen("let k = 2\n", "", 1);
+    assert_eq!(compile(&named), Reuse::Full);
+    // Cut after its `=` (a syntax error that loses it): the error alone, from the memo; the
+    // cut put back gives the text before it. A cut `let` that objects name is a full compile.
+    assert_eq!(compile(&added), Reuse::Full);
+    let cut = added.replacen("let q = k * 2", "let q =", 1);
+    assert!(matches!(
+        compile(&cut),
+        Reuse::Statements { checked: 0, .. }
+    ));
+    assert_eq!(compile(&added), Reuse::Unchanged);
+    let named = added.replacen("let k = 2", "let k =", 1);
     assert_eq!(compile(&named), Reuse::Full);
 }
 

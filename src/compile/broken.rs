@@ -18,6 +18,7 @@
 //! `syntax::parse_recovering_from` tells pest's error for it from the chunk's head and the
 //! first of them (`src/syntax/tail.rs`). Anything else is declined (a full compile).
 
+use super::dependents;
 use super::edit::Region;
 use super::{is_cascade, reading_order};
 use crate::diag::Diagnostic;
@@ -26,7 +27,8 @@ use crate::syntax::{self, scan};
 
 /// The diagnostics of a full compile of `text` (which has a syntax error in `region`), or
 /// `None` when they cannot be told from the memo: `old` is the last text that parsed, `spans`
-/// its statements' byte ranges, `old_diags` the check's diagnostics of it. Also how many old
+/// its statements' byte ranges, `old_diags` the check's diagnostics of it, `defines` whether
+/// the compile has a `--define`. Also how many old
 /// statements were parsed again (those of a chunk whose error was told without parsing them
 /// not counted).
 pub(super) fn diagnostics(
@@ -35,6 +37,7 @@ pub(super) fn diagnostics(
     spans: &[(u32, u32)],
     region: &Region,
     old_diags: &[Diagnostic],
+    defines: bool,
 ) -> Option<(Vec<Diagnostic>, usize)> {
     if !old_diags.iter().all(|d| is_cascade(d.code)) {
         return None;
@@ -69,30 +72,58 @@ pub(super) fn diagnostics(
         let (s, _) = *spans.get(k)?;
         (s as usize - old_end + new_end == stop).then_some(k)?
     };
-    let mut olds = (region.stmts.start..end).map(|i| spans[i]);
+    // An old statement lost (not parsed again) must be one whose loss the check answers only
+    // with cascades.
+    let lost_quietly = |i: usize| {
+        let (s, e) = spans[i];
+        old.get(s as usize..e as usize)
+            .is_some_and(|was| syntax::nests(was) || (!defines && unnamed_let(old, spans, i)))
+    };
+    let mut olds = region.stmts.start..end;
     for stmt in parsed {
         let span = stmt.span();
         let now = text.get(span.start as usize..span.end as usize)?;
-        // Old statements passed over are lost: each must be an object.
+        // Old statements passed over are lost.
         loop {
-            let (s, e) = olds.next()?;
-            let was = old.get(s as usize..e as usize)?;
-            if was == now {
+            let i = olds.next()?;
+            let (s, e) = spans[i];
+            if old.get(s as usize..e as usize)? == now {
                 break;
             }
-            if !syntax::nests(was) {
+            if !lost_quietly(i) {
                 return None;
             }
         }
     }
-    for (s, e) in olds {
-        if !syntax::nests(old.get(s as usize..e as usize)?) {
-            return None;
-        }
+    if !olds.all(lost_quietly) {
+        return None;
     }
     let mut diags = diags;
     reading_order(&mut diags);
     Some((diags, end - region.stmts.start - recovered.spared))
+}
+
+/// Whether old statement `i` (of `old`, statements at `spans`) is a `let` that no statement
+/// but itself names (a whole-word search): its loss changes no other statement's check. (A
+/// `--define` naming it would become unused, an error: the caller declines when there is one.)
+fn unnamed_let(old: &str, spans: &[(u32, u32)], i: usize) -> bool {
+    let (s, e) = spans[i];
+    let stmt = old.get(s as usize..e as usize).unwrap_or_default();
+    let Some(rest) = stmt
+        .strip_prefix("let")
+        .filter(|r| r.starts_with(char::is_whitespace))
+    else {
+        return false;
+    };
+    let rest = rest.trim_start();
+    let len = rest
+        .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+        .unwrap_or(rest.len());
+    let name = &rest[..len];
+    if name.is_empty() {
+        return false;
+    }
+    dependents::naming(old, spans, name).is_some_and(|found| found.iter().all(|(j, _)| *j == i))
 }
 
 /// Whether no line inside a statement of `text` (statements at `spans`) starts where the

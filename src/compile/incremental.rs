@@ -279,8 +279,15 @@ impl Memo {
         if !whole {
             return None;
         }
-        let (diags, parsed) =
-            broken::diagnostics(text, old, &self.spans, region, &self.check.diagnostics)?;
+        let defines = self.sources.files().count() > 1;
+        let (diags, parsed) = broken::diagnostics(
+            text,
+            old,
+            &self.spans,
+            region,
+            &self.check.diagnostics,
+            defines,
+        )?;
         self.broken = Some((self.new_sources(text), diags));
         Some(Reuse::Statements { parsed, checked: 0 })
     }
