@@ -61,7 +61,8 @@ pub(super) fn parse_each(
 /// reaches `start` (a statement's parse reads the text from its start on, and a top-level
 /// statement's start is all the state the parser carries): `None` unless each one parses and
 /// the last one is followed by nothing but whitespace and comments up to `end` exactly, or when
-/// a statement had a diagnostic (the caller then parses the whole file).
+/// a statement had a diagnostic (the caller then parses the whole file), or when a statement
+/// the hand-written parser leaves to pest does not parse within `text[..end]`.
 pub(super) fn parse_region(
     file: FileId,
     text: &str,
@@ -84,6 +85,12 @@ pub(super) fn parse_region(
         match c.statement() {
             Some(s) => statements.push(s),
             None => {
+                // pest on the region alone first: a statement that fails there (a `{` left
+                // open) must not have pest read every later statement as its block's items
+                // before it fails at the end of the file. Declining is always allowed; one
+                // that parses is parsed again as the whole file's parse reads it.
+                let region = text.get(at..end.min(text.len()))?;
+                SceneParser::parse(Rule::statement, region).ok()?;
                 let (s, after) = pest_statement(file, text, at, &mut diags)?;
                 if !diags.is_empty() {
                     return None;
