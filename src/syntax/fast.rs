@@ -61,14 +61,23 @@ pub(super) fn parse_each(
 /// reaches `start` (a statement's parse reads the text from its start on, and a top-level
 /// statement's start is all the state the parser carries): `None` unless each one parses and
 /// the last one is followed by nothing but whitespace and comments up to `end` exactly, or when
-/// a statement had a diagnostic (the caller then parses the whole file), or when a statement
-/// the hand-written parser leaves to pest does not parse within `text[..end]`.
+/// a statement had a diagnostic (the caller then parses the whole file), or when they do not
+/// parse within `text[..end]` alone: a statement with a `{` left open must not have the
+/// parsers read every later statement as its block's items before they fail at the end of the
+/// file (declining is always allowed; a region that parses alone is parsed again as the whole
+/// file's parse reads it, past `end` as far as its statements look).
 pub(super) fn parse_region(
     file: FileId,
     text: &str,
     start: usize,
     end: usize,
 ) -> Option<Vec<Stmt>> {
+    statements_between(file, text.get(..end.min(text.len()))?, start, end)?;
+    statements_between(file, text, start, end)
+}
+
+/// [`parse_region`]'s statements as a parse of all of `text` finds them.
+fn statements_between(file: FileId, text: &str, start: usize, end: usize) -> Option<Vec<Stmt>> {
     let mut c = Cursor::new(file, text);
     c.pos = start;
     let mut statements = Vec::new();
@@ -85,12 +94,6 @@ pub(super) fn parse_region(
         match c.statement() {
             Some(s) => statements.push(s),
             None => {
-                // pest on the region alone first: a statement that fails there (a `{` left
-                // open) must not have pest read every later statement as its block's items
-                // before it fails at the end of the file. Declining is always allowed; one
-                // that parses is parsed again as the whole file's parse reads it.
-                let region = text.get(at..end.min(text.len()))?;
-                SceneParser::parse(Rule::statement, region).ok()?;
                 let (s, after) = pest_statement(file, text, at, &mut diags)?;
                 if !diags.is_empty() {
                     return None;
