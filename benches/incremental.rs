@@ -6,10 +6,10 @@
 //! of edit, one line each: one object's translate in the middle of the file (a person nudging one
 //! object), one material's colour, the value of `gloss` (its 100 materials re-checked), an
 //! `object` line inserted, one deleted, an object's material misspelt then put back (every
-//! other edit an error: what the language server sees while the user types; in process only,
-//! as `scnc watch` builds nothing then), a `let` nothing names inserted then deleted, and two
-//! syntax errors, each then taken out (in process only too): a stray `=` in an object's line,
-//! and an object's line cut inside its braces (a `{` left open to the end of the file).
+//! other edit an error: what the language server sees while the user types), a `let` nothing
+//! names inserted then deleted, and two syntax errors, each then taken out: a stray `=` in an
+//! object's line, and an object's line cut inside its braces (a `{` left open to the end of
+//! the file).
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
 //!    each edit (the text served from memory; diagnostics are ready when it returns).
