@@ -6,17 +6,19 @@
 //! of edit, one line each: one object's translate in the middle of the file (a person nudging one
 //! object), one material's colour, the value of `gloss` (its 100 materials re-checked), an
 //! `object` line inserted, one deleted, an object's material misspelt then put back (every
-//! other edit an error: what the language server sees while the user types; in process only,
-//! as `scnc watch` builds nothing then), a `let` nothing names inserted then deleted, and two
-//! syntax errors, each then taken out (in process only too): a stray `=` in an object's line,
-//! and an object's line cut inside its braces (a `{` left open to the end of the file).
+//! other edit an error: what the language server sees while the user types), a `let` nothing
+//! names inserted then deleted, and two syntax errors, each then taken out: a stray `=` in an
+//! object's line, and an object's line cut inside its braces (a `{` left open to the end of
+//! the file).
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
 //!    each edit (the text served from memory; diagnostics are ready when it returns).
 //! 2. `scnc watch --events json --no-serve` (the release binary, a real process) on the file:
 //!    save → `checked` event (the front end's diagnostics, before the build), save →
 //!    `compiled` event (after the build) and save → first `pass` event (the preview
-//!    image is written before that event), with the compile, build and pass times it reports.
+//!    image is written before that event), with the compile, build and pass times it reports;
+//!    for the errors, save → `error` event (the diagnostics), and for the edit taking each out,
+//!    save → `checked` and save → first `pass`.
 //!
 //! Medians (and the slowest) per kind of edit are printed; figures go to docs/watch.md by hand.
 
@@ -388,6 +390,39 @@ fn watch(objects: usize, edits: usize) {
             median(&mut compile),
             median(&mut build),
             median(&mut pass)
+        );
+    }
+    // The errors, each then taken out: save -> the `error` event (the diagnostics; nothing is
+    // built) and, for the edit taking it out, save -> `checked`, and the first pass after it.
+    for kind in KINDS.into_iter().filter(|&k| errs(k)) {
+        let mut figures: [Vec<f64>; 3] = Default::default();
+        for k in 0..edits + edits % 2 {
+            let text = edit(&mut lines, objects, kind, 1000 + k);
+            let t0 = Instant::now();
+            std::fs::write(&scn, text).expect("save");
+            if k.is_multiple_of(2) {
+                let (t1, _) = wait("error", false);
+                figures[0].push((t1 - t0).as_secs_f64() * 1e3);
+                continue;
+            }
+            let (t1, _) = wait("checked", false);
+            let (t2, _) = wait("pass", false);
+            figures[1].push((t1 - t0).as_secs_f64() * 1e3);
+            figures[2].push((t2 - t0).as_secs_f64() * 1e3);
+            wait("pass", true);
+        }
+        let [mut error, mut fixed, mut image] = figures;
+        println!(
+            "  {kind:?} edits ({}, every other one an error): save -> diagnostics (error event) \
+             median {:.1} ms (slowest {:.1}); taken out: save -> checked median {:.1} ms \
+             (slowest {:.1}), save -> first image median {:.1} ms (slowest {:.1})",
+            edits + edits % 2,
+            median(&mut error),
+            max(&error),
+            median(&mut fixed),
+            max(&fixed),
+            median(&mut image),
+            max(&image)
         );
     }
     drop(watch);

@@ -9,7 +9,7 @@
 //! error, an `object` line inserted or deleted (one that leaves every mesh and material as used
 //! as it was), an object's material misspelt (an error: the edit the language server sees while
 //! the user types) and the next edit, which puts the name back, and a `let` nothing names
-//! inserted or deleted.
+//! inserted, deleted, or cut after its `=` (a syntax error that loses it) and put back.
 
 use scnc::assets::MemLoader;
 use scnc::compile::{compile_with, Incremental, Overrides, Reuse};
@@ -88,10 +88,14 @@ enum Kind {
     LetInsert,
     /// Such a `let` line deleted.
     LetDelete,
+    /// Such a `let` line cut after its `=` (a syntax error that loses it).
+    LetBroken,
+    /// The cut `let` put back (the edit after a [`Kind::LetBroken`]).
+    LetBrokenFixed,
 }
 
 /// The edits of whole lines asserted to take the fast path, in [`Replayed::line_edits`].
-const LINE_KINDS: [Kind; 10] = [
+const LINE_KINDS: [Kind; 12] = [
     Kind::ObjectInsert,
     Kind::ObjectDelete,
     Kind::ObjectTypo,
@@ -102,6 +106,8 @@ const LINE_KINDS: [Kind; 10] = [
     Kind::HalfTypedFixed,
     Kind::LetInsert,
     Kind::LetDelete,
+    Kind::LetBroken,
+    Kind::LetBrokenFixed,
 ];
 
 /// The mesh and material an `object` line names (`object MESH { material MATERIAL ...`).
@@ -159,10 +165,16 @@ fn edit(rng: &mut SplitMix64, text: &str) -> (String, Option<(Kind, String)>) {
     let lines: Vec<&str> = text.split_inclusive('\n').collect();
     let line = rng.below(lines.len());
     let mut out: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
-    match rng.below(23) {
-        // A `let` nothing names inserted, or one deleted.
-        21 | 22 => {
+    match rng.below(25) {
+        // A `let` nothing names inserted, or one deleted or cut.
+        21..=24 => {
             if let Some(i) = (0..out.len()).find(|&i| out[i].starts_with("let unused")) {
+                if line.is_multiple_of(3) {
+                    let cut = out[i].find('=').unwrap_or(0) + 1;
+                    out[i].truncate(cut);
+                    out[i].push('\n');
+                    return (out.concat(), Some((Kind::LetBroken, text.to_string())));
+                }
                 out.remove(i);
                 return (out.concat(), Some((Kind::LetDelete, String::new())));
             }
@@ -370,7 +382,7 @@ struct Replayed {
     /// Per line edit of [`LINE_KINDS`] (an object inserted, deleted, its material misspelt and
     /// put back; a `let` nothing names inserted, deleted) made to a scene that compiled without
     /// an error: made, and those that took the fast path.
-    line_edits: [(usize, usize); 10],
+    line_edits: [(usize, usize); 12],
 }
 
 impl Replayed {
@@ -458,6 +470,7 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
                     Kind::ObjectTypo => Some(Kind::ObjectTypoFixed),
                     Kind::ObjectBroken => Some(Kind::ObjectBrokenFixed),
                     Kind::HalfTyped => Some(Kind::HalfTypedFixed),
+                    Kind::LetBroken => Some(Kind::LetBrokenFixed),
                     _ => None,
                 };
                 if let Some(fixed) = fixed {
@@ -477,7 +490,9 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
             _ => {}
         }
         let (edited, kind) = edit(&mut rng, &text);
-        clean_edit = kind.filter(|_| clean);
+        // A cut `let` is a full compile when there is a `--define` (it may name it).
+        let defined = |k: &(Kind, String)| k.0 == Kind::LetBroken && !overrides.defines.is_empty();
+        clean_edit = kind.filter(|k| clean && !defined(k));
         text = edited;
     }
     replayed
@@ -501,11 +516,19 @@ fn seeded_edits_compile_as_a_fresh_compile_does() {
     );
     eprintln!(
         "object line inserted, deleted, material misspelt, put back, syntax broken, put back; \
-         a half-typed object line, taken out; unused let inserted, deleted (made, fast) {:?}",
+         a half-typed object line, taken out; unused let inserted, deleted, cut, put back \
+         (made, fast) {:?}",
         total.line_edits
     );
     for (kind, (made, _)) in LINE_KINDS.iter().zip(total.line_edits) {
-        assert!(made >= 4, "only {made} {kind:?} edits of clean scenes");
+        // A cut `let` needs one inserted first and a clean scene in between: fewer are made
+        // (a_let_nothing_names_added_or_removed_is_checked_alone asserts one directly).
+        let least = if matches!(kind, Kind::LetBroken | Kind::LetBrokenFixed) {
+            3
+        } else {
+            4
+        };
+        assert!(made >= least, "only {made} {kind:?} edits of clean scenes");
     }
     assert_fast_path_taken(&total, 20);
     for (kind, (made, _)) in KINDS.iter().zip(total.decl_edits) {
@@ -680,4 +703,105 @@ fn a_let_nothing_names_added_or_removed_is_checked_alone() {
     assert_eq!(compile(&text), Reuse::Full);
     let named = text.replacen("let k = 2\n", "", 1);
     assert_eq!(compile(&named), Reuse::Full);
+    // Cut after its `=` (a syntax error that loses it): the error alone, from the memo; the
+    // cut put back gives the text before it. A cut `let` that objects name is a full compile.
+    assert_eq!(compile(&added), Reuse::Full);
+    let cut = added.replacen("let q = k * 2", "let q =", 1);
+    assert!(matches!(
+        compile(&cut),
+        Reuse::Statements { checked: 0, .. }
+    ));
+    assert_eq!(compile(&added), Reuse::Unchanged);
+    let named = added.replacen("let k = 2", "let k =", 1);
+    assert_eq!(compile(&named), Reuse::Full);
+}
+
+/// A scene whose `object`s and `group`s (groups over several lines, a group inside a group,
+/// comments between) run to the end of the file, or to a `light` after them.
+fn nesting_scene(rng: &mut SplitMix64) -> String {
+    let mut s = String::from(
+        "scnc 1\nlet k = 2\ncamera main { eye (0, 5, -20)  target (0, 0, 0)  fov 40deg }\n\
+         render { resolution 8 x 6 }\nmesh box1 = box { size (1, 2, 1) }\n\
+         material m0 = phong { diffuse rgb(0.2, 0.5, 0.2) }\n\
+         material m1 = phong { diffuse #888  specular 0.1 }\n",
+    );
+    for i in 0..40 {
+        match rng.below(6) {
+            0 => s.push_str(&format!(
+                "group g{i} {{ transform {{ translate (0, {i}, k) }}\n  object box1 {{ material m1 }}\n  \
+                 group h{i} {{ object box1 {{ material m0  transform {{ scale (1, 2, 3) }} }} }}\n}}\n"
+            )),
+            1 => s.push_str("// between the objects\n"),
+            _ => {}
+        }
+        s.push_str(&format!(
+            "object box1 {{ material m{}  transform {{ rotate y {i}deg  translate ({i}.5, k, 1) }} }}\n",
+            i % 2
+        ));
+    }
+    if rng.below(2) == 0 {
+        s.push_str("light sun = point { position (0, 10, 0)  intensity 100 }\n");
+    }
+    s
+}
+
+/// An `object` or `group` cut inside its braces (inside a nested group or transform too), so
+/// that a `{` stays open over every statement after it: the diagnostics are the full
+/// compile's, and the statements after it are not parsed again (`tail.rs` in src/syntax tells
+/// pest's error for them). The edit taking the cut out gives the text before it again.
+#[test]
+fn an_unclosed_brace_spares_the_statements_after_it() {
+    let path = Path::new("edit.scn");
+    let mut rng = SplitMix64(0xB4AC_E5ED);
+    let (mut cuts, mut spared) = (0, 0);
+    for _ in 0..24 {
+        let text = nesting_scene(&mut rng);
+        let mut inc = Incremental::new(Overrides::default());
+        let mut loader = MemLoader::new();
+        let mut compile = |text: &str, inc: &mut Incremental| {
+            loader.insert(path, text.to_string());
+            let got = inc.compile(path, &loader, &mut SourceMap::new());
+            let want = compile_with(path, &loader, &mut SourceMap::new(), &Overrides::default());
+            assert_eq!(
+                format!("{:#?}", got.diagnostics),
+                format!("{:#?}", want.diagnostics),
+                "{:?} on\n{text}",
+                inc.reuse
+            );
+            assert_eq!(
+                format!("{:?}", got.value),
+                format!("{:?}", want.value.map(Arc::new))
+            );
+            inc.reuse
+        };
+        let first = compile(&text, &mut inc);
+        assert_eq!(first, Reuse::Full);
+        // Statement starts: lines that start with `object` or `group`.
+        let starts: Vec<usize> = text
+            .match_indices('\n')
+            .map(|(i, _)| i + 1)
+            .filter(|&i| text[i..].starts_with("object") || text[i..].starts_with("group"))
+            .collect();
+        for _ in 0..8 {
+            // One with at least three statements after it.
+            let at = starts[rng.below(starts.len() - 3)];
+            let next = |w: &str| text[at..].find(w);
+            let after = next("\nobject").into_iter().chain(next("\ngroup")).min();
+            let after = after.map_or(text.len(), |n| at + n + 1);
+            // Anywhere from after its first `{` to before its last `}`.
+            let end = text[..after].rfind('}').unwrap_or(0);
+            let open = at + text[at..].find('{').unwrap_or(0) + 1;
+            let cut = open + rng.below(end - open);
+            let edited = format!("{}\n{}", &text[..cut], &text[after..]);
+            let reuse = compile(&edited, &mut inc);
+            let Reuse::Statements { parsed, checked: 0 } = reuse else {
+                panic!("a cut took {reuse:?} on\n{edited}");
+            };
+            assert!(parsed <= 4, "{parsed} statements parsed again on\n{edited}");
+            cuts += 1;
+            spared += usize::from(parsed <= 4);
+            assert_eq!(compile(&text, &mut inc), Reuse::Unchanged);
+        }
+    }
+    eprintln!("{cuts} cuts, {spared} with the statements after them spared");
 }

@@ -13,8 +13,12 @@
 //! diagnostics are the compile's when the statements they lose are top-level `object`s and
 //! `group`s (whose loss the check answers only with cascades: a material or mesh now unused), every other
 //! statement there parses again with its old text, and the old check had no diagnostic but
-//! cascades. Anything else is declined (a full compile).
+//! cascades. A chunk whose tail is those old statements (an object line cut inside its
+//! braces leaves a `{` open over every `object` and `group` after it) is not parsed whole:
+//! `syntax::parse_recovering_from` tells pest's error for it from the chunk's head and the
+//! first of them (`src/syntax/tail.rs`). Anything else is declined (a full compile).
 
+use super::dependents;
 use super::edit::Region;
 use super::{is_cascade, reading_order};
 use crate::diag::Diagnostic;
@@ -23,14 +27,18 @@ use crate::syntax::{self, scan};
 
 /// The diagnostics of a full compile of `text` (which has a syntax error in `region`), or
 /// `None` when they cannot be told from the memo: `old` is the last text that parsed, `spans`
-/// its statements' byte ranges, `old_diags` the check's diagnostics of it.
+/// its statements' byte ranges, `old_diags` the check's diagnostics of it, `defines` whether
+/// the compile has a `--define`. Also how many old
+/// statements were parsed again (those of a chunk whose error was told without parsing them
+/// not counted).
 pub(super) fn diagnostics(
     text: &str,
     old: &str,
     spans: &[(u32, u32)],
     region: &Region,
     old_diags: &[Diagnostic],
-) -> Option<Vec<Diagnostic>> {
+    defines: bool,
+) -> Option<(Vec<Diagnostic>, usize)> {
     if !old_diags.iter().all(|d| is_cascade(d.code)) {
         return None;
     }
@@ -38,12 +46,20 @@ pub(super) fn diagnostics(
     let (old_end, new_end) = (shift.old_end as usize, shift.new_end as usize);
     // Old statements after the edited bytes, at their new places: where the chunks may stop.
     let later = &spans[region.stmts.end..];
-    let mut stops = later
+    let moved = |&(s, e): &(u32, u32)| {
+        (
+            s as usize - old_end + new_end,
+            e as usize - old_end + new_end,
+        )
+    };
+    let kept: Vec<(usize, usize)> = later
         .iter()
-        .map(|&(s, _)| s as usize - old_end + new_end)
-        .filter(|&p| p > new_end);
+        .map(moved)
+        .filter(|&(s, _)| s > new_end)
+        .collect();
     let start = region.bytes.start;
-    let (parsed, diags, stop) = syntax::parse_recovering_from(FileId(0), text, start, &mut stops)?;
+    let recovered = syntax::parse_recovering_from(FileId(0), text, start, &kept)?;
+    let (parsed, diags, stop) = (&recovered.statements, recovered.diagnostics, recovered.stop);
     if !diags.iter().any(Diagnostic::is_error) {
         return None;
     }
@@ -56,40 +72,58 @@ pub(super) fn diagnostics(
         let (s, _) = *spans.get(k)?;
         (s as usize - old_end + new_end == stop).then_some(k)?
     };
-    let mut olds = (region.stmts.start..end).map(|i| spans[i]);
-    for stmt in &parsed {
+    // An old statement lost (not parsed again) must be one whose loss the check answers only
+    // with cascades.
+    let lost_quietly = |i: usize| {
+        let (s, e) = spans[i];
+        old.get(s as usize..e as usize)
+            .is_some_and(|was| syntax::nests(was) || (!defines && unnamed_let(old, spans, i)))
+    };
+    let mut olds = region.stmts.start..end;
+    for stmt in parsed {
         let span = stmt.span();
         let now = text.get(span.start as usize..span.end as usize)?;
-        // Old statements passed over are lost: each must be an object.
+        // Old statements passed over are lost.
         loop {
-            let (s, e) = olds.next()?;
-            let was = old.get(s as usize..e as usize)?;
-            if was == now {
+            let i = olds.next()?;
+            let (s, e) = spans[i];
+            if old.get(s as usize..e as usize)? == now {
                 break;
             }
-            if !is_placement(was) {
+            if !lost_quietly(i) {
                 return None;
             }
         }
     }
-    for (s, e) in olds {
-        if !is_placement(old.get(s as usize..e as usize)?) {
-            return None;
-        }
+    if !olds.all(lost_quietly) {
+        return None;
     }
     let mut diags = diags;
     reading_order(&mut diags);
-    Some(diags)
+    Some((diags, end - region.stmts.start - recovered.spared))
 }
 
-/// Whether a top-level statement's text is an `object` or a `group`: statements no other
-/// statement names (a group's name is declared only to be told apart from others).
-fn is_placement(stmt: &str) -> bool {
-    let keyword = |word: &str| {
-        stmt.strip_prefix(word)
-            .is_some_and(|rest| !rest.starts_with(|c: char| c.is_ascii_alphanumeric() || c == '_'))
+/// Whether old statement `i` (of `old`, statements at `spans`) is a `let` that no statement
+/// but itself names (a whole-word search): its loss changes no other statement's check. (A
+/// `--define` naming it would become unused, an error: the caller declines when there is one.)
+fn unnamed_let(old: &str, spans: &[(u32, u32)], i: usize) -> bool {
+    let (s, e) = spans[i];
+    let stmt = old.get(s as usize..e as usize).unwrap_or_default();
+    let Some(rest) = stmt
+        .strip_prefix("let")
+        .filter(|r| r.starts_with(char::is_whitespace))
+    else {
+        return false;
     };
-    keyword("object") || keyword("group")
+    let rest = rest.trim_start();
+    let len = rest
+        .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+        .unwrap_or(rest.len());
+    let name = &rest[..len];
+    if name.is_empty() {
+        return false;
+    }
+    dependents::naming(old, spans, name).is_some_and(|found| found.iter().all(|(j, _)| *j == i))
 }
 
 /// Whether no line inside a statement of `text` (statements at `spans`) starts where the

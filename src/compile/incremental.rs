@@ -279,12 +279,17 @@ impl Memo {
         if !whole {
             return None;
         }
-        let diags = broken::diagnostics(text, old, &self.spans, region, &self.check.diagnostics)?;
+        let defines = self.sources.files().count() > 1;
+        let (diags, parsed) = broken::diagnostics(
+            text,
+            old,
+            &self.spans,
+            region,
+            &self.check.diagnostics,
+            defines,
+        )?;
         self.broken = Some((self.new_sources(text), diags));
-        Some(Reuse::Statements {
-            parsed: region.stmts.len(),
-            checked: 0,
-        })
+        Some(Reuse::Statements { parsed, checked: 0 })
     }
 
     /// The old statements `range` (of the old text `old`), parsed again.

@@ -82,6 +82,19 @@ pub(super) fn from_pest(file: FileId, base: usize, chunk: &str, e: &Error<Rule>)
         .unwrap_or_else(|| unexpected_token(at, pos, found, &literals, e))
 }
 
+/// Where in `chunk` pest's error `e` sits: the position [`from_pest`] reports it at.
+pub(super) fn failure_pos(chunk: &str, e: &Error<Rule>) -> usize {
+    failure_point(chunk, e).0
+}
+
+/// [`from_pest`]'s diagnostic for a chunk (at byte `base` of `file`) whose parse fails at
+/// its end (only blanks after the failure point): "this `{` is never closed" at the innermost
+/// bracket still open there, whatever pest expected. `None` when no bracket is open at the end
+/// (then the words depend on pest's error).
+pub(super) fn unclosed_at_end(file: FileId, base: usize, chunk: &str) -> Option<Diagnostic> {
+    unclosed_delimiter(At { file, base, chunk }, chunk.len())
+}
+
 /// The farthest position pest reached and the structural tokens (`` `}` ``, `` `=` ``) it
 /// wanted there: with error detail on, pest knows them, though its rule-level report does not.
 fn failure_point(chunk: &str, e: &Error<Rule>) -> (usize, Vec<String>) {

@@ -61,13 +61,23 @@ pub(super) fn parse_each(
 /// reaches `start` (a statement's parse reads the text from its start on, and a top-level
 /// statement's start is all the state the parser carries): `None` unless each one parses and
 /// the last one is followed by nothing but whitespace and comments up to `end` exactly, or when
-/// a statement had a diagnostic (the caller then parses the whole file).
+/// a statement had a diagnostic (the caller then parses the whole file), or when they do not
+/// parse within `text[..end]` alone: a statement with a `{` left open must not have the
+/// parsers read every later statement as its block's items before they fail at the end of the
+/// file (declining is always allowed; a region that parses alone is parsed again as the whole
+/// file's parse reads it, past `end` as far as its statements look).
 pub(super) fn parse_region(
     file: FileId,
     text: &str,
     start: usize,
     end: usize,
 ) -> Option<Vec<Stmt>> {
+    statements_between(file, text.get(..end.min(text.len()))?, start, end)?;
+    statements_between(file, text, start, end)
+}
+
+/// [`parse_region`]'s statements as a parse of all of `text` finds them.
+fn statements_between(file: FileId, text: &str, start: usize, end: usize) -> Option<Vec<Stmt>> {
     let mut c = Cursor::new(file, text);
     c.pos = start;
     let mut statements = Vec::new();

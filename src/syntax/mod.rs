@@ -14,9 +14,11 @@ mod convert;
 mod errors;
 mod fast;
 pub mod scan;
+mod tail;
 
 pub use ast::*;
 pub use convert::MAX_EXPR_NODES;
+pub(crate) use tail::nests;
 
 use pest::Parser;
 
@@ -126,33 +128,59 @@ fn parse_chunks(file: FileId, text: &str, scanned: &scan::Scan) -> (SceneFile, V
     let mut starts: Vec<usize> = vec![0];
     starts.extend(scanned.resync.iter().copied().filter(|&s| s > 0));
     starts.push(text.len());
-    parse_chunks_between(file, text, &starts, scanned.too_deep_at)
+    let (parsed, diags, _) = parse_chunks_between(file, text, &starts, scanned.too_deep_at, &[]);
+    (parsed, diags)
 }
 
 /// [`parse`]'s error recovery over part of a file with a syntax error: from `start`, a
 /// top-level statement's start that [`parse`] of the whole `text` cuts a chunk at (or the
-/// file's start), to the first of `stops` where the whole file's resynchronisation points are
-/// again those of the text it was edited from ([`scan::resync_from`]). The statements and
-/// diagnostics [`parse`] of the whole `text` finds there, and where the part ends; `None` when
-/// `start` is not where [`parse`] cuts, or nesting gets too deep in the part.
+/// file's start), to the first statement of `kept` where the whole file's resynchronisation
+/// points are again those of the text it was edited from ([`scan::resync_from`]). `kept` are
+/// the byte ranges of the statements after the edit, in order, each known to parse alone as a
+/// top-level statement over exactly its range, with only blanks and comments between two of
+/// them and after the last (the statements of a text that parsed, moved by the edit): a chunk
+/// whose tail they are is not parsed whole when its error can be told without (`tail.rs`).
+/// The statements and diagnostics [`parse`] of the whole `text` finds there, where the part
+/// ends, and how many kept statements were spared a parse; `None` when `start` is not where
+/// [`parse`] cuts, or nesting gets too deep in the part.
 pub fn parse_recovering_from(
     file: FileId,
     text: &str,
     start: usize,
-    stops: &mut dyn Iterator<Item = usize>,
-) -> Option<(Vec<Stmt>, Vec<Diagnostic>, usize)> {
-    let (resync, stop) = scan::resync_from(text, start, stops)?;
+    kept: &[(usize, usize)],
+) -> Option<Recovered> {
+    let mut stops = kept.iter().map(|&(s, _)| s);
+    let (resync, stop) = scan::resync_from(text, start, &mut stops)?;
     if start != 0 && resync.first() != Some(&start) {
         return None;
     }
     let mut starts = vec![start];
     starts.extend(resync.into_iter().filter(|&s| s > start));
     starts.push(stop);
-    let (parsed, diags) = parse_chunks_between(file, text, &starts, None);
-    Some((parsed.statements, diags, stop))
+    let (parsed, diagnostics, spared) = parse_chunks_between(file, text, &starts, None, kept);
+    Some(Recovered {
+        statements: parsed.statements,
+        diagnostics,
+        stop,
+        spared,
+    })
 }
 
-/// Parses each chunk `text[starts[i]..starts[i + 1]]` on its own.
+/// What [`parse_recovering_from`] found.
+pub struct Recovered {
+    /// The statements that parsed.
+    pub statements: Vec<Stmt>,
+    /// A diagnostic per syntax error.
+    pub diagnostics: Vec<Diagnostic>,
+    /// Where the part ends.
+    pub stop: usize,
+    /// How many kept statements were not parsed (their chunk's error told without).
+    pub spared: usize,
+}
+
+/// Parses each chunk `text[starts[i]..starts[i + 1]]` on its own (a chunk whose tail is
+/// statements of `kept` not whole when [`tail::error`] can tell its error; see
+/// [`parse_recovering_from`]); also how many kept statements that spared.
 #[allow(
     clippy::expect_used,
     reason = "a successful parse of `file` yields exactly one pair"
@@ -162,12 +190,14 @@ fn parse_chunks_between(
     text: &str,
     starts: &[usize],
     too_deep_at: Option<usize>,
-) -> (SceneFile, Vec<Diagnostic>) {
+    kept: &[(usize, usize)],
+) -> (SceneFile, Vec<Diagnostic>, usize) {
     // Record the literal tokens pest tried at the failure point (`=`, `}`), for the messages.
     // Only the error path turns this on; it never changes whether a parse succeeds.
     let _detail = ErrorDetail::on();
     let mut statements = Vec::new();
     let mut diags = Vec::new();
+    let mut spared = 0;
     for w in starts.windows(2) {
         let (start, end) = (w[0], w[1]);
         let chunk = &text[start..end];
@@ -185,6 +215,11 @@ fn parse_chunks_between(
             );
             continue;
         }
+        if let Some((diag, n)) = tail::error(file, text, start, end, kept) {
+            diags.push(diag);
+            spared += n;
+            continue;
+        }
         match SceneParser::parse(Rule::file, chunk) {
             Ok(mut pairs) => {
                 let conv = convert::Converter::new(file, start);
@@ -195,7 +230,7 @@ fn parse_chunks_between(
             Err(e) => diags.push(errors::from_pest(file, start, chunk, &e)),
         }
     }
-    (SceneFile { statements }, diags)
+    (SceneFile { statements }, diags, spared)
 }
 
 #[cfg(test)]

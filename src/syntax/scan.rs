@@ -139,7 +139,14 @@ impl Scanner {
         if b == b'\n' {
             *line_start = true;
         }
-        i + 1 + usize::from(skip)
+        let mut next = i + 1 + usize::from(skip);
+        // In code inside a line, names, numbers and blanks change nothing: step over them.
+        if self.state == State::Code && !*line_start {
+            while bytes.get(next).is_some_and(|&b| !CODE_BYTES[b as usize]) {
+                next += 1;
+            }
+        }
+        next
     }
 
     /// Takes byte `b` at `i` (`next` follows it); true when `next` belongs to the same token
@@ -242,6 +249,8 @@ pub fn unclosed(text: &str) -> Option<(usize, &'static str)> {
                 b'"' | b'\n' => in_str = false,
                 _ => {}
             }
+        } else if !DEPTH_BYTES[b as usize] {
+            // Names, numbers and blanks change nothing.
         } else {
             match b {
                 b'"' => in_str = true,
@@ -314,6 +323,14 @@ pub fn too_deep(text: &str) -> Option<usize> {
     }
     None
 }
+
+/// The bytes that can change [`Scanner`]'s state in code inside a line: those of
+/// [`DEPTH_BYTES`] and the newline.
+const CODE_BYTES: [bool; 256] = {
+    let mut t = DEPTH_BYTES;
+    t[b'\n' as usize] = true;
+    t
+};
 
 /// The bytes that can change [`too_deep`]'s state: quotes, comment starts and brackets.
 const DEPTH_BYTES: [bool; 256] = {
