@@ -12,7 +12,8 @@
 //! distribution no BRDF ray can hit) keep pure light sampling. [`DirectStrategy`] switches to
 //! one strategy alone for tests and measurements. Under a sky alone, a diffuse surface adds the
 //! closed-form integral of the sky's smooth fit and its samples estimate only the rest (a
-//! control variate, `mis::sky_control`).
+//! control variate, `mis::sky_control`); where that fit is close to the sky, the sky's light
+//! sample gives way to a second BRDF direction (`mis::sky_by_cosine`).
 //!
 //! Textured materials look their inputs up with the pixel's ray-cone footprint
 //! (`shade::texture::footprint`: an ellipse, scaled down as the pixel's sample count grows, so
@@ -39,7 +40,7 @@ use glam::Vec3;
 
 use std::f32::consts::FRAC_1_PI;
 
-use super::mis::{sky_control, strategy_at};
+use super::mis::{sky_by_cosine, sky_control, strategy_at};
 use super::rng::Sampler;
 use crate::geom::Ray;
 use crate::scene::{DirectStrategy, Scene, Surface};
@@ -215,13 +216,15 @@ fn shade(
         counts.specular += 1;
     }
     let strategy = strategy_at(scene, &phong);
+    let sky_fit = sky_control(scene, &phong, strategy);
     let at = Shading {
         scene,
         hit,
         ng,
         ns,
         wo,
-        sky_fit: sky_control(scene, &phong, strategy),
+        sky_fit,
+        sky_by_cosine: sky_by_cosine(scene, sky_fit),
         strategy,
         phong,
     };
@@ -247,6 +250,10 @@ pub(super) struct Shading<'a> {
     /// The sky's smooth fit, when the environment's light is estimated as its closed-form
     /// integral plus sampled residuals ([`sky_control`]).
     pub(super) sky_fit: Option<&'a SkyHarmonics>,
+    /// Whether the sky without its bright set is left to cosine-sampled BRDF rays alone, two
+    /// per pick, instead of one of them and one sample of the sky's tables
+    /// ([`sky_by_cosine`]).
+    pub(super) sky_by_cosine: bool,
 }
 
 impl Shading<'_> {

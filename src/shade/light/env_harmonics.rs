@@ -19,6 +19,8 @@ use std::f32::consts::PI;
 
 use glam::{DVec3, Vec3, Vec3A};
 
+use crate::shade::color::luminance;
+
 /// The highest degree `l` of the fit.
 pub const DEGREE: usize = 2;
 /// Coefficients per colour channel: `(DEGREE + 1)²`.
@@ -35,6 +37,8 @@ pub struct SkyHarmonics {
     coeffs: [Vec3A; COEFFS],
     /// `A_l c_lm`, for [`SkyHarmonics::irradiance`].
     irradiance_coeffs: [Vec3A; COEFFS],
+    /// [`SkyHarmonics::relative_residual`].
+    residual: f32,
 }
 
 /// The real, orthonormal spherical harmonics of degree ≤ [`DEGREE`] at unit direction `d`, by
@@ -91,20 +95,34 @@ const fn degree_of(i: usize) -> usize {
 
 impl SkyHarmonics {
     /// The projection of a radiance function given at quadrature points: `(direction (unit),
-    /// radiance, solid angle)` each. `None` if a coefficient is not finite.
-    pub fn project(points: impl Iterator<Item = (Vec3, Vec3, f64)>) -> Option<SkyHarmonics> {
+    /// radiance, solid angle)` each, and the fit's [`SkyHarmonics::relative_residual`] over the
+    /// same points. `None` if a coefficient is not finite.
+    pub fn project(points: &[(Vec3, Vec3, f64)]) -> Option<SkyHarmonics> {
         let mut sums = [DVec3::ZERO; COEFFS];
-        for (d, radiance, solid_angle) in points {
+        for &(d, radiance, solid_angle) in points {
             let weighted = radiance.as_dvec3() * solid_angle;
             for (sum, y) in sums.iter_mut().zip(basis(d)) {
                 *sum += weighted * y as f64;
             }
         }
         let coeffs = sums.map(|s| Vec3A::from(s.as_vec3()));
-        coeffs
-            .iter()
-            .all(|c| c.is_finite())
-            .then(|| SkyHarmonics::from_coeffs(coeffs))
+        if !coeffs.iter().all(|c| c.is_finite()) {
+            return None;
+        }
+        let mut fit = SkyHarmonics::from_coeffs(coeffs);
+        let (mut departure, mut energy) = (0.0f64, 0.0f64);
+        for &(d, radiance, solid_angle) in points {
+            let seen = luminance(radiance) as f64;
+            let fitted = luminance(fit.radiance(d)) as f64;
+            departure += (seen - fitted) * (seen - fitted) * solid_angle;
+            energy += seen * seen * solid_angle;
+        }
+        fit.residual = if energy > 0.0 {
+            (departure / energy).sqrt() as f32
+        } else {
+            0.0
+        };
+        Some(fit)
     }
 
     fn from_coeffs(coeffs: [Vec3A; COEFFS]) -> SkyHarmonics {
@@ -115,15 +133,28 @@ impl SkyHarmonics {
         SkyHarmonics {
             coeffs,
             irradiance_coeffs,
+            residual: 0.0,
         }
     }
 
-    /// The fit plus a radiance `constant` from every direction.
+    /// How far the projected radiance departs from its fit, relative to the radiance itself:
+    /// `sqrt(∫ (ℓ − ℓ̃)² dω / ∫ ℓ² dω)` over the projection's points, `ℓ` the luminance (0
+    /// for a black or constant sky). env-bench's sky without its sun: 0.15 (the step at the
+    /// horizon); a 30° window five times as bright as the rest of a constant sky: 0.40.
+    pub fn relative_residual(&self) -> f32 {
+        self.residual
+    }
+
+    /// The fit plus a radiance `constant` from every direction (its residual kept: the
+    /// constant is fitted exactly).
     pub fn with_constant(&self, constant: Vec3) -> SkyHarmonics {
         let mut coeffs = self.coeffs;
         // ∫ c · Y_00 dω = c · 4π · Y_00.
         coeffs[0] += Vec3A::from(constant) * (4.0 * PI * basis(Vec3::Y)[0]);
-        SkyHarmonics::from_coeffs(coeffs)
+        SkyHarmonics {
+            residual: self.residual,
+            ..SkyHarmonics::from_coeffs(coeffs)
+        }
     }
 
     /// A constant radiance from every direction.
@@ -240,10 +271,16 @@ mod tests {
             )
         };
         let points = sphere_points(300);
-        let fit = SkyHarmonics::project(points.iter().map(|&(d, w)| (d, sky(d), w))).unwrap();
+        let points: Vec<_> = points.iter().map(|&(d, w)| (d, sky(d), w)).collect();
+        let fit = SkyHarmonics::project(&points).unwrap();
         for d in [Vec3::Y, Vec3::X, Vec3::new(0.6, -0.64, 0.48)] {
             assert!((fit.radiance(d) - sky(d)).abs().max_element() < 1e-3, "{d}");
         }
+        assert!(
+            fit.relative_residual() < 1e-3,
+            "{}",
+            fit.relative_residual()
+        );
         let c = SkyHarmonics::constant(Vec3::new(0.5, 1.0, 2.0));
         assert!(
             (c.radiance(Vec3::X) - Vec3::new(0.5, 1.0, 2.0))
@@ -256,6 +293,32 @@ mod tests {
         assert!(
             (e - PI * Vec3::new(0.5, 1.0, 2.0)).abs().max_element() < 1e-4,
             "{e}"
+        );
+    }
+
+    #[test]
+    fn the_residual_tells_a_smooth_sky_from_one_with_a_bright_window() {
+        // A constant sky with a patch of about 30° × 30°, `gain` times as bright.
+        let residual = |gain: f32| {
+            let window = |d: Vec3| d.y > 0.5 && d.y < 0.87 && d.x > 0.0 && d.z.abs() < 0.25;
+            let points: Vec<_> = sphere_points(200)
+                .into_iter()
+                .map(|(d, w)| (d, Vec3::splat(if window(d) { 0.3 * gain } else { 0.3 }), w))
+                .collect();
+            SkyHarmonics::project(&points).unwrap().relative_residual()
+        };
+        assert!(residual(1.0) < 1e-3, "constant: {}", residual(1.0));
+        // The departure grows with the window's contrast.
+        let (dim, bright) = (residual(2.0), residual(5.0));
+        assert!(dim < bright, "{dim} {bright}");
+        assert!(bright > 0.3, "{bright}");
+        let black: Vec<_> = sphere_points(20)
+            .into_iter()
+            .map(|(d, w)| (d, Vec3::ZERO, w))
+            .collect();
+        assert_eq!(
+            SkyHarmonics::project(&black).unwrap().relative_residual(),
+            0.0
         );
     }
 }

@@ -241,7 +241,7 @@ impl EnvMap {
                 solid_angle,
             )
         });
-        SkyHarmonics::project(points)
+        SkyHarmonics::project(&points.collect::<Vec<_>>())
     }
 
     /// Whether the sampling table was built.
@@ -405,18 +405,35 @@ impl EnvMap {
     /// [`EnvMap::radiance`] of direction `d` (unit), and the solid-angle densities of
     /// [`EnvMap::sample_sky_facing`] and [`EnvMap::sample_bright`] there, finding its texel once.
     pub fn densities_facing(&self, d: Vec3, normal: Option<Vec3>) -> (Vec3, f32, f32) {
-        let (col, row, sin_theta) = self.texel_of(d);
-        let radiance = self.texels.get(row * self.width + col);
-        if sin_theta <= 0.0 {
+        let (col, row, jacobian, radiance) = self.texel_towards(d);
+        if jacobian <= 0.0 {
             return (radiance, 0.0, 0.0);
         }
-        let jacobian = 2.0 * PI * PI * sin_theta;
         let sky = self
             .distribution
             .as_ref()
             .map_or(0.0, |t| t.pdf_uv(col, row, normal));
         let bright = self.bright.as_ref().map_or(0.0, |b| b.pdf_uv(col, row));
         (radiance, sky / jacobian, bright / jacobian)
+    }
+
+    /// [`EnvMap::densities_facing`] without the sky's density (whose tables are the costly
+    /// part): the radiance from direction `d` (unit) and the density of
+    /// [`EnvMap::sample_bright`] there.
+    pub fn radiance_and_bright_density(&self, d: Vec3) -> (Vec3, f32) {
+        let (col, row, jacobian, radiance) = self.texel_towards(d);
+        match &self.bright {
+            Some(b) if jacobian > 0.0 => (radiance, b.pdf_uv(col, row) / jacobian),
+            _ => (radiance, 0.0),
+        }
+    }
+
+    /// The texel world direction `d` (unit) reads, the Jacobian `2π² sin θ` from the map's
+    /// unit square to solid angle there (0 at a pole), and the texel's radiance.
+    fn texel_towards(&self, d: Vec3) -> (usize, usize, f32, Vec3) {
+        let (col, row, sin_theta) = self.texel_of(d);
+        let radiance = self.texels.get(row * self.width + col);
+        (col, row, 2.0 * PI * PI * sin_theta.max(0.0), radiance)
     }
 }
 

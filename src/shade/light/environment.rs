@@ -228,6 +228,17 @@ impl Environment {
         )
     }
 
+    /// The radiance from direction `d` (unit) and the bright strategy's density there
+    /// ([`Environment::sample_bright`]), without the sky strategy's: for renders that leave
+    /// the sky to BRDF rays (`render::mis`).
+    pub fn radiance_and_bright_density(&self, d: Vec3) -> (Vec3, f32) {
+        let (map_radiance, bright) = self
+            .map
+            .as_ref()
+            .map_or((Vec3::ZERO, 0.0), |m| m.radiance_and_bright_density(d));
+        (self.constant + map_radiance, bright)
+    }
+
     /// The density of [`Environment::sample_facing`] for the same `normal`.
     #[inline]
     pub fn pdf_facing(&self, d: Vec3, normal: Option<Vec3>) -> f32 {
