@@ -8,8 +8,11 @@
 //! `mesh` or a (checker) `texture` (a digit after its `=`) that leaves the scene without an
 //! error, an `object` line inserted or deleted (one that leaves every mesh and material as used
 //! as it was), an object's material misspelt (an error: the edit the language server sees while
-//! the user types) and the next edit, which puts the name back, and a `let` nothing names
-//! inserted or deleted.
+//! the user types) and the next edit, which puts the name back, a `let` nothing names
+//! inserted or deleted, an object's mesh or material replaced by another (which makes one used
+//! or unused: the IR is compacted again), and a `material`, `mesh` or `texture` value edit that
+//! gives a diagnostic (a digit, or its kind misspelt: not lowered) and the edit that takes it
+//! out again.
 
 use scnc::assets::MemLoader;
 use scnc::compile::{compile_with, Incremental, Overrides, Reuse};
@@ -88,10 +91,15 @@ enum Kind {
     LetInsert,
     /// Such a `let` line deleted.
     LetDelete,
+    /// An `object` line's mesh or material replaced by another declared one (which may make
+    /// one used or unused: the IR's indices change).
+    ObjectUses,
+    /// A `material`, `mesh` or `texture` value edit that gave a diagnostic taken out again.
+    DeclFixed,
 }
 
 /// The edits of whole lines asserted to take the fast path, in [`Replayed::line_edits`].
-const LINE_KINDS: [Kind; 10] = [
+const LINE_KINDS: [Kind; 12] = [
     Kind::ObjectInsert,
     Kind::ObjectDelete,
     Kind::ObjectTypo,
@@ -102,6 +110,8 @@ const LINE_KINDS: [Kind; 10] = [
     Kind::HalfTypedFixed,
     Kind::LetInsert,
     Kind::LetDelete,
+    Kind::ObjectUses,
+    Kind::DeclFixed,
 ];
 
 /// The mesh and material an `object` line names (`object MESH { material MATERIAL ...`).
@@ -159,9 +169,9 @@ fn edit(rng: &mut SplitMix64, text: &str) -> (String, Option<(Kind, String)>) {
     let lines: Vec<&str> = text.split_inclusive('\n').collect();
     let line = rng.below(lines.len());
     let mut out: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
-    match rng.below(23) {
+    match rng.below(24) {
         // A `let` nothing names inserted, or one deleted.
-        21 | 22 => {
+        21..=23 => {
             if let Some(i) = (0..out.len()).find(|&i| out[i].starts_with("let unused")) {
                 out.remove(i);
                 return (out.concat(), Some((Kind::LetDelete, String::new())));
@@ -253,6 +263,14 @@ fn edit(rng: &mut SplitMix64, text: &str) -> (String, Option<(Kind, String)>) {
                 let value = out[i].find('=').unwrap_or(0);
                 let name = out[i][word.len()..].split_whitespace().next();
                 let name = name.unwrap_or_default().to_string();
+                // Or the kind misspelt (`phongx`: an error, the declaration not lowered).
+                if kind != Kind::Let && rng.below(4) == 0 {
+                    let ctor = out[i][value + 1..].trim_start();
+                    let at = out[i].len() - ctor.len();
+                    let word = ctor.find(|c: char| !c.is_ascii_alphanumeric());
+                    out[i].insert(at + word.unwrap_or(0), 'x');
+                    return (out.concat(), Some((kind, name)));
+                }
                 if replace_digit(rng, &mut out[i], value) {
                     return (out.concat(), Some((kind, name)));
                 }
@@ -336,11 +354,27 @@ fn edit(rng: &mut SplitMix64, text: &str) -> (String, Option<(Kind, String)>) {
             out[line].push('\n');
         }
         10 => return (base_scene(), None),
-        // An object's material changed (a material may become used or unused).
+        // An object's material or mesh changed to another declared one (which may become used,
+        // or leave one unused).
         _ => {
-            if let Some(i) = (0..out.len()).find(|&i| out[i].contains("material m0 ")) {
-                out[i] = out[i].replacen("material m0 ", "material m3 ", 1);
-            }
+            let objects: Vec<usize> = (0..lines.len())
+                .filter(|&i| mesh_and_material(lines[i]).is_some())
+                .collect();
+            let Some(&i) = objects.get(rng.below(objects.len())) else {
+                return (text.to_string(), None);
+            };
+            let Some((mesh, material)) = mesh_and_material(lines[i]) else {
+                return (text.to_string(), None);
+            };
+            out[i] = if rng.below(2) == 0 {
+                let to = ["m0", "m1", "m2", "m3", "floor"][rng.below(5)];
+                let from = format!("material {material} ");
+                out[i].replacen(&from, &format!("material {to} "), 1)
+            } else {
+                let to = ["box1", "ball", "spare"][rng.below(3)];
+                out[i].replacen(&format!("object {mesh} "), &format!("object {to} "), 1)
+            };
+            return (out.concat(), Some((Kind::ObjectUses, String::new())));
         }
     }
     (out.concat(), None)
@@ -370,7 +404,9 @@ struct Replayed {
     /// Per line edit of [`LINE_KINDS`] (an object inserted, deleted, its material misspelt and
     /// put back; a `let` nothing names inserted, deleted) made to a scene that compiled without
     /// an error: made, and those that took the fast path.
-    line_edits: [(usize, usize); 10],
+    line_edits: [(usize, usize); 12],
+    /// Value edits of a `material`, `mesh` or `texture` of a clean scene that gave an error.
+    decl_errors: usize,
 }
 
 impl Replayed {
@@ -378,6 +414,7 @@ impl Replayed {
         self.fast += r.fast;
         self.number_edits_of_clean_scenes += r.number_edits_of_clean_scenes;
         self.number_edits_fast += r.number_edits_fast;
+        self.decl_errors += r.decl_errors;
         let counts = self.decl_edits.iter_mut().chain(&mut self.line_edits);
         for (a, b) in counts.zip(r.decl_edits.iter().chain(&r.line_edits)) {
             a.0 += b.0;
@@ -397,6 +434,8 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
     // Every other step holds its scene across the next edit, as `scnc watch` may: the memo
     // then edits a copy (`Arc::make_mut`), and the held scene must not change.
     let mut held: Option<(std::sync::Arc<scnc::ir::SceneDesc>, String)> = None;
+    // The text before the last edit.
+    let mut before_edit = String::new();
     for step in 0..edits {
         let mut loader = MemLoader::new();
         loader.insert(path, text.clone());
@@ -467,18 +506,37 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
                     continue;
                 }
             }
-            Some((kind, name)) if !failed && !overridden(kind, &name) => {
+            // A declaration's value edit that gives a diagnostic (an albedo above 1) is
+            // re-checked too, and so is the edit that takes it out again; a `let`'s is not.
+            Some((kind, name)) if (!failed || kind != Kind::Let) && !overridden(kind, &name) => {
                 let at = KINDS.iter().position(|(k, _)| *k == kind).unwrap_or(0);
                 let counts = &mut replayed.decl_edits[at];
                 counts.0 += 1;
                 counts.1 += usize::from(reused);
                 assert!(reused, "{label}: a {kind:?} value edit took the full path");
+                if failed {
+                    // Taken out again, and another of its digits changed (the memo's IR of the
+                    // declaration is then not the one it had before the error).
+                    replayed.decl_errors += 1;
+                    let mut lines: Vec<String> = before_edit
+                        .split_inclusive('\n')
+                        .map(String::from)
+                        .collect();
+                    let head = format!("{}{name} ", KINDS[at].1);
+                    if let Some(line) = lines.iter_mut().find(|l| l.starts_with(&head)) {
+                        let value = line.find('=').unwrap_or(0);
+                        replace_digit(&mut rng, line, value);
+                    }
+                    text = lines.concat();
+                    clean_edit = Some((Kind::DeclFixed, String::new()));
+                    continue;
+                }
             }
             _ => {}
         }
         let (edited, kind) = edit(&mut rng, &text);
         clean_edit = kind.filter(|_| clean);
-        text = edited;
+        before_edit = std::mem::replace(&mut text, edited);
     }
     replayed
 }
@@ -501,8 +559,15 @@ fn seeded_edits_compile_as_a_fresh_compile_does() {
     );
     eprintln!(
         "object line inserted, deleted, material misspelt, put back, syntax broken, put back; \
-         a half-typed object line, taken out; unused let inserted, deleted (made, fast) {:?}",
-        total.line_edits
+         a half-typed object line, taken out; unused let inserted, deleted; an object's mesh or \
+         material changed; a declaration's diagnostic taken out (made, fast) {:?}; declaration \
+         value edits that gave an error {}",
+        total.line_edits, total.decl_errors
+    );
+    assert!(
+        total.decl_errors >= 8,
+        "only {} declaration value edits gave an error",
+        total.decl_errors
     );
     for (kind, (made, _)) in LINE_KINDS.iter().zip(total.line_edits) {
         assert!(made >= 4, "only {made} {kind:?} edits of clean scenes");
