@@ -12,7 +12,8 @@
 //! inserted or deleted, an object's mesh or material replaced by another (which makes one used
 //! or unused: the IR is compacted again), and a `material`, `mesh` or `texture` value edit that
 //! gives a diagnostic (a digit, or its kind misspelt: not lowered) and the edit that takes it
-//! out again.
+//! out again, and a `material`, `mesh` or `texture` nothing names inserted and deleted (the
+//! tables' indices after it move).
 
 use scnc::assets::MemLoader;
 use scnc::compile::{compile_with, Incremental, Overrides, Reuse};
@@ -96,10 +97,14 @@ enum Kind {
     ObjectUses,
     /// A `material`, `mesh` or `texture` value edit that gave a diagnostic taken out again.
     DeclFixed,
+    /// A `material`, `mesh` or `texture` line nothing names inserted (unused: a warning).
+    DeclInsert,
+    /// Such a line deleted.
+    DeclDelete,
 }
 
 /// The edits of whole lines asserted to take the fast path, in [`Replayed::line_edits`].
-const LINE_KINDS: [Kind; 12] = [
+const LINE_KINDS: [Kind; 14] = [
     Kind::ObjectInsert,
     Kind::ObjectDelete,
     Kind::ObjectTypo,
@@ -112,6 +117,8 @@ const LINE_KINDS: [Kind; 12] = [
     Kind::LetDelete,
     Kind::ObjectUses,
     Kind::DeclFixed,
+    Kind::DeclInsert,
+    Kind::DeclDelete,
 ];
 
 /// The mesh and material an `object` line names (`object MESH { material MATERIAL ...`).
@@ -169,7 +176,29 @@ fn edit(rng: &mut SplitMix64, text: &str) -> (String, Option<(Kind, String)>) {
     let lines: Vec<&str> = text.split_inclusive('\n').collect();
     let line = rng.below(lines.len());
     let mut out: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
-    match rng.below(24) {
+    match rng.below(26) {
+        // A declaration nothing names inserted (a material, a mesh, a texture), or one deleted.
+        24 | 25 => {
+            if let Some(i) = (0..out.len()).find(|&i| out[i].contains(" added")) {
+                out.remove(i);
+                return (out.concat(), Some((Kind::DeclDelete, String::new())));
+            }
+            let n = rng.below(1_000_000);
+            let stmt = match rng.below(4) {
+                0 => format!("mesh added{n} = box {{ size {} }}\n", 1 + n % 9),
+                1 => format!(
+                    "texture added{n} = checker {{ even #fff  odd #000  scale {} }}\n",
+                    1 + n % 9
+                ),
+                // An error (an albedo above 1) now and then.
+                _ => format!(
+                    "material added{n} = phong {{ diffuse rgb(0.5, {}.2, 0.1) }}\n",
+                    n % 3 / 2
+                ),
+            };
+            out.insert(1 + rng.below(out.len()), stmt);
+            return (out.concat(), Some((Kind::DeclInsert, String::new())));
+        }
         // A `let` nothing names inserted, or one deleted.
         21..=23 => {
             if let Some(i) = (0..out.len()).find(|&i| out[i].starts_with("let unused")) {
@@ -404,7 +433,7 @@ struct Replayed {
     /// Per line edit of [`LINE_KINDS`] (an object inserted, deleted, its material misspelt and
     /// put back; a `let` nothing names inserted, deleted) made to a scene that compiled without
     /// an error: made, and those that took the fast path.
-    line_edits: [(usize, usize); 12],
+    line_edits: [(usize, usize); 14],
     /// Value edits of a `material`, `mesh` or `texture` of a clean scene that gave an error.
     decl_errors: usize,
 }

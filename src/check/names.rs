@@ -122,6 +122,30 @@ impl Table {
         self.spans.reserve_exact(n);
     }
 
+    /// Declares `name` as the `at`-th (the later ones move up by one): the table made again.
+    pub fn insert_at(&mut self, at: usize, name: &str, span: Span) {
+        let old = std::mem::take(self);
+        self.reserve(old.len() + 1);
+        for i in 0..old.len() {
+            if i == at {
+                self.declare(name, span);
+            }
+            self.declare(old.name(i), old.spans[i]);
+        }
+        if at >= old.len() {
+            self.declare(name, span);
+        }
+    }
+
+    /// Takes out the `at`-th name (the later ones move down by one): the table made again.
+    pub fn remove_at(&mut self, at: usize) {
+        let old = std::mem::take(self);
+        self.reserve(old.len());
+        for i in (0..old.len()).filter(|&i| i != at) {
+            self.declare(old.name(i), old.spans[i]);
+        }
+    }
+
     /// How many names are declared.
     pub fn len(&self) -> usize {
         self.spans.len()

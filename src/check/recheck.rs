@@ -20,6 +20,7 @@
 use std::ops::Range;
 use std::sync::Arc;
 
+mod added;
 mod compact;
 mod decls;
 mod lets;

@@ -238,8 +238,13 @@ impl CheckMemo {
         let len = self.material_map.len();
         // A material's textures by table index, from its list (the IR has 0 in place of one
         // that failed to lower).
+        // (One lowered again is replaced below: its list may be its new one already.)
         let listed = &self.material_textures;
+        let redone = &relowered.materials;
         let untie = |i: u32, m: &mut ir::Material| {
+            if redone.iter().any(|(k, _)| *k == i as usize) {
+                return Some(());
+            }
             let list = match listed.binary_search_by_key(&i, |(m, _)| *m) {
                 Ok(at) => &listed[at].1[..],
                 Err(_) => &[],

@@ -102,7 +102,7 @@ impl CheckMemo {
 
     /// Takes out the diagnostics before the placement phase whose primary span starts in one
     /// of `spans` (a statement's diagnostics lie in its own text).
-    fn drop_early(&mut self, spans: &[Span]) {
+    pub(super) fn drop_early(&mut self, spans: &[Span]) {
         let inside = |d: &Diagnostic| {
             let at = d.primary.as_ref().map(|l| l.span);
             at.is_some_and(|at| {
@@ -167,6 +167,7 @@ impl CheckMemo {
         self.used_before.diags += early.len();
         let mut early_diags = std::mem::take(&mut self.diagnostics);
         early_diags.extend(early);
+        let textures_changed = !material_textures.is_empty();
         let new_diags = objects.iter().map(|(&i, (_, d, _))| (i, d.clone()));
         let mut diags = merge_runs(
             diags,
@@ -222,8 +223,9 @@ impl CheckMemo {
         for (i, (record, _, _)) in objects {
             *self.records.get_mut(i)? = record;
         }
-        // Declarations now used or unused, lowered or not: the IR's indices change.
-        if used_changed || !self.put_in_place(&mut relowered) {
+        // Declarations now used or unused, lowered or not, textures now used or not: the IR's
+        // indices change.
+        if used_changed || textures_changed || !self.put_in_place(&mut relowered) {
             self.recompact(sources, relowered)?;
         }
         ok.then_some(checked)
@@ -336,7 +338,7 @@ fn redo(
 }
 
 /// Whether a material declaration has a `normal_map` key.
-fn names_a_normal_map(d: &crate::syntax::Decl) -> bool {
+pub(super) fn names_a_normal_map(d: &crate::syntax::Decl) -> bool {
     let items = d.body.iter().flat_map(|b| &b.items);
     items
         .into_iter()
