@@ -308,8 +308,10 @@ fn front_end(objects: usize, edits: usize) {
     for kind in KINDS.into_iter().filter(|&k| only(k)) {
         let mut times = Vec::new();
         let mut build: [Vec<f64>; 3] = Default::default();
-        // Pairs of edits for the errors, so that each is taken out before the next kind.
-        let count = if errs(kind) { edits + edits % 2 } else { edits };
+        // Pairs of edits for the errors, so that each is taken out before the next kind (and
+        // for an inserted material, which would move the material lines of the next kinds).
+        let paired = errs(kind) || kind == Kind::NewMaterial;
+        let count = if paired { edits + edits % 2 } else { edits };
         // A full compile of the first error, for comparison.
         let mut full_error = None;
         for k in 0..count {
