@@ -1,15 +1,19 @@
 //! Incremental re-checking benchmark (a program, not a test): `cargo bench --bench incremental
-//! [-- --edits N] [-- --objects N] [-- --no-watch]`.
+//! [-- --edits N] [-- --objects N] [-- --no-watch] [-- --only Uses,BadValue]`.
 //!
 //! The scene of issue 22: 100,000 `object` statements, each with a rotate and a translate, over
-//! three meshes and 100 materials that name one constant, `gloss` (about 9 MB). Nine kinds
+//! three meshes and 100 materials that name one constant, `gloss` (about 9 MB). Twelve kinds
 //! of edit, one line each: one object's translate in the middle of the file (a person nudging one
 //! object), one material's colour, the value of `gloss` (its 100 materials re-checked), an
 //! `object` line inserted, one deleted, an object's material misspelt then put back (every
-//! other edit an error: what the language server sees while the user types), a `let` nothing
-//! names inserted then deleted, and two syntax errors, each then taken out: a stray `=` in an
-//! object's line, and an object's line cut inside its braces (a `{` left open to the end of
-//! the file).
+//! other edit an error: what the language server sees while the user types; `scnc watch`
+//! builds nothing then, so its figure is save → the `error` event), a `let` nothing names inserted then deleted, and two
+//! syntax errors, each then taken out: a stray `=` in an object's line, and an object's line
+//! cut inside its braces (a `{` left open to the end of the file); an object's material set to
+//! one nothing else uses (`spare`: used, then unused again when put back; the IR's indices
+//! change both times), and a material's albedo set above 1 (an error, the material not
+//! lowered) and put back; a material nothing names inserted (unused: a
+//! warning) and deleted.
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
 //!    each edit (the text served from memory; diagnostics are ready when it returns).
@@ -57,13 +61,15 @@ fn scene(objects: usize) -> Vec<String> {
         let_line(0),
     ];
     s.extend((0..100).map(|m| material_line(m, m % 10)));
+    // Unused (a warning) until a `Uses` edit names it.
+    s.push("material spare = phong { diffuse #808080 }".into());
     debug_assert_eq!(s.len(), HEADER);
     s.extend((0..objects).map(|i| object_line(i, 0)));
     s.push("light sun = point { position (500, 100, 0)  intensity 100000 }".into());
     s
 }
 
-const HEADER: usize = 107;
+const HEADER: usize = 108;
 /// The line of the `let` every material names, and of the first material.
 const LET_LINE: usize = 6;
 const FIRST_MATERIAL: usize = 7;
@@ -114,24 +120,37 @@ enum Kind {
     /// Edits 0, 2, 4, …: one object's line cut inside its braces (a syntax error that leaves a
     /// `{` open to the end of the file, as a statement being typed does); 1, 3, 5, …: put back.
     Cut,
+    /// Edits 0, 2, 4, …: one object's material set to `spare`, which nothing else uses (it
+    /// becomes used: the IR's material indices change); 1, 3, 5, …: put back (unused again).
+    Uses,
+    /// Edits 0, 2, 4, …: one material's diffuse red set to 1.5 (an error: an albedo above 1,
+    /// the material not lowered); 1, 3, 5, …: put back.
+    BadValue,
+    /// Edits 0, 2, 4, …: a material nothing names inserted after the first one (unused: a
+    /// warning; every later material's table index moves up); 1, 3, 5, …: deleted.
+    NewMaterial,
 }
 
-const KINDS: [Kind; 9] = [
+const KINDS: [Kind; 12] = [
     Kind::Object,
     Kind::Material,
     Kind::Let,
     Kind::Insert,
     Kind::Delete,
     Kind::UnusedLet,
+    Kind::Uses,
+    Kind::NewMaterial,
     // Last: each error is taken out again (an even number of edits).
+    Kind::BadValue,
     Kind::Typo,
     Kind::Stray,
     Kind::Cut,
 ];
 
-/// Kinds whose even edits make an error (in process only: `scnc watch` builds nothing then).
+/// Kinds whose even edits make an error (`scnc watch` builds nothing then: its figure is save →
+/// the `error` event).
 fn errs(kind: Kind) -> bool {
-    matches!(kind, Kind::Typo | Kind::Stray | Kind::Cut)
+    matches!(kind, Kind::Typo | Kind::Stray | Kind::Cut | Kind::BadValue)
 }
 
 /// Edit `k` of kind `kind` of `lines`. Returns the new text.
@@ -163,6 +182,35 @@ fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String
             };
             lines[i] = lines[i].replacen(from, to, 1);
         }
+        Kind::Uses => {
+            let i = objects / 2 + (k / 2 * 7919) % (objects / 4);
+            lines[HEADER + i] = if k.is_multiple_of(2) {
+                let line = object_line(i, 0);
+                let at = line.find("{ material m").unwrap_or(0) + "{ material ".len();
+                let end = at + line[at..].find(' ').unwrap_or(0);
+                format!("{}spare{}", &line[..at], &line[end..])
+            } else {
+                object_line(i, 0)
+            };
+        }
+        Kind::NewMaterial if k.is_multiple_of(2) => {
+            let line = format!(
+                "material added{k} = phong {{ diffuse rgb(0.{}, 0.1, 0.1) }}",
+                k % 10
+            );
+            lines.insert(FIRST_MATERIAL + 1, line);
+        }
+        Kind::NewMaterial => {
+            lines.remove(FIRST_MATERIAL + 1);
+        }
+        Kind::BadValue => {
+            let m = (k / 2 * 37) % 100;
+            lines[FIRST_MATERIAL + m] = if k.is_multiple_of(2) {
+                material_line(m, m % 10).replacen("rgb(0.", "rgb(1.5", 1)
+            } else {
+                material_line(m, m % 10)
+            };
+        }
         Kind::Stray | Kind::Cut => {
             let i = HEADER + objects / 2 + (k / 2 * 7919) % (objects / 4);
             if k.is_multiple_of(2) {
@@ -191,10 +239,18 @@ fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String
 fn checked(kind: Kind, k: usize) -> usize {
     match kind {
         Kind::Let => 101,
-        Kind::UnusedLet => 1 - k % 2,
+        Kind::UnusedLet | Kind::NewMaterial => 1 - k % 2,
         Kind::Delete => 0,
         _ => 1,
     }
+}
+
+/// Whether `--only KIND,KIND` (kinds by name) lets `kind` run: all when not given.
+fn only(kind: Kind) -> bool {
+    let args: Vec<String> = std::env::args().collect();
+    let at = args.iter().position(|a| a == "--only");
+    let names = at.and_then(|i| args.get(i + 1));
+    names.is_none_or(|n| n.split(',').any(|n| n == format!("{kind:?}")))
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -252,11 +308,13 @@ fn front_end(objects: usize, edits: usize) {
         original.len(),
         median(&mut full),
     );
-    for kind in KINDS {
+    for kind in KINDS.into_iter().filter(|&k| only(k)) {
         let mut times = Vec::new();
         let mut build: [Vec<f64>; 3] = Default::default();
-        // Pairs of edits for the errors, so that each is taken out before the next kind.
-        let count = if errs(kind) { edits + edits % 2 } else { edits };
+        // Pairs of edits for the errors, so that each is taken out before the next kind (and
+        // for an inserted material, which would move the material lines of the next kinds).
+        let paired = errs(kind) || kind == Kind::NewMaterial;
+        let count = if paired { edits + edits % 2 } else { edits };
         // A full compile of the first error, for comparison.
         let mut full_error = None;
         for k in 0..count {
@@ -274,8 +332,9 @@ fn front_end(objects: usize, edits: usize) {
                 assert_eq!(r.value.is_none(), k % 2 == 0, "{kind:?} edit {k}: an error");
                 // A syntax error is answered from the memo of the text before it (nothing
                 // checked); taking it out gives that text again (`Unchanged`) or another value.
-                let checked = usize::from(kind == Kind::Typo || k % 2 == 1);
-                let unchanged = kind != Kind::Typo && inc.reuse == Reuse::Unchanged;
+                let checks = matches!(kind, Kind::Typo | Kind::BadValue);
+                let checked = usize::from(checks || k % 2 == 1);
+                let unchanged = !checks && inc.reuse == Reuse::Unchanged;
                 assert!(
                     unchanged
                         || matches!(inc.reuse, Reuse::Statements { checked: n, .. } if n == checked),
@@ -347,7 +406,7 @@ fn watch(objects: usize, edits: usize) {
         first["compile_ms"].as_f64().unwrap_or(0.0),
         first["build_ms"].as_f64().unwrap_or(0.0),
     );
-    for kind in KINDS.into_iter().filter(|&k| !errs(k)) {
+    for kind in KINDS.into_iter().filter(|&k| !errs(k) && only(k)) {
         let mut figures: [Vec<f64>; 6] = Default::default();
         let mut incremental = 0;
         // What the cached builds made again (`rebuilt` of the `compiled` events), all edits.

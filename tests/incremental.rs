@@ -8,8 +8,13 @@
 //! `mesh` or a (checker) `texture` (a digit after its `=`) that leaves the scene without an
 //! error, an `object` line inserted or deleted (one that leaves every mesh and material as used
 //! as it was), an object's material misspelt (an error: the edit the language server sees while
-//! the user types) and the next edit, which puts the name back, and a `let` nothing names
-//! inserted, deleted, or cut after its `=` (a syntax error that loses it) and put back.
+//! the user types) and the next edit, which puts the name back, a `let` nothing names
+//! inserted, deleted, or cut after its `=` (a syntax error that loses it) and put back, an
+//! object's mesh or material replaced by another (which makes one used or unused: the IR is
+//! compacted again), and a `material`, `mesh` or `texture` value edit that gives a diagnostic
+//! (a digit, or its kind misspelt: not lowered) and the edit that takes it out again, and a
+//! `material`, `mesh` or `texture` nothing names inserted and deleted (the tables' indices
+//! after it move).
 
 use scnc::assets::MemLoader;
 use scnc::compile::{compile_with, Incremental, Overrides, Reuse};
@@ -92,10 +97,19 @@ enum Kind {
     LetBroken,
     /// The cut `let` put back (the edit after a [`Kind::LetBroken`]).
     LetBrokenFixed,
+    /// An `object` line's mesh or material replaced by another declared one (which may make
+    /// one used or unused: the IR's indices change).
+    ObjectUses,
+    /// A `material`, `mesh` or `texture` value edit that gave a diagnostic taken out again.
+    DeclFixed,
+    /// A `material`, `mesh` or `texture` line nothing names inserted (unused: a warning).
+    DeclInsert,
+    /// Such a line deleted.
+    DeclDelete,
 }
 
 /// The edits of whole lines asserted to take the fast path, in [`Replayed::line_edits`].
-const LINE_KINDS: [Kind; 12] = [
+const LINE_KINDS: [Kind; 16] = [
     Kind::ObjectInsert,
     Kind::ObjectDelete,
     Kind::ObjectTypo,
@@ -108,6 +122,10 @@ const LINE_KINDS: [Kind; 12] = [
     Kind::LetDelete,
     Kind::LetBroken,
     Kind::LetBrokenFixed,
+    Kind::ObjectUses,
+    Kind::DeclFixed,
+    Kind::DeclInsert,
+    Kind::DeclDelete,
 ];
 
 /// The mesh and material an `object` line names (`object MESH { material MATERIAL ...`).
@@ -165,7 +183,29 @@ fn edit(rng: &mut SplitMix64, text: &str) -> (String, Option<(Kind, String)>) {
     let lines: Vec<&str> = text.split_inclusive('\n').collect();
     let line = rng.below(lines.len());
     let mut out: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
-    match rng.below(25) {
+    match rng.below(27) {
+        // A declaration nothing names inserted (a material, a mesh, a texture), or one deleted.
+        25 | 26 => {
+            if let Some(i) = (0..out.len()).find(|&i| out[i].contains(" added")) {
+                out.remove(i);
+                return (out.concat(), Some((Kind::DeclDelete, String::new())));
+            }
+            let n = rng.below(1_000_000);
+            let stmt = match rng.below(4) {
+                0 => format!("mesh added{n} = box {{ size {} }}\n", 1 + n % 9),
+                1 => format!(
+                    "texture added{n} = checker {{ even #fff  odd #000  scale {} }}\n",
+                    1 + n % 9
+                ),
+                // An error (an albedo above 1) now and then.
+                _ => format!(
+                    "material added{n} = phong {{ diffuse rgb(0.5, {}.2, 0.1) }}\n",
+                    n % 3 / 2
+                ),
+            };
+            out.insert(1 + rng.below(out.len()), stmt);
+            return (out.concat(), Some((Kind::DeclInsert, String::new())));
+        }
         // A `let` nothing names inserted, or one deleted or cut.
         21..=24 => {
             if let Some(i) = (0..out.len()).find(|&i| out[i].starts_with("let unused")) {
@@ -265,6 +305,14 @@ fn edit(rng: &mut SplitMix64, text: &str) -> (String, Option<(Kind, String)>) {
                 let value = out[i].find('=').unwrap_or(0);
                 let name = out[i][word.len()..].split_whitespace().next();
                 let name = name.unwrap_or_default().to_string();
+                // Or the kind misspelt (`phongx`: an error, the declaration not lowered).
+                if kind != Kind::Let && rng.below(4) == 0 {
+                    let ctor = out[i][value + 1..].trim_start();
+                    let at = out[i].len() - ctor.len();
+                    let word = ctor.find(|c: char| !c.is_ascii_alphanumeric());
+                    out[i].insert(at + word.unwrap_or(0), 'x');
+                    return (out.concat(), Some((kind, name)));
+                }
                 if replace_digit(rng, &mut out[i], value) {
                     return (out.concat(), Some((kind, name)));
                 }
@@ -348,11 +396,27 @@ fn edit(rng: &mut SplitMix64, text: &str) -> (String, Option<(Kind, String)>) {
             out[line].push('\n');
         }
         10 => return (base_scene(), None),
-        // An object's material changed (a material may become used or unused).
+        // An object's material or mesh changed to another declared one (which may become used,
+        // or leave one unused).
         _ => {
-            if let Some(i) = (0..out.len()).find(|&i| out[i].contains("material m0 ")) {
-                out[i] = out[i].replacen("material m0 ", "material m3 ", 1);
-            }
+            let objects: Vec<usize> = (0..lines.len())
+                .filter(|&i| mesh_and_material(lines[i]).is_some())
+                .collect();
+            let Some(&i) = objects.get(rng.below(objects.len())) else {
+                return (text.to_string(), None);
+            };
+            let Some((mesh, material)) = mesh_and_material(lines[i]) else {
+                return (text.to_string(), None);
+            };
+            out[i] = if rng.below(2) == 0 {
+                let to = ["m0", "m1", "m2", "m3", "floor"][rng.below(5)];
+                let from = format!("material {material} ");
+                out[i].replacen(&from, &format!("material {to} "), 1)
+            } else {
+                let to = ["box1", "ball", "spare"][rng.below(3)];
+                out[i].replacen(&format!("object {mesh} "), &format!("object {to} "), 1)
+            };
+            return (out.concat(), Some((Kind::ObjectUses, String::new())));
         }
     }
     (out.concat(), None)
@@ -382,7 +446,9 @@ struct Replayed {
     /// Per line edit of [`LINE_KINDS`] (an object inserted, deleted, its material misspelt and
     /// put back; a `let` nothing names inserted, deleted) made to a scene that compiled without
     /// an error: made, and those that took the fast path.
-    line_edits: [(usize, usize); 12],
+    line_edits: [(usize, usize); 16],
+    /// Value edits of a `material`, `mesh` or `texture` of a clean scene that gave an error.
+    decl_errors: usize,
 }
 
 impl Replayed {
@@ -390,6 +456,7 @@ impl Replayed {
         self.fast += r.fast;
         self.number_edits_of_clean_scenes += r.number_edits_of_clean_scenes;
         self.number_edits_fast += r.number_edits_fast;
+        self.decl_errors += r.decl_errors;
         let counts = self.decl_edits.iter_mut().chain(&mut self.line_edits);
         for (a, b) in counts.zip(r.decl_edits.iter().chain(&r.line_edits)) {
             a.0 += b.0;
@@ -409,6 +476,8 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
     // Every other step holds its scene across the next edit, as `scnc watch` may: the memo
     // then edits a copy (`Arc::make_mut`), and the held scene must not change.
     let mut held: Option<(std::sync::Arc<scnc::ir::SceneDesc>, String)> = None;
+    // The text before the last edit.
+    let mut before_edit = String::new();
     for step in 0..edits {
         let mut loader = MemLoader::new();
         loader.insert(path, text.clone());
@@ -480,12 +549,31 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
                     continue;
                 }
             }
-            Some((kind, name)) if !failed && !overridden(kind, &name) => {
+            // A declaration's value edit that gives a diagnostic (an albedo above 1) is
+            // re-checked too, and so is the edit that takes it out again; a `let`'s is not.
+            Some((kind, name)) if (!failed || kind != Kind::Let) && !overridden(kind, &name) => {
                 let at = KINDS.iter().position(|(k, _)| *k == kind).unwrap_or(0);
                 let counts = &mut replayed.decl_edits[at];
                 counts.0 += 1;
                 counts.1 += usize::from(reused);
                 assert!(reused, "{label}: a {kind:?} value edit took the full path");
+                if failed {
+                    // Taken out again, and another of its digits changed (the memo's IR of the
+                    // declaration is then not the one it had before the error).
+                    replayed.decl_errors += 1;
+                    let mut lines: Vec<String> = before_edit
+                        .split_inclusive('\n')
+                        .map(String::from)
+                        .collect();
+                    let head = format!("{}{name} ", KINDS[at].1);
+                    if let Some(line) = lines.iter_mut().find(|l| l.starts_with(&head)) {
+                        let value = line.find('=').unwrap_or(0);
+                        replace_digit(&mut rng, line, value);
+                    }
+                    text = lines.concat();
+                    clean_edit = Some((Kind::DeclFixed, String::new()));
+                    continue;
+                }
             }
             _ => {}
         }
@@ -493,7 +581,7 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
         // A cut `let` is a full compile when there is a `--define` (it may name it).
         let defined = |k: &(Kind, String)| k.0 == Kind::LetBroken && !overrides.defines.is_empty();
         clean_edit = kind.filter(|k| clean && !defined(k));
-        text = edited;
+        before_edit = std::mem::replace(&mut text, edited);
     }
     replayed
 }
@@ -504,21 +592,27 @@ fn seeded_edits_compile_as_a_fresh_compile_does() {
     for seed in 1..=16u64 {
         let r = replay(
             seed.wrapping_mul(0xD1B5_4A32_D192_ED03),
-            200,
+            400,
             Overrides::default(),
         );
         total.add(&r);
     }
     eprintln!(
-        "fast {} of 3200; number edits of clean scenes {}, fast {}; let, material, mesh, \
+        "fast {} of 6400; number edits of clean scenes {}, fast {}; let, material, mesh, \
          texture value edits of clean scenes (made, fast) {:?}",
         total.fast, total.number_edits_of_clean_scenes, total.number_edits_fast, total.decl_edits
     );
     eprintln!(
         "object line inserted, deleted, material misspelt, put back, syntax broken, put back; \
-         a half-typed object line, taken out; unused let inserted, deleted, cut, put back \
-         (made, fast) {:?}",
-        total.line_edits
+         a half-typed object line, taken out; unused let inserted, deleted, cut, put back; an object's mesh or \
+         material changed; a declaration's diagnostic taken out (made, fast) {:?}; declaration \
+         value edits that gave an error {}",
+        total.line_edits, total.decl_errors
+    );
+    assert!(
+        total.decl_errors >= 8,
+        "only {} declaration value edits gave an error",
+        total.decl_errors
     );
     for (kind, (made, _)) in LINE_KINDS.iter().zip(total.line_edits) {
         // A cut `let` needs one inserted first and a clean scene in between: fewer are made

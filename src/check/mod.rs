@@ -83,6 +83,11 @@ pub struct Checker<'s> {
     mesh_map: Vec<Option<u32>>,
     /// Index into `cameras` chosen by `render { camera NAME }`.
     active_camera: usize,
+    /// The lowered declarations `finish` leaves out of the IR (unused), by table index: an
+    /// incremental check's memo keeps them for an edit that makes one used.
+    dropped: recheck::Dropped,
+    /// How many diagnostics there were when `finish` began (those after are its own).
+    finish_from: usize,
 }
 
 impl<'s> Checker<'s> {
@@ -110,6 +115,8 @@ impl<'s> Checker<'s> {
             texture_map: Vec::new(),
             mesh_map: Vec::new(),
             active_camera: 0,
+            dropped: recheck::Dropped::default(),
+            finish_from: 0,
         }
     }
 

@@ -122,6 +122,30 @@ impl Table {
         self.spans.reserve_exact(n);
     }
 
+    /// Declares `name` as the `at`-th (the later ones move up by one): the table made again.
+    pub fn insert_at(&mut self, at: usize, name: &str, span: Span) {
+        let old = std::mem::take(self);
+        self.reserve(old.len() + 1);
+        for i in 0..old.len() {
+            if i == at {
+                self.declare(name, span);
+            }
+            self.declare(old.name(i), old.spans[i]);
+        }
+        if at >= old.len() {
+            self.declare(name, span);
+        }
+    }
+
+    /// Takes out the `at`-th name (the later ones move down by one): the table made again.
+    pub fn remove_at(&mut self, at: usize) {
+        let old = std::mem::take(self);
+        self.reserve(old.len());
+        for i in (0..old.len()).filter(|&i| i != at) {
+            self.declare(old.name(i), old.spans[i]);
+        }
+    }
+
     /// How many names are declared.
     pub fn len(&self) -> usize {
         self.spans.len()
@@ -205,6 +229,7 @@ impl Checker<'_> {
 
     /// Drops unused declarations (with a warning each), remaps indices, builds the IR.
     pub(super) fn finish(&mut self, render: Option<ir::RenderSettings>) -> Option<ir::SceneDesc> {
+        self.finish_from = self.diags.len();
         self.mark_override_materials_used();
         let (textures, texture_map) = self.keep_used_textures();
         let (materials, material_map) = self.keep_used_materials(&texture_map);
@@ -212,8 +237,14 @@ impl Checker<'_> {
         let (meshes, mesh_map) = self.keep_used_meshes(&material_map);
         let mut objects = std::mem::take(&mut self.objects);
         for o in &mut objects {
-            o.mesh = mesh_map[o.mesh as usize].unwrap_or(0);
-            o.material = material_map[o.material as usize].unwrap_or(0);
+            let (mesh, material) = (mesh_map[o.mesh as usize], material_map[o.material as usize]);
+            if mesh.is_none() || material.is_none() {
+                // A declaration that failed to lower (an error): 0 stands in for it.
+                let names = (o.span, o.mesh, o.material);
+                self.dropped.unresolved.push(names);
+            }
+            o.mesh = mesh.unwrap_or(0);
+            o.material = material.unwrap_or(0);
         }
         let mut lights = std::mem::take(&mut self.lights);
         for l in &mut lights {
@@ -288,6 +319,10 @@ impl Checker<'_> {
                 textures.push(t);
             }
         }
+        let unused = self.textures.iter_mut().enumerate();
+        self.dropped.textures = unused
+            .filter_map(|(i, t)| Some((i as u32, t.take()?)))
+            .collect();
         (textures, texture_map)
     }
 
@@ -301,15 +336,21 @@ impl Checker<'_> {
         let mut material_map = vec![None; all.len()];
         let mut kept = 0;
         let used = &self.used_materials;
+        let mut dropped = Vec::new();
         let materials = (all.into_iter().enumerate())
             .filter_map(|(i, m)| {
-                let mut m = m.filter(|_| used[i])?;
+                let mut m = m?;
+                if !used[i] {
+                    dropped.push((i as u32, m));
+                    return None;
+                }
                 remap_textures(&mut m, texture_map);
                 material_map[i] = Some(kept);
                 kept += 1;
                 Some(m)
             })
             .collect();
+        self.dropped.materials = dropped;
         (materials, material_map)
     }
 
@@ -324,12 +365,14 @@ impl Checker<'_> {
         let mut mesh_map = vec![None; all.len()];
         let mut kept = 0;
         let mut names = Names::default();
+        let mut dropped = Vec::new();
         let meshes = (all.into_iter().enumerate())
             .filter_map(|(i, m)| {
                 let used = self.used_meshes.get(i).copied().unwrap_or(true);
                 if !used && i < user_meshes {
                     let name = names.get(self, Namespace::Mesh, i);
                     self.warn_unused(Namespace::Mesh, i, &name);
+                    dropped.extend(m.map(|m| (i as u32, m)));
                     return None;
                 }
                 let mut m = m?;
@@ -341,6 +384,7 @@ impl Checker<'_> {
                 Some(m)
             })
             .collect();
+        self.dropped.meshes = dropped;
         (meshes, mesh_map)
     }
 }
@@ -364,15 +408,21 @@ impl Names {
 /// A material's texture inputs from table indices to the IR's (`map`: table → IR index).
 pub(super) fn remap_textures(m: &mut ir::Material, map: &[Option<u32>]) {
     let at = |t: u32| map.get(t as usize).copied().flatten().unwrap_or(0);
+    texture_inputs(m, |t| *t = at(*t));
+}
+
+/// Each texture input of a material, in the order `material.rs` resolves them (diffuse,
+/// specular, shininess, normal map: the order of its list of textures).
+pub(super) fn texture_inputs(m: &mut ir::Material, mut f: impl FnMut(&mut u32)) {
     for c in [&mut m.diffuse, &mut m.specular] {
         if let ir::ColorInput::Texture(t) = c {
-            *t = at(*t);
+            f(t);
         }
     }
     if let ir::ScalarInput::Texture(t) = &mut m.shininess {
-        *t = at(*t);
+        f(t);
     }
     if let Some(n) = &mut m.normal_map {
-        n.texture = at(n.texture);
+        f(&mut n.texture);
     }
 }

@@ -13,15 +13,19 @@
 //! material. Its diagnostics and objects sit in one run of the check's order (placements in
 //! statement order), so they are cut out and the new ones put in their place. The IR's indices
 //! of meshes and materials depend only on which are used: when an edit makes one used or
-//! unused (a use count reaches or leaves zero) the re-check declines. All other spans move by
-//! the edit's [`Shift`]; one that reaches into the edited bytes also makes it decline.
+//! unused (a use count reaches or leaves zero) the IR is compacted again ([`compact`]). All
+//! other spans move by the edit's [`Shift`]; one that reaches into the edited bytes makes the
+//! re-check decline.
 
 use std::ops::Range;
 use std::sync::Arc;
 
+mod added;
+mod compact;
 mod decls;
 mod lets;
 
+pub use compact::Dropped;
 pub use decls::Dependents;
 
 use super::names::Table;
@@ -30,6 +34,7 @@ use crate::diag::Diagnostic;
 use crate::ir;
 use crate::source::{Shift, SourceMap};
 use crate::syntax::Stmt;
+use compact::Relowered;
 
 /// What a full check of one statement list leaves for re-checking its `object`s and
 /// declarations.
@@ -48,6 +53,11 @@ pub struct CheckMemo {
     /// The materials that refer to textures: (material, texture table indices), ascending.
     material_textures: Vec<(u32, Vec<usize>)>,
     texture_map: Vec<Option<u32>>,
+    /// The lowered declarations the IR leaves out, for an edit that makes one used.
+    dropped: Dropped,
+    /// How many of the last diagnostics the check's last pass gave (unused declarations, no
+    /// camera), which a re-compaction gives again.
+    finish_diags: usize,
     /// One per statement, in statement order.
     pub records: Vec<StmtRecord>,
     /// Every diagnostic of the check, in the order it was found.
@@ -91,6 +101,8 @@ pub fn check_tracked(
         mesh_uses: std::mem::take(&mut cx.mesh_uses),
         material_textures: std::mem::take(&mut cx.material_textures),
         texture_map: std::mem::take(&mut cx.texture_map),
+        dropped: std::mem::take(&mut cx.dropped),
+        finish_diags: cx.diags.len() - cx.finish_from,
         records,
         diagnostics: std::mem::take(&mut cx.diags),
         scene: scene.map(Arc::new),
@@ -152,10 +164,12 @@ impl CheckMemo {
                 self.material_uses[m as usize] -= 1;
             }
         }
-        if was_used != (self.used_meshes(), self.used_materials()) {
+        let used_changed = was_used != (self.used_meshes(), self.used_materials());
+        if !self.splice(diag_range, object_range, old, rechecked, shift) {
             return false;
         }
-        self.splice(diag_range, object_range, old, rechecked, shift)
+        // A mesh or material now used or unused: the IR's indices change.
+        !used_changed || self.recompact(sources, Relowered::default()).is_some()
     }
 
     /// Cuts the old statements' results out, moves every other span, puts the new ones in.
@@ -203,6 +217,7 @@ impl CheckMemo {
                 .objects
                 .splice(object_range.start..object_range.start, objects);
         }
+        ok &= self.dropped.shift_spans(shift);
         for span in self.lets.spans_mut() {
             ok &= shift.apply(span);
         }

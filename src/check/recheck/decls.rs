@@ -4,19 +4,22 @@
 //! with every statement that names a constant whose value changed (found by name through
 //! [`Dependents`]), and spliced into the [`CheckMemo`].
 //!
-//! Why the result is the full check's: the memo is of a check with no diagnostic before its
-//! placement phase (no duplicate, no error in a `let` or a declaration), and the re-check keeps
-//! it so: a re-checked `let` or declaration with a diagnostic, a renamed one, a redeclaration
-//! (not the first of its name), an `obj` mesh, an `image` texture, a material that comes to refer to other
-//! textures than it did or that has a normal map (its warning reads the texture), a `let`
-//! that a `--define` overrides or that names a constant declared after it, and a constant
-//! named by any other kind of statement (a camera, a light, a group, the render block) make it
-//! decline. So the names, their table indices and the diagnostics before the placements stay;
+//! Why the result is the full check's: a re-checked `let` with a diagnostic, a renamed
+//! statement, a redeclaration (not the first of its name), an `obj` mesh, an `image` texture,
+//! a material with a normal map (its warning reads the texture's IR), a `let` that a
+//! `--define` overrides or that names a constant declared after it, and a constant named by
+//! any other kind of statement (a camera, a light, a group, the render block) make it decline.
+//! So the names and their table indices stay. A declaration's diagnostics (before the
+//! placement phase: an albedo above 1, an unknown kind) lie in its own text; those of each
+//! declaration checked again are replaced by its new ones (the order among statements is the
+//! reading order's). A declaration that failed to lower (an error) or lowers again, or a
+//! material that refers to other textures, changes what the IR holds: it is compacted again
+//! ([`super::compact`]);
 //! a `let` is evaluated again as the check evaluates it (the constants before it are the
 //! check's), then the declarations and `object`s that name it, which the check lowers after
-//! every `let`, against all constants. A texture, material or mesh keeps its table index and, since
-//! which are used is unchanged (the re-check declines otherwise, as `recheck` does), its IR
-//! index: its IR entry is replaced there. An `object` re-checked gives its diagnostics and IR
+//! every `let`, against all constants. A texture, material or mesh keeps its table index and,
+//! when what the IR holds is unchanged, its IR index: its IR entry is replaced there (or its
+//! entry among the dropped ones). An `object` re-checked gives its diagnostics and IR
 //! objects, put in place of its old ones in the placement phase's statement order.
 
 use std::collections::BTreeMap;
@@ -24,11 +27,12 @@ use std::ops::Range;
 
 use super::super::names::Namespace;
 use super::super::{Checker, StmtRecord};
+use super::compact::Relowered;
 use super::CheckMemo;
 use crate::diag::Diagnostic;
 use crate::ir;
-use crate::source::{Shift, SourceMap};
-use crate::syntax::{DeclKind, Expr, ExprKind, Stmt};
+use crate::source::{Shift, SourceMap, Span};
+use crate::syntax::{DeclKind, Expr, ExprKind, Item, Stmt};
 
 /// The statements of the new text that name `name` (index among all top-level statements, and
 /// the statement parsed), in order; `None` when one cannot be parsed alone. It may give more
@@ -40,12 +44,14 @@ pub type Dependents<'a> = dyn FnMut(&str) -> Option<Vec<(usize, Stmt)>> + 'a;
 struct Redone {
     /// Per `object` statement checked again: its record, diagnostics and IR objects.
     objects: BTreeMap<usize, (StmtRecord, Vec<Diagnostic>, Vec<ir::Object>)>,
-    /// Materials lowered again (table index, IR).
-    materials: Vec<(usize, ir::Material)>,
-    /// Meshes lowered again (table index, IR).
-    meshes: Vec<(usize, ir::Mesh)>,
-    /// Textures lowered again (table index, IR).
-    textures: Vec<(usize, ir::Texture)>,
+    /// Materials, meshes and textures lowered again.
+    relowered: Relowered,
+    /// Materials that now refer to other textures: (material, texture table indices).
+    material_textures: Vec<(u32, Vec<usize>)>,
+    /// The diagnostics of the declarations checked again (before the placement phase), and
+    /// those declarations' spans (in the new text).
+    early: Vec<Diagnostic>,
+    early_spans: Vec<Span>,
     /// Statements checked again.
     checked: usize,
 }
@@ -66,7 +72,7 @@ impl CheckMemo {
         dependents: &mut Dependents,
     ) -> Option<usize> {
         let same = old_stmts.len() == new.len() && old.len() == new.len();
-        if !same || self.used_before.diags != 0 || self.records.len() < old.end {
+        if !same || self.records.len() < old.end {
             return None;
         }
         if !old_stmts
@@ -76,7 +82,10 @@ impl CheckMemo {
         {
             return None;
         }
-        // The names and constants to the new text first: the re-check reports against them.
+        // The old statements' own diagnostics go (their spans lie in the old text), then the
+        // names and constants move to the new text: the re-check reports against them.
+        let old_spans: Vec<Span> = old_stmts.iter().map(Stmt::span).collect();
+        self.drop_early(&old_spans);
         if !self.shift_names(shift) {
             return None;
         }
@@ -87,10 +96,24 @@ impl CheckMemo {
         let redone = redo(&mut cx, changed, &self.records, textures, dependents);
         self.take_back(&mut cx);
         let redone = redone?;
-        if was_used != (self.used_meshes(), self.used_materials()) {
-            return None;
-        }
-        self.splice_decls(redone, shift)
+        let used_changed = was_used != (self.used_meshes(), self.used_materials());
+        self.splice_decls(sources, redone, shift, used_changed)
+    }
+
+    /// Takes out the diagnostics before the placement phase whose primary span starts in one
+    /// of `spans` (a statement's diagnostics lie in its own text).
+    pub(super) fn drop_early(&mut self, spans: &[Span]) {
+        let inside = |d: &Diagnostic| {
+            let at = d.primary.as_ref().map(|l| l.span);
+            at.is_some_and(|at| {
+                (spans.iter()).any(|s| s.file == at.file && (s.start..s.end).contains(&at.start))
+            })
+        };
+        let early = self.used_before.diags.min(self.diagnostics.len());
+        let mut kept: Vec<Diagnostic> = self.diagnostics.drain(..early).collect();
+        kept.retain(|d| !inside(d));
+        self.used_before.diags = kept.len();
+        self.diagnostics.splice(0..0, kept);
     }
 
     /// Moves the spans of the name tables and constants by `shift`.
@@ -108,25 +131,43 @@ impl CheckMemo {
     }
 
     /// Puts what was checked again in place of the old, moving every other span by `shift`.
-    fn splice_decls(&mut self, redone: Redone, shift: &Shift) -> Option<usize> {
+    fn splice_decls(
+        &mut self,
+        sources: &SourceMap,
+        redone: Redone,
+        shift: &Shift,
+        used_changed: bool,
+    ) -> Option<usize> {
         let Redone {
             objects,
-            materials,
-            meshes,
-            textures,
+            mut relowered,
+            material_textures,
+            early,
+            early_spans,
             checked,
         } = redone;
         let mut ok = true;
-        // Every diagnostic lies in the placement phase (the memo has none before it) or after.
+        // The diagnostics before the placement phase, the placement phase's, and those after.
+        let before = self.used_before.diags;
         let placed: usize = self.records.iter().map(|r| r.diags as usize).sum();
-        if placed > self.diagnostics.len() {
+        if before + placed > self.diagnostics.len() {
             return None;
         }
-        let mut tail = self.diagnostics.split_off(placed);
+        let mut tail = self.diagnostics.split_off(before + placed);
         for d in &mut tail {
             ok &= d.shift_spans(shift);
         }
-        let diags = std::mem::take(&mut self.diagnostics);
+        let diags = self.diagnostics.split_off(before);
+        for d in &mut self.diagnostics {
+            ok &= d.shift_spans(shift);
+        }
+        // The statements checked again that depend on a changed constant: their old
+        // diagnostics, now moved, give way to the new ones.
+        self.drop_early(&early_spans);
+        self.used_before.diags += early.len();
+        let mut early_diags = std::mem::take(&mut self.diagnostics);
+        early_diags.extend(early);
+        let textures_changed = !material_textures.is_empty();
         let new_diags = objects.iter().map(|(&i, (_, d, _))| (i, d.clone()));
         let mut diags = merge_runs(
             diags,
@@ -135,31 +176,27 @@ impl CheckMemo {
             new_diags,
             |d| d.shift_spans(shift),
         )?;
-        diags.append(&mut tail);
-        self.diagnostics = diags;
+        early_diags.append(&mut diags);
+        early_diags.append(&mut tail);
+        self.diagnostics = early_diags;
+        for (m, textures) in material_textures {
+            let list = &mut self.material_textures;
+            match (
+                list.binary_search_by_key(&m, |(k, _)| *k),
+                textures.is_empty(),
+            ) {
+                (Ok(at), true) => {
+                    list.remove(at);
+                }
+                (Ok(at), false) => list[at].1 = textures,
+                (Err(at), false) => list.insert(at, (m, textures)),
+                (Err(_), true) => {}
+            }
+        }
         if let Some(scene) = &mut self.scene {
             let scene = std::sync::Arc::make_mut(scene);
             let old_objects = std::mem::take(&mut scene.objects);
             ok &= scene.shift_spans(shift);
-            for (i, m) in materials {
-                let at = self.material_map.get(i).copied().flatten();
-                if let Some(slot) = at.and_then(|k| scene.materials.get_mut(k as usize)) {
-                    *slot = m;
-                    super::super::names::remap_textures(slot, &self.texture_map);
-                }
-            }
-            for (i, t) in textures {
-                let at = self.texture_map.get(i).copied().flatten();
-                if let Some(slot) = at.and_then(|k| scene.textures.get_mut(k as usize)) {
-                    *slot = t;
-                }
-            }
-            for (i, m) in meshes {
-                let at = self.mesh_map.get(i).copied().flatten();
-                if let Some(slot) = at.and_then(|k| scene.meshes.get_mut(k as usize)) {
-                    *slot = m;
-                }
-            }
             let (material_map, mesh_map) = (&self.material_map, &self.mesh_map);
             let new_objects = objects.iter().map(|(&i, (_, _, objects))| {
                 let mut objects = objects.clone();
@@ -182,8 +219,14 @@ impl CheckMemo {
                 |o| shift.apply(&mut o.span),
             )?;
         }
+        ok &= self.dropped.shift_spans(shift);
         for (i, (record, _, _)) in objects {
             *self.records.get_mut(i)? = record;
+        }
+        // Declarations now used or unused, lowered or not, textures now used or not: the IR's
+        // indices change.
+        if used_changed || textures_changed || !self.put_in_place(&mut relowered) {
+            self.recompact(sources, relowered)?;
         }
         ok.then_some(checked)
     }
@@ -248,40 +291,58 @@ fn redo(
                 redone.objects.insert(i, (record, diags, objects));
             }
             Stmt::Decl(d) if d.kind == DeclKind::Material => {
-                let at = declared_at(cx, Namespace::Material, d)?;
-                let (material, textures) = cx.material(d);
-                let material = material?;
-                let old = material_textures.binary_search_by_key(&(at as u32), |(m, _)| *m);
-                let old_textures = old.map_or(&[][..], |k| &material_textures[k].1);
-                // The textures used stay the same; a normal map's warning reads the texture's
-                // IR, which the memo does not keep.
-                let same = textures == old_textures && material.normal_map.is_none();
-                if !cx.diags.is_empty() || !same {
+                // A normal map's warning reads the texture's IR, which the memo does not keep.
+                if names_a_normal_map(d) {
                     return None;
                 }
-                redone.materials.push((at, material));
+                let at = declared_at(cx, Namespace::Material, d)?;
+                let (material, textures) = cx.material(d);
+                let old = material_textures.binary_search_by_key(&(at as u32), |(m, _)| *m);
+                let old_textures = old.map_or(&[][..], |k| &material_textures[k].1);
+                if textures != old_textures {
+                    redone.material_textures.push((at as u32, textures));
+                }
+                redone.relowered.materials.push((at, material));
             }
             Stmt::Decl(d) if d.kind == DeclKind::Mesh && d.ctor.args.is_none() => {
                 let at = declared_at(cx, Namespace::Mesh, d)?;
                 let mesh = cx.mesh(d);
-                if !cx.diags.is_empty() {
-                    return None;
-                }
-                redone.meshes.push((at, mesh?));
+                redone.relowered.meshes.push((at, mesh));
             }
             // Not an image: a normal map's warning reads only an image's encoding.
             Stmt::Decl(d) if d.kind == DeclKind::Texture && d.ctor.args.is_none() => {
                 let at = declared_at(cx, Namespace::Texture, d)?;
                 let texture = cx.texture(d);
-                if !cx.diags.is_empty() {
-                    return None;
-                }
-                redone.textures.push((at, texture?));
+                redone.relowered.textures.push((at, texture));
             }
             _ => return None,
         }
+        if let Stmt::Decl(d) = &stmt {
+            // Its diagnostics (before the placement phase) must lie in its own text, where
+            // the next re-check of it finds them.
+            let inside = |l: &crate::diag::Label| {
+                l.span.file == d.span.file && (d.span.start..d.span.end).contains(&l.span.start)
+            };
+            if !cx
+                .diags
+                .iter()
+                .all(|e| e.primary.as_ref().is_some_and(inside))
+            {
+                return None;
+            }
+            redone.early.append(&mut cx.diags);
+            redone.early_spans.push(d.span);
+        }
     }
     Some(redone)
+}
+
+/// Whether a material declaration has a `normal_map` key.
+pub(super) fn names_a_normal_map(d: &crate::syntax::Decl) -> bool {
+    let items = d.body.iter().flat_map(|b| &b.items);
+    items
+        .into_iter()
+        .any(|i| matches!(i, Item::Value(e) if e.as_name() == Some("normal_map")))
 }
 
 /// Evaluates the `let` of `name` again: whether its value changed (`None`: decline).
