@@ -431,6 +431,37 @@ fn same(label: &str, incremental: &SourceMap, full: &SourceMap) -> Option<String
     (texts(incremental) != texts(full)).then(|| format!("{label}: sources differ"))
 }
 
+/// Asserts that `got` (an incremental compile of `text`, read into `sources`) is what a fresh
+/// `compile_with` gives: the sources, the diagnostics and the IR (JSON and every bit).
+fn assert_as_full_compile(
+    label: &str,
+    got: &scnc::diag::Staged<Arc<scnc::ir::SceneDesc>>,
+    sources: &SourceMap,
+    loader: &MemLoader,
+    overrides: &Overrides,
+    text: &str,
+) {
+    let mut full_sources = SourceMap::new();
+    let path = Path::new("scenes/edit.scn");
+    let want = compile_with(path, loader, &mut full_sources, overrides);
+    assert_eq!(same(label, sources, &full_sources), None);
+    assert_eq!(
+        format!("{:#?}", got.diagnostics),
+        format!("{:#?}", want.diagnostics),
+        "{label}: diagnostics differ on\n{text}"
+    );
+    assert_eq!(
+        serde_json::to_string(&got.value.as_deref()).expect("IR serialises"),
+        serde_json::to_string(&want.value.as_ref()).expect("IR serialises"),
+        "{label}: IR differs on\n{text}"
+    );
+    assert_eq!(
+        format!("{:?}", got.value.as_deref()),
+        format!("{:?}", want.value.as_ref()),
+        "{label}: IR differs (all bits) on\n{text}"
+    );
+}
+
 /// How a replay's edits went through the incremental front end.
 #[derive(Default)]
 struct Replayed {
@@ -484,25 +515,8 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
         loader.insert("scenes/extra.scn", INCLUDED);
         let mut inc_sources = SourceMap::new();
         let got = inc.compile(path, &loader, &mut inc_sources);
-        let mut full_sources = SourceMap::new();
-        let want = compile_with(path, &loader, &mut full_sources, &overrides);
         let label = format!("seed {seed} step {step} ({:?})", inc.reuse);
-        assert_eq!(same(&label, &inc_sources, &full_sources), None);
-        assert_eq!(
-            format!("{:#?}", got.diagnostics),
-            format!("{:#?}", want.diagnostics),
-            "{label}: diagnostics differ on\n{text}"
-        );
-        assert_eq!(
-            serde_json::to_string(&got.value.as_deref()).expect("IR serialises"),
-            serde_json::to_string(&want.value.as_ref()).expect("IR serialises"),
-            "{label}: IR differs on\n{text}"
-        );
-        assert_eq!(
-            format!("{:?}", got.value.as_deref()),
-            format!("{:?}", want.value.as_ref()),
-            "{label}: IR differs (all bits) on\n{text}"
-        );
+        assert_as_full_compile(&label, &got, &inc_sources, &loader, &overrides, &text);
         // The fast path covers one file without includes (`Incremental`'s memo).
         let failed = got.has_errors();
         let clean = !failed && !text.contains("include");
@@ -898,4 +912,100 @@ fn an_unclosed_brace_spares_the_statements_after_it() {
         }
     }
     eprintln!("{cuts} cuts, {spared} with the statements after them spared");
+}
+
+/// A digit of the `camera`, a `light` (`point`, `environment`) or the `render` block changed:
+/// re-checked alone and its IR entry replaced in place when the scene has no error and the edit
+/// gives no diagnostic (asserted: every such edit takes the fast path), else a full compile;
+/// every result is the full compile's. Three cameras, `cam1` selected by the render block (a
+/// digit of its name changed selects `cam2`, or names no camera), make the render's `camera`
+/// key and the cameras' order matter.
+#[test]
+fn a_camera_light_or_render_value_edit_is_checked_alone() {
+    let path = Path::new("scenes/edit.scn");
+    let scene = base_scene()
+        + "camera cam1 { eye (9, 2, -9)  target (0, 1, 0)  up (0, 1, 0)  fov 35deg }\n\
+           camera cam2 { eye (-9, 2, -9)  target (0, 1, 0)  fov 25deg }\n\
+           light sky = environment { color rgb(0.1, 0.2, 0.3)  rotate 10deg }\n";
+    let scene = scene.replace(
+        "render { resolution 8 x 6 }",
+        "render { resolution 8 x 6  samples 4  camera cam1 }",
+    );
+    let heads = ["camera ", "light ", "render "];
+    // (made, fast) per head, for edits of a clean scene that left it without a diagnostic.
+    let mut counts = [(0usize, 0usize); 3];
+    let mut declined = 0;
+    // The scene's own diagnostics (the unused mesh `spare`'s warning): a clean scene has only
+    // those.
+    let mut loader = MemLoader::new();
+    loader.insert(path, scene.clone());
+    let own = compile_with(path, &loader, &mut SourceMap::new(), &Overrides::default());
+    let own = format!(
+        "{:?}",
+        own.diagnostics
+            .iter()
+            .map(|d| &d.message)
+            .collect::<Vec<_>>()
+    );
+    let only_own = |d: &[scnc::diag::Diagnostic]| {
+        format!("{:?}", d.iter().map(|d| &d.message).collect::<Vec<_>>()) == own
+    };
+    for seed in 1..=8u64 {
+        let mut rng = SplitMix64(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+        let mut text = scene.clone();
+        let mut inc = Incremental::new(Overrides::default());
+        let mut clean = false;
+        for step in 0..60 {
+            let mut lines: Vec<String> = text.split_inclusive('\n').map(String::from).collect();
+            let which = rng.below(heads.len());
+            let settings: Vec<usize> = (0..lines.len())
+                .filter(|&i| lines[i].starts_with(heads[which]))
+                .collect();
+            let i = settings[rng.below(settings.len())];
+            let from = lines[i].find('{').unwrap_or(0);
+            replace_digit(&mut rng, &mut lines[i], from);
+            text = lines.concat();
+            let mut loader = MemLoader::new();
+            loader.insert(path, text.clone());
+            let mut sources = SourceMap::new();
+            let got = inc.compile(path, &loader, &mut sources);
+            let label = format!("seed {seed} step {step} ({:?})", inc.reuse);
+            assert_as_full_compile(
+                &label,
+                &got,
+                &sources,
+                &loader,
+                &Overrides::default(),
+                &text,
+            );
+            let fast = matches!(
+                inc.reuse,
+                Reuse::Statements { checked: 1, .. } | Reuse::Unchanged
+            );
+            if clean && only_own(&got.diagnostics) {
+                counts[which].0 += 1;
+                counts[which].1 += usize::from(fast);
+                assert!(
+                    fast,
+                    "{label}: a {} value edit took the full path",
+                    heads[which]
+                );
+            } else if !fast {
+                declined += 1;
+            }
+            clean = only_own(&got.diagnostics);
+            if !clean && rng.below(2) == 0 {
+                // Back to the scene without a diagnostic (a full compile's memo of it).
+                text = scene.clone();
+            }
+        }
+    }
+    eprintln!("camera, light, render value edits of clean scenes (made, fast) {counts:?}; full compiles {declined}");
+    for (head, (made, _)) in heads.iter().zip(counts) {
+        assert!(
+            made >= 20,
+            "only {made} `{head}` value edits of clean scenes"
+        );
+    }
+    assert!(declined >= 5, "only {declined} edits gave a diagnostic");
 }

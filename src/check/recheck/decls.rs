@@ -117,7 +117,7 @@ impl CheckMemo {
     }
 
     /// Moves the spans of the name tables and constants by `shift`.
-    fn shift_names(&mut self, shift: &Shift) -> bool {
+    pub(super) fn shift_names(&mut self, shift: &Shift) -> bool {
         let mut ok = true;
         for span in self.lets.spans_mut() {
             ok &= shift.apply(span);
