@@ -1009,3 +1009,88 @@ fn a_camera_light_or_render_value_edit_is_checked_alone() {
     }
     assert!(declined >= 5, "only {declined} edits gave a diagnostic");
 }
+
+/// A `let` value edit that gives the constant an error (`+ #fff`: bad operands, the constant
+/// poisoned, what names it failing quietly), takes it out again, or changes a digit: when no
+/// error stands but the edited `let`'s own, and its value names no unknown constant, it is
+/// re-checked with what names it (through a `let` that names it too), every time; every
+/// result is the full compile's.
+#[test]
+fn a_let_edit_that_gives_or_takes_an_error_is_checked_with_what_names_it() {
+    let path = Path::new("scenes/edit.scn");
+    let scene = base_scene().replace(
+        "let spin = 15deg\n",
+        "let spin = 15deg\nlet g = 0.2\nlet j = k * 2\n\
+         material mg = phong { diffuse #888  specular g }\n\
+         object ball { material mg  transform { translate (j, 1, 0) } }\n",
+    );
+    let mut made = [0usize; 2];
+    let mut fast_count = [0usize; 2];
+    for seed in 1..=8u64 {
+        let mut rng = SplitMix64(seed.wrapping_mul(0xA076_1D64_78BD_642F));
+        let mut text = scene.clone();
+        let mut inc = Incremental::new(Overrides::default());
+        // The last compile's diagnostics (none before the first, a full compile).
+        let mut previous: Option<Vec<scnc::diag::Diagnostic>> = None;
+        for step in 0..60 {
+            let mut lines: Vec<String> = text.split_inclusive('\n').map(String::from).collect();
+            let lets: Vec<usize> = (0..lines.len())
+                .filter(|&i| lines[i].starts_with("let "))
+                .collect();
+            // The poisoned one, if any (one error at a time), else any.
+            let poisoned_line = lets.iter().find(|&&i| lines[i].contains(" + #fff"));
+            let i = poisoned_line
+                .copied()
+                .unwrap_or(lets[rng.below(lets.len())]);
+            let start: usize = lines[..i].iter().map(String::len).sum();
+            let line = start..start + lines[i].len();
+            let poisoned = lines[i].contains(" + #fff");
+            let value = lines[i].find('=').unwrap_or(0);
+            let errs = match rng.below(2) {
+                0 if !poisoned => {
+                    lines[i] = lines[i].replacen('\n', " + #fff\n", 1);
+                    1
+                }
+                1 if poisoned => {
+                    lines[i] = lines[i].replacen(" + #fff", "", 1);
+                    1
+                }
+                _ => {
+                    replace_digit(&mut rng, &mut lines[i], value);
+                    0
+                }
+            };
+            text = lines.concat();
+            let mut loader = MemLoader::new();
+            loader.insert(path, text.clone());
+            let mut sources = SourceMap::new();
+            let got = inc.compile(path, &loader, &mut sources);
+            let label = format!("seed {seed} step {step} ({:?})", inc.reuse);
+            assert_as_full_compile(
+                &label,
+                &got,
+                &sources,
+                &loader,
+                &Overrides::default(),
+                &text,
+            );
+            let fast = matches!(inc.reuse, Reuse::Statements { .. } | Reuse::Unchanged);
+            let in_line = |d: &scnc::diag::Diagnostic| {
+                let at = d.primary.as_ref().map(|l| l.span.start as usize);
+                !d.is_error() || at.is_some_and(|at| line.contains(&at))
+            };
+            if previous.as_ref().is_some_and(|p| p.iter().all(in_line)) {
+                made[errs] += 1;
+                fast_count[errs] += usize::from(fast);
+                assert!(fast, "{label}: a let edit took the full path on\n{text}");
+            }
+            previous = Some(got.diagnostics);
+        }
+    }
+    eprintln!("let edits (digit, error given or taken) made {made:?}, fast {fast_count:?}");
+    assert!(
+        made[1] >= 20,
+        "only {} edits gave or took an error",
+        made[1]
+    );
+}

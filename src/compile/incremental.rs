@@ -18,7 +18,8 @@
 //! else is a full compile, which is always correct: a scene with includes or a file-level
 //! diagnostic, a syntax error [`super::broken`] declines, another statement added, removed or renamed among declarations, an edit of a
 //! light, a camera or the render block that gives or takes away a diagnostic, or made while the
-//! scene has an error (or of a constant one of them names), a `let` with a diagnostic, and any edit where a kept span
+//! scene has an error (or of a constant one of them names), a `let` that fails (or failed) while another error
+//! stands, and any edit where a kept span
 //! would reach into the edited bytes. An edit that makes a mesh or material used or unused, or a
 //! declaration fail to lower or lower again, compacts the IR's indices again from the memo
 //! (`check::recheck::compact`). `scnc watch` and `scnc lsp` compile through it;
