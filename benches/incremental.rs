@@ -2,7 +2,7 @@
 //! [-- --edits N] [-- --objects N] [-- --no-watch] [-- --only Uses,BadValue]`.
 //!
 //! The scene of issue 22: 100,000 `object` statements, each with a rotate and a translate, over
-//! three meshes and 100 materials that name one constant, `gloss` (about 9 MB). Twelve kinds
+//! three meshes and 100 materials that name one constant, `gloss` (about 9 MB). Sixteen kinds
 //! of edit, one line each: one object's translate in the middle of the file (a person nudging one
 //! object), one material's colour, the value of `gloss` (its 100 materials re-checked), an
 //! `object` line inserted, one deleted, an object's material misspelt then put back (every
@@ -13,7 +13,8 @@
 //! one nothing else uses (`spare`: used, then unused again when put back; the IR's indices
 //! change both times), and a material's albedo set above 1 (an error, the material not
 //! lowered) and put back; a material nothing names inserted (unused: a
-//! warning) and deleted.
+//! warning) and deleted; `gloss` given an error (its materials fail quietly) and put back; the camera's eye, the light's intensity and the render block's sample
+//! count changed (one number each).
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
 //!    each edit (the text served from memory; diagnostics are ready when it returns).
@@ -53,8 +54,8 @@ static ALLOC: Counting = Counting;
 fn scene(objects: usize) -> Vec<String> {
     let mut s = vec![
         "scnc 1".to_string(),
-        "camera main { eye (500, 80, -300)  target (500, 0, 50)  fov 50deg }".into(),
-        "render { resolution 640 x 360  samples 4 }".into(),
+        camera_line(500),
+        render_line(4),
         "mesh tree = icosphere { radius 1  subdivisions 1 }".into(),
         "mesh rock = box { size (1, 0.5, 1) }".into(),
         "mesh post = box { size (0.2, 2, 0.2) }".into(),
@@ -65,11 +66,29 @@ fn scene(objects: usize) -> Vec<String> {
     s.push("material spare = phong { diffuse #808080 }".into());
     debug_assert_eq!(s.len(), HEADER);
     s.extend((0..objects).map(|i| object_line(i, 0)));
-    s.push("light sun = point { position (500, 100, 0)  intensity 100000 }".into());
+    s.push(light_line(100_000));
     s
 }
 
+/// The camera, its eye at `x`.
+fn camera_line(x: usize) -> String {
+    format!("camera main {{ eye ({x}, 80, -300)  target (500, 0, 50)  fov 50deg }}")
+}
+
+/// The render block, with `samples` samples per pixel.
+fn render_line(samples: usize) -> String {
+    format!("render {{ resolution 640 x 360  samples {samples} }}")
+}
+
+/// The light (the file's last line), of `intensity`.
+fn light_line(intensity: usize) -> String {
+    format!("light sun = point {{ position (500, 100, 0)  intensity {intensity} }}")
+}
+
 const HEADER: usize = 108;
+/// The lines of the camera and the render block.
+const CAMERA_LINE: usize = 1;
+const RENDER_LINE: usize = 2;
 /// The line of the `let` every material names, and of the first material.
 const LET_LINE: usize = 6;
 const FIRST_MATERIAL: usize = 7;
@@ -129,9 +148,18 @@ enum Kind {
     /// Edits 0, 2, 4, …: a material nothing names inserted after the first one (unused: a
     /// warning; every later material's table index moves up); 1, 3, 5, …: deleted.
     NewMaterial,
+    /// Edits 0, 2, 4, …: `gloss` given an error (`+ #fff`: every material naming it fails
+    /// quietly, not lowered); 1, 3, 5, …: taken out.
+    LetError,
+    /// The camera's eye moves along x.
+    Camera,
+    /// The light's intensity changes.
+    Light,
+    /// The render block's sample count changes (9, 4, 9, …).
+    Render,
 }
 
-const KINDS: [Kind; 12] = [
+const KINDS: [Kind; 16] = [
     Kind::Object,
     Kind::Material,
     Kind::Let,
@@ -140,8 +168,12 @@ const KINDS: [Kind; 12] = [
     Kind::UnusedLet,
     Kind::Uses,
     Kind::NewMaterial,
+    Kind::Camera,
+    Kind::Light,
+    Kind::Render,
     // Last: each error is taken out again (an even number of edits).
     Kind::BadValue,
+    Kind::LetError,
     Kind::Typo,
     Kind::Stray,
     Kind::Cut,
@@ -150,7 +182,10 @@ const KINDS: [Kind; 12] = [
 /// Kinds whose even edits make an error (`scnc watch` builds nothing then: its figure is save →
 /// the `error` event).
 fn errs(kind: Kind) -> bool {
-    matches!(kind, Kind::Typo | Kind::Stray | Kind::Cut | Kind::BadValue)
+    matches!(
+        kind,
+        Kind::Typo | Kind::Stray | Kind::Cut | Kind::BadValue | Kind::LetError
+    )
 }
 
 /// Edit `k` of kind `kind` of `lines`. Returns the new text.
@@ -228,6 +263,14 @@ fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String
             lines[FIRST_MATERIAL + m] = material_line(m, (m + 1 + k % 9) % 10);
         }
         Kind::Let => lines[LET_LINE] = let_line(k + 1),
+        Kind::LetError if k.is_multiple_of(2) => lines[LET_LINE] = let_line(k) + " + #fff",
+        Kind::LetError => lines[LET_LINE] = let_line(k),
+        Kind::Camera => lines[CAMERA_LINE] = camera_line(501 + k % 50),
+        Kind::Light => {
+            let last = lines.len() - 1;
+            lines[last] = light_line(100_001 + k % 1000);
+        }
+        Kind::Render => lines[RENDER_LINE] = render_line([9, 4][k % 2]),
     }
     let mut text = lines.join("\n");
     text.push('\n');
@@ -332,8 +375,11 @@ fn front_end(objects: usize, edits: usize) {
                 assert_eq!(r.value.is_none(), k % 2 == 0, "{kind:?} edit {k}: an error");
                 // A syntax error is answered from the memo of the text before it (nothing
                 // checked); taking it out gives that text again (`Unchanged`) or another value.
-                let checks = matches!(kind, Kind::Typo | Kind::BadValue);
-                let checked = usize::from(checks || k % 2 == 1);
+                let checks = matches!(kind, Kind::Typo | Kind::BadValue | Kind::LetError);
+                let checked = match kind {
+                    Kind::LetError => checked(Kind::Let, k),
+                    _ => usize::from(checks || k % 2 == 1),
+                };
                 let unchanged = !checks && inc.reuse == Reuse::Unchanged;
                 assert!(
                     unchanged

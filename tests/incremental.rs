@@ -14,7 +14,9 @@
 //! compacted again), and a `material`, `mesh` or `texture` value edit that gives a diagnostic
 //! (a digit, or its kind misspelt: not lowered) and the edit that takes it out again, and a
 //! `material`, `mesh` or `texture` nothing names inserted and deleted (the tables' indices
-//! after it move).
+//! after it move). Two focused replays beside it: a number of a camera, a light or the render
+//! block changed (fast whenever the scene keeps only its own warning), and a `let` given an
+//! error and put back (fast whenever no other error stands).
 
 use scnc::assets::MemLoader;
 use scnc::compile::{compile_with, Incremental, Overrides, Reuse};
@@ -431,6 +433,37 @@ fn same(label: &str, incremental: &SourceMap, full: &SourceMap) -> Option<String
     (texts(incremental) != texts(full)).then(|| format!("{label}: sources differ"))
 }
 
+/// Asserts that `got` (an incremental compile of `text`, read into `sources`) is what a fresh
+/// `compile_with` gives: the sources, the diagnostics and the IR (JSON and every bit).
+fn assert_as_full_compile(
+    label: &str,
+    got: &scnc::diag::Staged<Arc<scnc::ir::SceneDesc>>,
+    sources: &SourceMap,
+    loader: &MemLoader,
+    overrides: &Overrides,
+    text: &str,
+) {
+    let mut full_sources = SourceMap::new();
+    let path = Path::new("scenes/edit.scn");
+    let want = compile_with(path, loader, &mut full_sources, overrides);
+    assert_eq!(same(label, sources, &full_sources), None);
+    assert_eq!(
+        format!("{:#?}", got.diagnostics),
+        format!("{:#?}", want.diagnostics),
+        "{label}: diagnostics differ on\n{text}"
+    );
+    assert_eq!(
+        serde_json::to_string(&got.value.as_deref()).expect("IR serialises"),
+        serde_json::to_string(&want.value.as_ref()).expect("IR serialises"),
+        "{label}: IR differs on\n{text}"
+    );
+    assert_eq!(
+        format!("{:?}", got.value.as_deref()),
+        format!("{:?}", want.value.as_ref()),
+        "{label}: IR differs (all bits) on\n{text}"
+    );
+}
+
 /// How a replay's edits went through the incremental front end.
 #[derive(Default)]
 struct Replayed {
@@ -484,25 +517,8 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
         loader.insert("scenes/extra.scn", INCLUDED);
         let mut inc_sources = SourceMap::new();
         let got = inc.compile(path, &loader, &mut inc_sources);
-        let mut full_sources = SourceMap::new();
-        let want = compile_with(path, &loader, &mut full_sources, &overrides);
         let label = format!("seed {seed} step {step} ({:?})", inc.reuse);
-        assert_eq!(same(&label, &inc_sources, &full_sources), None);
-        assert_eq!(
-            format!("{:#?}", got.diagnostics),
-            format!("{:#?}", want.diagnostics),
-            "{label}: diagnostics differ on\n{text}"
-        );
-        assert_eq!(
-            serde_json::to_string(&got.value.as_deref()).expect("IR serialises"),
-            serde_json::to_string(&want.value.as_ref()).expect("IR serialises"),
-            "{label}: IR differs on\n{text}"
-        );
-        assert_eq!(
-            format!("{:?}", got.value.as_deref()),
-            format!("{:?}", want.value.as_ref()),
-            "{label}: IR differs (all bits) on\n{text}"
-        );
+        assert_as_full_compile(&label, &got, &inc_sources, &loader, &overrides, &text);
         // The fast path covers one file without includes (`Incremental`'s memo).
         let failed = got.has_errors();
         let clean = !failed && !text.contains("include");
@@ -898,4 +914,185 @@ fn an_unclosed_brace_spares_the_statements_after_it() {
         }
     }
     eprintln!("{cuts} cuts, {spared} with the statements after them spared");
+}
+
+/// A digit of the `camera`, a `light` (`point`, `environment`) or the `render` block changed:
+/// re-checked alone and its IR entry replaced in place when the scene has no error and the edit
+/// gives no diagnostic (asserted: every such edit takes the fast path), else a full compile;
+/// every result is the full compile's. Three cameras, `cam1` selected by the render block (a
+/// digit of its name changed selects `cam2`, or names no camera), make the render's `camera`
+/// key and the cameras' order matter.
+#[test]
+fn a_camera_light_or_render_value_edit_is_checked_alone() {
+    let path = Path::new("scenes/edit.scn");
+    let scene = base_scene()
+        + "camera cam1 { eye (9, 2, -9)  target (0, 1, 0)  up (0, 1, 0)  fov 35deg }\n\
+           camera cam2 { eye (-9, 2, -9)  target (0, 1, 0)  fov 25deg }\n\
+           light sky = environment { color rgb(0.1, 0.2, 0.3)  rotate 10deg }\n";
+    let scene = scene.replace(
+        "render { resolution 8 x 6 }",
+        "render { resolution 8 x 6  samples 4  camera cam1 }",
+    );
+    let heads = ["camera ", "light ", "render "];
+    // (made, fast) per head, for edits of a clean scene that left it without a diagnostic.
+    let mut counts = [(0usize, 0usize); 3];
+    let mut declined = 0;
+    // The scene's own diagnostics (the unused mesh `spare`'s warning): a clean scene has only
+    // those.
+    let mut loader = MemLoader::new();
+    loader.insert(path, scene.clone());
+    let own = compile_with(path, &loader, &mut SourceMap::new(), &Overrides::default());
+    let own = format!(
+        "{:?}",
+        own.diagnostics
+            .iter()
+            .map(|d| &d.message)
+            .collect::<Vec<_>>()
+    );
+    let only_own = |d: &[scnc::diag::Diagnostic]| {
+        format!("{:?}", d.iter().map(|d| &d.message).collect::<Vec<_>>()) == own
+    };
+    for seed in 1..=8u64 {
+        let mut rng = SplitMix64(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+        let mut text = scene.clone();
+        let mut inc = Incremental::new(Overrides::default());
+        let mut clean = false;
+        for step in 0..60 {
+            let mut lines: Vec<String> = text.split_inclusive('\n').map(String::from).collect();
+            let which = rng.below(heads.len());
+            let settings: Vec<usize> = (0..lines.len())
+                .filter(|&i| lines[i].starts_with(heads[which]))
+                .collect();
+            let i = settings[rng.below(settings.len())];
+            let from = lines[i].find('{').unwrap_or(0);
+            replace_digit(&mut rng, &mut lines[i], from);
+            text = lines.concat();
+            let mut loader = MemLoader::new();
+            loader.insert(path, text.clone());
+            let mut sources = SourceMap::new();
+            let got = inc.compile(path, &loader, &mut sources);
+            let label = format!("seed {seed} step {step} ({:?})", inc.reuse);
+            assert_as_full_compile(
+                &label,
+                &got,
+                &sources,
+                &loader,
+                &Overrides::default(),
+                &text,
+            );
+            let fast = matches!(
+                inc.reuse,
+                Reuse::Statements { checked: 1, .. } | Reuse::Unchanged
+            );
+            if clean && only_own(&got.diagnostics) {
+                counts[which].0 += 1;
+                counts[which].1 += usize::from(fast);
+                assert!(
+                    fast,
+                    "{label}: a {} value edit took the full path",
+                    heads[which]
+                );
+            } else if !fast {
+                declined += 1;
+            }
+            clean = only_own(&got.diagnostics);
+            if !clean && rng.below(2) == 0 {
+                // Back to the scene without a diagnostic (a full compile's memo of it).
+                text = scene.clone();
+            }
+        }
+    }
+    eprintln!("camera, light, render value edits of clean scenes (made, fast) {counts:?}; full compiles {declined}");
+    for (head, (made, _)) in heads.iter().zip(counts) {
+        assert!(
+            made >= 20,
+            "only {made} `{head}` value edits of clean scenes"
+        );
+    }
+    assert!(declined >= 5, "only {declined} edits gave a diagnostic");
+}
+
+/// A `let` value edit that gives the constant an error (`+ #fff`: bad operands, the constant
+/// poisoned, what names it failing quietly), takes it out again, or changes a digit: when no
+/// error stands but the edited `let`'s own, and its value names no unknown constant, it is
+/// re-checked with what names it (through a `let` that names it too), every time; every
+/// result is the full compile's.
+#[test]
+fn a_let_edit_that_gives_or_takes_an_error_is_checked_with_what_names_it() {
+    let path = Path::new("scenes/edit.scn");
+    let scene = base_scene().replace(
+        "let spin = 15deg\n",
+        "let spin = 15deg\nlet g = 0.2\nlet j = k * 2\n\
+         material mg = phong { diffuse #888  specular g }\n\
+         object ball { material mg  transform { translate (j, 1, 0) } }\n",
+    );
+    let mut made = [0usize; 2];
+    let mut fast_count = [0usize; 2];
+    for seed in 1..=8u64 {
+        let mut rng = SplitMix64(seed.wrapping_mul(0xA076_1D64_78BD_642F));
+        let mut text = scene.clone();
+        let mut inc = Incremental::new(Overrides::default());
+        // The last compile's diagnostics (none before the first, a full compile).
+        let mut previous: Option<Vec<scnc::diag::Diagnostic>> = None;
+        for step in 0..60 {
+            let mut lines: Vec<String> = text.split_inclusive('\n').map(String::from).collect();
+            let lets: Vec<usize> = (0..lines.len())
+                .filter(|&i| lines[i].starts_with("let "))
+                .collect();
+            // The poisoned one, if any (one error at a time), else any.
+            let poisoned_line = lets.iter().find(|&&i| lines[i].contains(" + #fff"));
+            let i = poisoned_line
+                .copied()
+                .unwrap_or(lets[rng.below(lets.len())]);
+            let start: usize = lines[..i].iter().map(String::len).sum();
+            let line = start..start + lines[i].len();
+            let poisoned = lines[i].contains(" + #fff");
+            let value = lines[i].find('=').unwrap_or(0);
+            let errs = match rng.below(2) {
+                0 if !poisoned => {
+                    lines[i] = lines[i].replacen('\n', " + #fff\n", 1);
+                    1
+                }
+                1 if poisoned => {
+                    lines[i] = lines[i].replacen(" + #fff", "", 1);
+                    1
+                }
+                _ => {
+                    replace_digit(&mut rng, &mut lines[i], value);
+                    0
+                }
+            };
+            text = lines.concat();
+            let mut loader = MemLoader::new();
+            loader.insert(path, text.clone());
+            let mut sources = SourceMap::new();
+            let got = inc.compile(path, &loader, &mut sources);
+            let label = format!("seed {seed} step {step} ({:?})", inc.reuse);
+            assert_as_full_compile(
+                &label,
+                &got,
+                &sources,
+                &loader,
+                &Overrides::default(),
+                &text,
+            );
+            let fast = matches!(inc.reuse, Reuse::Statements { .. } | Reuse::Unchanged);
+            let in_line = |d: &scnc::diag::Diagnostic| {
+                let at = d.primary.as_ref().map(|l| l.span.start as usize);
+                !d.is_error() || at.is_some_and(|at| line.contains(&at))
+            };
+            if previous.as_ref().is_some_and(|p| p.iter().all(in_line)) {
+                made[errs] += 1;
+                fast_count[errs] += usize::from(fast);
+                assert!(fast, "{label}: a let edit took the full path on\n{text}");
+            }
+            previous = Some(got.diagnostics);
+        }
+    }
+    eprintln!("let edits (digit, error given or taken) made {made:?}, fast {fast_count:?}");
+    assert!(
+        made[1] >= 20,
+        "only {} edits gave or took an error",
+        made[1]
+    );
 }

@@ -4,7 +4,8 @@
 //! statements, those alone are checked again and spliced in (`compile::incremental` decides
 //! when an edit is such an edit). An edit of `let`, `material` and `mesh` declarations that
 //! keeps their names is re-checked in place with what names a changed constant
-//! ([`decls`]); `let`s added or removed that nothing names are checked alone ([`lets`]);
+//! ([`decls`]); `let`s added or removed that nothing names are checked alone ([`lets`]); a
+//! value edit of a camera, a light or the render block is checked alone ([`settings`]);
 //! everything else is a full check.
 //!
 //! Why the result is the full check's: an `object` is checked in the placement phase, after
@@ -24,6 +25,7 @@ mod added;
 mod compact;
 mod decls;
 mod lets;
+mod settings;
 
 pub use compact::Dropped;
 pub use decls::Dependents;

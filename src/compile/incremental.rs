@@ -10,14 +10,16 @@
 //! (not `image`) and `object`s, one for one and each keeping its name, it re-checks them and the statements that
 //! name a constant whose value changed ([`CheckMemo::recheck_decls`], which finds them through
 //! [`super::dependents`]). `let`s added or removed that nothing else names, in a scene without
-//! a diagnostic, are checked alone ([`CheckMemo::add_or_remove_lets`]); so is one `material`,
+//! a diagnostic, are checked alone ([`CheckMemo::add_or_remove_lets`]); so is a value edit of a
+//! camera, a (not `area`) light or the render block ([`CheckMemo::recheck_setting`]), and one `material`,
 //! `mesh` or `texture` that nothing names, added or removed ([`CheckMemo::add_or_remove_decl`]). An edit that breaks the
 //! syntax gets the full compile's diagnostics from the memo of the last text that parsed
 //! ([`super::broken`]), which stays for the edit that fixes it (diffed against that text). Anything
 //! else is a full compile, which is always correct: a scene with includes or a file-level
 //! diagnostic, a syntax error [`super::broken`] declines, another statement added, removed or renamed among declarations, an edit of a
-//! light, a camera or the render block (or
-//! of a constant one of them names), a `let` with a diagnostic, and any edit where a kept span
+//! light, a camera or the render block that gives or takes away a diagnostic, or made while the
+//! scene has an error (or of a constant one of them names), a `let` that fails (or failed) while another error
+//! stands, and any edit where a kept span
 //! would reach into the edited bytes. An edit that makes a mesh or material used or unused, or a
 //! declaration fail to lower or lower again, compacts the IR's indices again from the memo
 //! (`check::recheck::compact`). `scnc watch` and `scnc lsp` compile through it;
@@ -251,7 +253,13 @@ impl Memo {
             let mut naming = |name: &str| dependents::naming(text, spans, name);
             let shift = &region.shift;
             let lets = (old_stmts.iter().chain(&new)).all(|s| matches!(s, Stmt::Let { .. }));
-            if old_stmts.is_empty() != new.is_empty() && !lets {
+            let setting = match (&old_stmts[..], &new[..]) {
+                ([old], [new]) if CheckMemo::same_setting(old, new) => Some((old, new)),
+                _ => None,
+            };
+            if let Some((old, new)) = setting {
+                self.check.recheck_setting(&sources, old, new, shift)?
+            } else if old_stmts.is_empty() != new.is_empty() && !lets {
                 let check = &mut self.check;
                 check.add_or_remove_decl(
                     &sources,

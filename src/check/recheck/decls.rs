@@ -4,7 +4,13 @@
 //! with every statement that names a constant whose value changed (found by name through
 //! [`Dependents`]), and spliced into the [`CheckMemo`].
 //!
-//! Why the result is the full check's: a re-checked `let` with a diagnostic, a renamed
+//! A `let` whose value comes to fail (an error: the constant poisoned, as the check leaves it,
+//! so that what names it fails quietly) or stops failing is taken when no other error stands
+//! and its value names no unknown constant; its diagnostics lie in its own text and replace
+//! its old ones, as a declaration's do.
+//!
+//! Why the result is the full check's: a re-checked `let` with an unknown name, or that fails
+//! (or failed) while another error stands, a renamed
 //! statement, a redeclaration (not the first of its name), an `obj` mesh, an `image` texture,
 //! a material with a normal map (its warning reads the texture's IR), a `let` that a
 //! `--define` overrides or that names a constant declared after it, and a constant named by
@@ -93,7 +99,11 @@ impl CheckMemo {
         let changed = (old.start..).zip(new).collect();
         let mut cx = self.lend(sources);
         let textures = &self.material_textures;
-        let redone = redo(&mut cx, changed, &self.records, textures, dependents);
+        // A `let` may come to have a diagnostic, or lose one, only when no other error stands
+        // (an unknown name's did-you-mean lists the constants, which such an edit changes).
+        let clean = !self.diagnostics.iter().any(Diagnostic::is_error);
+        let records = &self.records;
+        let redone = redo(&mut cx, changed, records, textures, clean, dependents);
         self.take_back(&mut cx);
         let redone = redone?;
         let used_changed = was_used != (self.used_meshes(), self.used_materials());
@@ -117,7 +127,7 @@ impl CheckMemo {
     }
 
     /// Moves the spans of the name tables and constants by `shift`.
-    fn shift_names(&mut self, shift: &Shift) -> bool {
+    pub(super) fn shift_names(&mut self, shift: &Shift) -> bool {
         let mut ok = true;
         for span in self.lets.spans_mut() {
             ok &= shift.apply(span);
@@ -239,6 +249,7 @@ fn redo(
     changed: BTreeMap<usize, Stmt>,
     records: &[StmtRecord],
     material_textures: &[(u32, Vec<usize>)],
+    clean: bool,
     dependents: &mut Dependents,
 ) -> Option<Redone> {
     let (mut lets, mut others): (BTreeMap<_, _>, BTreeMap<_, _>) = changed
@@ -248,10 +259,17 @@ fn redo(
     // `let`s in statement order: each reads only constants before it.
     while let Some((i, stmt)) = lets.pop_first() {
         redone.checked += 1;
-        let Stmt::Let { name, value, .. } = &stmt else {
+        let Stmt::Let { name, value, span } = &stmt else {
             return None;
         };
-        if !reevaluate(cx, name, value)? {
+        let changed = reevaluate(cx, name, value, clean)?;
+        // Its diagnostics lie in its own text, where the next re-check of it finds them.
+        if !cx.diags.iter().all(|d| lies_in(d, *span)) {
+            return None;
+        }
+        redone.early.append(&mut cx.diags);
+        redone.early_spans.push(*span);
+        if !changed {
             continue;
         }
         for (j, s) in dependents(&name.name)? {
@@ -320,14 +338,7 @@ fn redo(
         if let Stmt::Decl(d) = &stmt {
             // Its diagnostics (before the placement phase) must lie in its own text, where
             // the next re-check of it finds them.
-            let inside = |l: &crate::diag::Label| {
-                l.span.file == d.span.file && (d.span.start..d.span.end).contains(&l.span.start)
-            };
-            if !cx
-                .diags
-                .iter()
-                .all(|e| e.primary.as_ref().is_some_and(inside))
-            {
+            if !cx.diags.iter().all(|e| lies_in(e, d.span)) {
                 return None;
             }
             redone.early.append(&mut cx.diags);
@@ -345,22 +356,56 @@ pub(super) fn names_a_normal_map(d: &crate::syntax::Decl) -> bool {
         .any(|i| matches!(i, Item::Value(e) if e.as_name() == Some("normal_map")))
 }
 
-/// Evaluates the `let` of `name` again: whether its value changed (`None`: decline).
-fn reevaluate(cx: &mut Checker, name: &crate::syntax::Ident, value: &Expr) -> Option<bool> {
-    let (old, at) = cx.lets.get(&name.name)?.clone();
+/// Whether the primary label of `d` starts inside `span`.
+fn lies_in(d: &Diagnostic, span: Span) -> bool {
+    let inside = |l: &crate::diag::Label| {
+        l.span.file == span.file && (span.start..span.end).contains(&l.span.start)
+    };
+    d.primary.as_ref().is_some_and(inside)
+}
+
+/// Evaluates the `let` of `name` again: whether its value changed (`None`: decline). Its
+/// diagnostics are left in `cx`. A value that fails (an error, or a constant it names that
+/// failed) leaves the constant poisoned, as the check does: later names of it fail quietly.
+/// That, and a constant poisoned before the edit, is taken only in a scene with no other
+/// error (`clean`), and not when the value names an unknown constant (its did-you-mean would
+/// list constants declared after it, which the check has not evaluated yet).
+fn reevaluate(
+    cx: &mut Checker,
+    name: &crate::syntax::Ident,
+    value: &Expr,
+    clean: bool,
+) -> Option<bool> {
+    let old = match cx.lets.get(&name.name) {
+        Some((old, at)) => (*at == name.span).then(|| Some(old.clone()))?,
+        // Failed before: the first `let` of its name (another would be in the table).
+        None if clean && cx.poisoned.contains(&name.name) => None,
+        None => return None,
+    };
     let overridden = cx.defines.contains_key(&name.name);
-    if at != name.span || overridden || !names_only_earlier(cx, value, at.start) {
+    if overridden || !names_only_earlier(cx, value, name.span.start) {
         return None;
     }
-    let new = cx.eval(value)?;
-    if !cx.diags.is_empty() {
+    let new = cx.eval(value);
+    let unknown = |d: &Diagnostic| d.code == crate::diag::Code::CheckUnknownName;
+    let failed = new.is_none() || old.is_none();
+    if (failed && !clean) || cx.diags.iter().any(unknown) {
         return None;
     }
     // Bit for bit (`-0` is not `0` in the IR), not `==`.
     if format!("{new:?}") == format!("{old:?}") {
         return Some(false);
     }
-    cx.lets.insert(&name.name, new, name.span);
+    match new {
+        Some(new) => {
+            cx.poisoned.remove(&name.name);
+            cx.lets.insert(&name.name, new, name.span);
+        }
+        None => {
+            cx.lets.remove(&name.name);
+            cx.poisoned.insert(name.name.clone());
+        }
+    }
     Some(true)
 }
 

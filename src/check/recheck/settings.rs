@@ -1,0 +1,157 @@
+//! Stage 2, check, incrementally: a value edit of one scene setting — a `camera`, a `point`
+//! or `environment` `light`, or the `render` block (`fov 40deg` → `fov 45deg`) — checked
+//! again alone, its IR entry replaced in place in the [`CheckMemo`].
+//!
+//! Why the result is the full check's: these statements are checked after every constant and
+//! declaration, reading constants, the `frame` and (the render block's `camera NAME`) the
+//! camera table and the cameras lowered, and writing only their own IR entry and diagnostics.
+//! It declines unless the scene has no error (so every camera and light lowered, and no
+//! duplicate `render`), the old statement had no diagnostic in its text, and the new one
+//! gives none: then no diagnostic is added or removed, and every other one only moves by the
+//! edit. The statement keeps its kind and name (the first of its name), so the tables stay. An
+//! `area` light is declined (it names a mesh, or lowers its `quad` to one: the meshes' use and
+//! the IR's indices could change), and so is any `--define` (its unused warning depends on
+//! what names it). A `let` a setting names, edited, is still a full compile.
+
+use std::sync::Arc;
+
+use super::super::names::Namespace;
+use super::super::vocabulary::{LightKind, Word};
+use super::CheckMemo;
+use crate::diag::Diagnostic;
+use crate::ir;
+use crate::source::{Shift, SourceMap, Span};
+use crate::syntax::{Decl, DeclKind, Stmt};
+
+/// A scene setting checked again: its new IR entry.
+enum Setting {
+    Camera(ir::Camera),
+    Light(ir::Light),
+    Render(ir::RenderSettings, usize),
+}
+
+impl CheckMemo {
+    /// Whether `old` → `new` is the edit [`CheckMemo::recheck_setting`] takes: the same camera,
+    /// (not `area`) light (by name) or the render block.
+    pub fn same_setting(old: &Stmt, new: &Stmt) -> bool {
+        match (old, new) {
+            (Stmt::Camera { name: a, .. }, Stmt::Camera { name: b, .. }) => a.name == b.name,
+            (Stmt::Decl(a), Stmt::Decl(b)) => {
+                a.name.name == b.name.name && not_area_light(a) && not_area_light(b)
+            }
+            (Stmt::Render { .. }, Stmt::Render { .. }) => true,
+            _ => false,
+        }
+    }
+
+    /// Replaces the check of the setting `old` (as parsed from the old text) by that of `new`
+    /// ([`CheckMemo::same_setting`]), every other span moving by `shift`; `sources` holds the
+    /// new text. The number of statements checked again (1), or `None` when the result could
+    /// differ from a full check's: the memo is then spoiled, and the caller checks in full.
+    pub fn recheck_setting(
+        &mut self,
+        sources: &SourceMap,
+        old: &Stmt,
+        new: &Stmt,
+        shift: &Shift,
+    ) -> Option<usize> {
+        let old_span = old.span();
+        let in_old = |d: &Diagnostic| {
+            d.primary.as_ref().is_some_and(|l| {
+                l.span.file == old_span.file
+                    && (old_span.start..old_span.end).contains(&l.span.start)
+            })
+        };
+        let clean = !self.diagnostics.iter().any(|d| d.is_error() || in_old(d));
+        if !Self::same_setting(old, new) || !clean || !self.defines.is_empty() {
+            return None;
+        }
+        let cameras = self.scene.as_ref()?.cameras.clone();
+        if !self.shift_names(shift) {
+            return None;
+        }
+        let mut cx = self.lend(sources);
+        let setting = match new {
+            Stmt::Camera { name, body, span } => {
+                let first = cx.tables[Namespace::Camera as usize].get(&name.name);
+                let spans = &cx.tables[Namespace::Camera as usize].spans;
+                let first = first.is_some_and(|at| spans.get(at) == Some(&name.span));
+                first.then(|| cx.camera(name, body, *span).map(Setting::Camera))
+            }
+            Stmt::Decl(d) if d.kind == DeclKind::Light => {
+                let first = cx.tables[Namespace::Light as usize].get(&d.name.name);
+                let spans = &cx.tables[Namespace::Light as usize].spans;
+                let first = first.is_some_and(|at| spans.get(at) == Some(&d.name.span));
+                first.then(|| {
+                    cx.light(d);
+                    cx.lights.pop().map(Setting::Light)
+                })
+            }
+            Stmt::Render { body, span } => {
+                cx.cameras = cameras;
+                let settings = cx.render(Some((body, *span)));
+                Some(settings.map(|s| Setting::Render(s, cx.active_camera)))
+            }
+            _ => None,
+        };
+        self.take_back(&mut cx);
+        let setting = setting.flatten().filter(|_| cx.diags.is_empty())?;
+        self.put_setting(old_span, setting, shift).then_some(1)
+    }
+
+    /// Moves every span by `shift` but those of the setting whose old statement is `old`,
+    /// whose IR entry `setting` replaces.
+    fn put_setting(&mut self, old: Span, setting: Setting, shift: &Shift) -> bool {
+        let Some(scene) = &mut self.scene else {
+            return false;
+        };
+        let scene = Arc::make_mut(scene);
+        let inside = |s: Span| s.file == old.file && (old.start..old.end).contains(&s.start);
+        // The old entry is taken out before the spans move (its own lie in the edited text).
+        let place = match &setting {
+            Setting::Camera(_) => {
+                let at = scene.cameras.iter().position(|c| inside(c.span));
+                at.inspect(|&at| drop(scene.cameras.remove(at)))
+            }
+            Setting::Light(_) => {
+                let at = scene.lights.iter().position(|l| inside(light_span(l)));
+                at.inspect(|&at| drop(scene.lights.remove(at)))
+            }
+            Setting::Render(..) => {
+                scene.render.outputs.clear();
+                Some(0)
+            }
+        };
+        let Some(at) = place else {
+            return false;
+        };
+        let mut ok = scene.shift_spans(shift);
+        match setting {
+            Setting::Camera(c) => scene.cameras.insert(at, c),
+            Setting::Light(l) => scene.lights.insert(at, l),
+            Setting::Render(r, active_camera) => {
+                scene.render = r;
+                scene.active_camera = active_camera;
+            }
+        }
+        for d in &mut self.diagnostics {
+            ok &= d.shift_spans(shift);
+        }
+        ok & self.dropped.shift_spans(shift)
+    }
+}
+
+/// The span a light's IR entry keeps (its name's).
+fn light_span(l: &ir::Light) -> Span {
+    match l {
+        ir::Light::Point(p) => p.span,
+        ir::Light::Area(a) => a.span,
+        ir::Light::Environment(e) => e.span,
+    }
+}
+
+/// Whether `d` is a light declaration of a kind other than `area`.
+fn not_area_light(d: &Decl) -> bool {
+    let kind = LightKind::from_word(&d.ctor.name.name);
+    d.kind == DeclKind::Light && kind != Some(LightKind::Area)
+}
