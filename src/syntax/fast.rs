@@ -76,6 +76,74 @@ pub(super) fn parse_region(
     statements_between(file, text, start, end)
 }
 
+/// The statements of the chunk `text[start..end]` of the error recovery, exactly as pest's
+/// parse of the chunk alone as a file (`Rule::file`) finds them, their spans in `text`; `None`
+/// when that parse fails or has a diagnostic (or the fast parser cannot tell): the caller lets
+/// pest parse the chunk. The chunk is parsed within `text[..end]`, so nothing past its end is
+/// read, as pest reads nothing past it; a PEG looks behind nothing, so the text before `start`
+/// plays no part either.
+pub(super) fn chunk(file: FileId, text: &str, start: usize, end: usize) -> Option<Vec<Stmt>> {
+    statements_between(file, text.get(..end)?, start, end)
+}
+
+/// The byte ranges of the `object` and `group` statements that end the chunk
+/// `text[start..end]` of the error recovery, for `tail::error` to spare their parse when the
+/// chunk fails: a run of statements, the first at the start of a line past `start`, each
+/// parsed at its place within `text[..end]` (so over exactly its range, reading nothing past
+/// it: an `object` or `group` ends with its `}`), with only blanks and comments between them
+/// and after the last up to `end`. Empty when there is none. The run is looked for left to
+/// right, starting again past any statement that fails or does not nest, so each byte is
+/// parsed about once.
+pub(super) fn nesting_tail(
+    file: FileId,
+    text: &str,
+    start: usize,
+    end: usize,
+) -> Vec<(usize, usize)> {
+    let Some(text) = text.get(..end) else {
+        return Vec::new();
+    };
+    let mut c = Cursor::new(file, text);
+    let mut from = start;
+    let mut run = Vec::new();
+    let mut diags = Vec::new();
+    'candidates: loop {
+        // The next line start past `from` with an `object` or `group` on it.
+        let Some(line) = text.get(from..).and_then(|t| t.find('\n')) else {
+            return Vec::new();
+        };
+        from += line + 1;
+        if !super::tail::nests(&text[from..]) {
+            continue;
+        }
+        run.clear();
+        c.pos = from;
+        loop {
+            c.skip();
+            if c.pos == end {
+                return run;
+            }
+            let at = c.pos;
+            if !super::tail::nests(&text[at..]) {
+                from = at;
+                continue 'candidates;
+            }
+            let after = match c.statement() {
+                Some(_) => c.pos,
+                None => match pest_statement(file, text, at, &mut diags) {
+                    Some((_, after)) => after,
+                    None => {
+                        from = at;
+                        continue 'candidates;
+                    }
+                },
+            };
+            run.push((at, after));
+            c.pos = after;
+        }
+    }
+}
+
 /// [`parse_region`]'s statements as a parse of all of `text` finds them.
 fn statements_between(file: FileId, text: &str, start: usize, end: usize) -> Option<Vec<Stmt>> {
     let mut c = Cursor::new(file, text);
