@@ -27,16 +27,31 @@ use crate::source::FileId;
 /// Parses a whole file; `None` when it has a syntax error (pest failed on a statement).
 pub(super) fn parse(file: FileId, text: &str) -> Option<(Vec<Stmt>, Vec<Diagnostic>)> {
     let mut statements = Vec::new();
-    let diags = parse_each(file, text, &mut |s| statements.push(s))?;
+    let diags = parse_each(file, text, &mut |s| statements.push(s), Fallback::Whole)?;
     Some((statements, diags))
 }
 
+/// How [`parse_each`] hands pest a statement the fast parser does not accept.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(super) enum Fallback {
+    /// pest parses it in the whole text: `None` means a syntax error.
+    Whole,
+    /// pest first parses it within the text up to the next line that starts with a word in
+    /// its first column, and `None` (giving up) when it fails there: a statement cut inside
+    /// its braces is then not read by pest over every later `object` (as items of its open
+    /// block) before it fails. For a caller that may always start over the plain way
+    /// (`syntax::parse_each`); a statement that parses there is parsed again in the whole text.
+    Line,
+}
+
 /// [`parse`], handing each statement to `each` as soon as it is parsed instead of gathering
-/// them. On `None` (a syntax error) the statements before it were handed out already.
+/// them. On `None` (a syntax error, or giving up under [`Fallback::Line`]) the statements
+/// before it were handed out already.
 pub(super) fn parse_each(
     file: FileId,
     text: &str,
     each: &mut dyn FnMut(Stmt),
+    fallback: Fallback,
 ) -> Option<Vec<Diagnostic>> {
     let mut c = Cursor::new(file, text);
     let mut diags = Vec::new();
@@ -49,6 +64,13 @@ pub(super) fn parse_each(
         match c.statement() {
             Some(s) => each(s),
             None => {
+                if fallback == Fallback::Line {
+                    let line = |n: usize| text.as_bytes().get(start + n + 1);
+                    let word = |n: &usize| line(*n).is_some_and(u8::is_ascii_alphabetic);
+                    let next = text[start..].match_indices('\n').map(|(n, _)| n).find(word);
+                    let within = next.map_or(text, |n| &text[..start + n + 1]);
+                    pest_statement(file, within, start, &mut Vec::new())?;
+                }
                 let (s, end) = pest_statement(file, text, start, &mut diags)?;
                 each(s);
                 c.pos = end;

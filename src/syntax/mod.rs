@@ -60,13 +60,16 @@ fn parse_recovering(file: FileId, text: &str) -> (SceneFile, Vec<Diagnostic>) {
 
 /// [`parse`] for a file without syntax errors or diagnostics, handing each statement to `each`
 /// as soon as it is parsed (so that the caller may lower it and drop its AST at once). `false`
-/// when the file has any syntax error or diagnostic: some statements may have been handed out
-/// already, and the caller must start over with [`parse`] (which reports them).
+/// when the file has any syntax error or diagnostic, or a statement the fast parser leaves to
+/// pest does not parse before the next line that starts with a word (`fast::Fallback::Line`:
+/// an object cut inside its braces is not read over the rest of the file): some statements
+/// may have been handed out already, and the caller must start over with [`parse`] (which
+/// reports them).
 pub fn parse_each(file: FileId, text: &str, each: &mut dyn FnMut(Stmt)) -> bool {
     if scan::too_deep(text).is_some() {
         return false;
     }
-    fast::parse_each(file, text, each).is_some_and(|diags| diags.is_empty())
+    fast::parse_each(file, text, each, fast::Fallback::Line).is_some_and(|diags| diags.is_empty())
 }
 
 /// The statements of `text[start..end]`, where `start` is the start of a top-level statement
