@@ -27,16 +27,31 @@ use crate::source::FileId;
 /// Parses a whole file; `None` when it has a syntax error (pest failed on a statement).
 pub(super) fn parse(file: FileId, text: &str) -> Option<(Vec<Stmt>, Vec<Diagnostic>)> {
     let mut statements = Vec::new();
-    let diags = parse_each(file, text, &mut |s| statements.push(s))?;
+    let diags = parse_each(file, text, &mut |s| statements.push(s), Fallback::Whole)?;
     Some((statements, diags))
 }
 
+/// How [`parse_each`] hands pest a statement the fast parser does not accept.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(super) enum Fallback {
+    /// pest parses it in the whole text: `None` means a syntax error.
+    Whole,
+    /// pest first parses it within the text up to the next line that starts with a word in
+    /// its first column, and `None` (giving up) when it fails there: a statement cut inside
+    /// its braces is then not read by pest over every later `object` (as items of its open
+    /// block) before it fails. For a caller that may always start over the plain way
+    /// (`syntax::parse_each`); a statement that parses there is parsed again in the whole text.
+    Line,
+}
+
 /// [`parse`], handing each statement to `each` as soon as it is parsed instead of gathering
-/// them. On `None` (a syntax error) the statements before it were handed out already.
+/// them. On `None` (a syntax error, or giving up under [`Fallback::Line`]) the statements
+/// before it were handed out already.
 pub(super) fn parse_each(
     file: FileId,
     text: &str,
     each: &mut dyn FnMut(Stmt),
+    fallback: Fallback,
 ) -> Option<Vec<Diagnostic>> {
     let mut c = Cursor::new(file, text);
     let mut diags = Vec::new();
@@ -49,6 +64,13 @@ pub(super) fn parse_each(
         match c.statement() {
             Some(s) => each(s),
             None => {
+                if fallback == Fallback::Line {
+                    let line = |n: usize| text.as_bytes().get(start + n + 1);
+                    let word = |n: &usize| line(*n).is_some_and(u8::is_ascii_alphabetic);
+                    let next = text[start..].match_indices('\n').map(|(n, _)| n).find(word);
+                    let within = next.map_or(text, |n| &text[..start + n + 1]);
+                    pest_statement(file, within, start, &mut Vec::new())?;
+                }
                 let (s, end) = pest_statement(file, text, start, &mut diags)?;
                 each(s);
                 c.pos = end;
@@ -74,6 +96,74 @@ pub(super) fn parse_region(
 ) -> Option<Vec<Stmt>> {
     statements_between(file, text.get(..end.min(text.len()))?, start, end)?;
     statements_between(file, text, start, end)
+}
+
+/// The statements of the chunk `text[start..end]` of the error recovery, exactly as pest's
+/// parse of the chunk alone as a file (`Rule::file`) finds them, their spans in `text`; `None`
+/// when that parse fails or has a diagnostic (or the fast parser cannot tell): the caller lets
+/// pest parse the chunk. The chunk is parsed within `text[..end]`, so nothing past its end is
+/// read, as pest reads nothing past it; a PEG looks behind nothing, so the text before `start`
+/// plays no part either.
+pub(super) fn chunk(file: FileId, text: &str, start: usize, end: usize) -> Option<Vec<Stmt>> {
+    statements_between(file, text.get(..end)?, start, end)
+}
+
+/// The byte ranges of the `object` and `group` statements that end the chunk
+/// `text[start..end]` of the error recovery, for `tail::error` to spare their parse when the
+/// chunk fails: a run of statements, the first at the start of a line past `start`, each
+/// parsed at its place within `text[..end]` (so over exactly its range, reading nothing past
+/// it: an `object` or `group` ends with its `}`), with only blanks and comments between them
+/// and after the last up to `end`. Empty when there is none. The run is looked for left to
+/// right, starting again past any statement that fails or does not nest, so each byte is
+/// parsed about once.
+pub(super) fn nesting_tail(
+    file: FileId,
+    text: &str,
+    start: usize,
+    end: usize,
+) -> Vec<(usize, usize)> {
+    let Some(text) = text.get(..end) else {
+        return Vec::new();
+    };
+    let mut c = Cursor::new(file, text);
+    let mut from = start;
+    let mut run = Vec::new();
+    let mut diags = Vec::new();
+    'candidates: loop {
+        // The next line start past `from` with an `object` or `group` on it.
+        let Some(line) = text.get(from..).and_then(|t| t.find('\n')) else {
+            return Vec::new();
+        };
+        from += line + 1;
+        if !super::tail::nests(&text[from..]) {
+            continue;
+        }
+        run.clear();
+        c.pos = from;
+        loop {
+            c.skip();
+            if c.pos == end {
+                return run;
+            }
+            let at = c.pos;
+            if !super::tail::nests(&text[at..]) {
+                from = at;
+                continue 'candidates;
+            }
+            let after = match c.statement() {
+                Some(_) => c.pos,
+                None => match pest_statement(file, text, at, &mut diags) {
+                    Some((_, after)) => after,
+                    None => {
+                        from = at;
+                        continue 'candidates;
+                    }
+                },
+            };
+            run.push((at, after));
+            c.pos = after;
+        }
+    }
 }
 
 /// [`parse_region`]'s statements as a parse of all of `text` finds them.

@@ -4,9 +4,12 @@
 //! The grammar is `grammar/scene.pest`. A file without syntax errors is parsed by the
 //! hand-written fast path (`fast.rs`: the same AST, pest's parse for any statement it does not
 //! accept whole). When it has errors, the text is cut at resynchronisation points (lines that
-//! start a statement, found by [`scan`]) and each chunk is parsed by pest on its own, so one run
+//! start a statement, found by [`scan`]) and each chunk is parsed on its own, so one run
 //! reports the syntax error of every broken statement and still keeps every good statement for
-//! the checker. Before either parser runs, nesting depth is checked by a linear pre-scan so deep
+//! the checker: by the fast parser when it accepts the chunk whole, by pest (the source of every
+//! syntax error) otherwise, so a file with one error costs about what a clean one does. A
+//! failing chunk whose tail is `object`s and `group`s (a `{` left open over them) has its error
+//! told without parsing that tail (`tail.rs`). Before either parser runs, nesting depth is checked by a linear pre-scan so deep
 //! input cannot overflow the stack.
 
 pub mod ast;
@@ -52,18 +55,21 @@ fn parse_recovering(file: FileId, text: &str) -> (SceneFile, Vec<Diagnostic>) {
             return (SceneFile { statements }, diags);
         }
     }
-    parse_chunks(file, text, &scan::scan(text))
+    parse_chunks(file, text, &scan::scan(text), Chunks::Fast)
 }
 
 /// [`parse`] for a file without syntax errors or diagnostics, handing each statement to `each`
 /// as soon as it is parsed (so that the caller may lower it and drop its AST at once). `false`
-/// when the file has any syntax error or diagnostic: some statements may have been handed out
-/// already, and the caller must start over with [`parse`] (which reports them).
+/// when the file has any syntax error or diagnostic, or a statement the fast parser leaves to
+/// pest does not parse before the next line that starts with a word (`fast::Fallback::Line`:
+/// an object cut inside its braces is not read over the rest of the file): some statements
+/// may have been handed out already, and the caller must start over with [`parse`] (which
+/// reports them).
 pub fn parse_each(file: FileId, text: &str, each: &mut dyn FnMut(Stmt)) -> bool {
     if scan::too_deep(text).is_some() {
         return false;
     }
-    fast::parse_each(file, text, each).is_some_and(|diags| diags.is_empty())
+    fast::parse_each(file, text, each, fast::Fallback::Line).is_some_and(|diags| diags.is_empty())
 }
 
 /// The statements of `text[start..end]`, where `start` is the start of a top-level statement
@@ -91,6 +97,18 @@ fn parse_with_pest(file: FileId, text: &str) -> Option<(SceneFile, Vec<Diagnosti
     let file_pair = pairs.next().expect("pest: Rule::file yields one pair");
     let statements = conv.file(file_pair);
     Some((SceneFile { statements }, conv.errors.into_inner()))
+}
+
+/// [`parse`] with the plain error recovery (pest on every chunk, as before the fast parser
+/// took the chunks that parse): the oracle the recovery is tested against.
+#[cfg(test)]
+fn parse_plain(file: FileId, text: &str) -> (SceneFile, Vec<Diagnostic>) {
+    if scan::too_deep(text).is_none() {
+        if let Some((statements, diags)) = fast::parse(file, text) {
+            return (SceneFile { statements }, diags);
+        }
+    }
+    parse_chunks(file, text, &scan::scan(text), Chunks::Pest)
 }
 
 /// pest's error detail (the literal tokens tried at the failure point) is one process-wide
@@ -124,11 +142,17 @@ impl Drop for ErrorDetail {
 }
 
 /// Error recovery: parse each chunk between resync points separately.
-fn parse_chunks(file: FileId, text: &str, scanned: &scan::Scan) -> (SceneFile, Vec<Diagnostic>) {
+fn parse_chunks(
+    file: FileId,
+    text: &str,
+    scanned: &scan::Scan,
+    by: Chunks,
+) -> (SceneFile, Vec<Diagnostic>) {
     let mut starts: Vec<usize> = vec![0];
     starts.extend(scanned.resync.iter().copied().filter(|&s| s > 0));
     starts.push(text.len());
-    let (parsed, diags, _) = parse_chunks_between(file, text, &starts, scanned.too_deep_at, &[]);
+    let (parsed, diags, _) =
+        parse_chunks_between(file, text, &starts, scanned.too_deep_at, &[], by);
     (parsed, diags)
 }
 
@@ -157,7 +181,8 @@ pub fn parse_recovering_from(
     let mut starts = vec![start];
     starts.extend(resync.into_iter().filter(|&s| s > start));
     starts.push(stop);
-    let (parsed, diagnostics, spared) = parse_chunks_between(file, text, &starts, None, kept);
+    let (parsed, diagnostics, spared) =
+        parse_chunks_between(file, text, &starts, None, kept, Chunks::Fast);
     Some(Recovered {
         statements: parsed.statements,
         diagnostics,
@@ -178,6 +203,18 @@ pub struct Recovered {
     pub spared: usize,
 }
 
+/// Which parser the error recovery tries first on each chunk.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Chunks {
+    /// The fast parser (`fast::chunk`), pest only for a chunk it does not accept (a chunk
+    /// with a syntax error or a diagnostic): the same statements and diagnostics, in about
+    /// the time of a file that parses.
+    Fast,
+    /// pest on every chunk: the plain recovery, the oracle `Fast` is tested against.
+    #[cfg(test)]
+    Pest,
+}
+
 /// Parses each chunk `text[starts[i]..starts[i + 1]]` on its own (a chunk whose tail is
 /// statements of `kept` not whole when [`tail::error`] can tell its error; see
 /// [`parse_recovering_from`]); also how many kept statements that spared.
@@ -191,6 +228,7 @@ fn parse_chunks_between(
     starts: &[usize],
     too_deep_at: Option<usize>,
     kept: &[(usize, usize)],
+    by: Chunks,
 ) -> (SceneFile, Vec<Diagnostic>, usize) {
     // Record the literal tokens pest tried at the failure point (`=`, `}`), for the messages.
     // Only the error path turns this on; it never changes whether a parse succeeds.
@@ -219,6 +257,22 @@ fn parse_chunks_between(
             diags.push(diag);
             spared += n;
             continue;
+        }
+        if by == Chunks::Fast {
+            if let Some(parsed) = fast::chunk(file, text, start, end) {
+                statements.extend(parsed);
+                continue;
+            }
+            // A chunk that fails with a tail of `object`s and `group`s (a `{` left open over
+            // them, which `scan` cannot resynchronise inside) is the end of `text[..end]`: its
+            // error is told from its head and the first of them, as after an edit.
+            if kept.is_empty() {
+                let run = fast::nesting_tail(file, text, start, end);
+                if let Some((diag, _)) = tail::error(file, &text[..end], start, end, &run) {
+                    diags.push(diag);
+                    continue;
+                }
+            }
         }
         match SceneParser::parse(Rule::file, chunk) {
             Ok(mut pairs) => {
