@@ -464,6 +464,24 @@ fn assert_as_full_compile(
     );
 }
 
+/// Compiles `text` (as `scenes/edit.scn`, no overrides) with `inc` and asserts that it is what
+/// a fresh full compile gives ([`assert_as_full_compile`]). Returns the compile and `label` with
+/// the reuse the incremental compile chose, to name the edit in later assertions.
+fn compile_as_a_full_compile_does(
+    inc: &mut Incremental,
+    text: &str,
+    label: &str,
+) -> (scnc::diag::Staged<Arc<scnc::ir::SceneDesc>>, String) {
+    let path = Path::new("scenes/edit.scn");
+    let mut loader = MemLoader::new();
+    loader.insert(path, text.to_string());
+    let mut sources = SourceMap::new();
+    let got = inc.compile(path, &loader, &mut sources);
+    let label = format!("{label} ({:?})", inc.reuse);
+    assert_as_full_compile(&label, &got, &sources, &loader, &Overrides::default(), text);
+    (got, label)
+}
+
 /// How a replay's edits went through the incremental front end.
 #[derive(Default)]
 struct Replayed {
@@ -967,18 +985,10 @@ fn a_camera_light_or_render_value_edit_is_checked_alone() {
             let from = lines[i].find('{').unwrap_or(0);
             replace_digit(&mut rng, &mut lines[i], from);
             text = lines.concat();
-            let mut loader = MemLoader::new();
-            loader.insert(path, text.clone());
-            let mut sources = SourceMap::new();
-            let got = inc.compile(path, &loader, &mut sources);
-            let label = format!("seed {seed} step {step} ({:?})", inc.reuse);
-            assert_as_full_compile(
-                &label,
-                &got,
-                &sources,
-                &loader,
-                &Overrides::default(),
+            let (got, label) = compile_as_a_full_compile_does(
+                &mut inc,
                 &text,
+                &format!("seed {seed} step {step}"),
             );
             let fast = matches!(
                 inc.reuse,
@@ -1019,7 +1029,6 @@ fn a_camera_light_or_render_value_edit_is_checked_alone() {
 /// result is the full compile's.
 #[test]
 fn a_let_edit_that_gives_or_takes_an_error_is_checked_with_what_names_it() {
-    let path = Path::new("scenes/edit.scn");
     let scene = base_scene().replace(
         "let spin = 15deg\n",
         "let spin = 15deg\nlet g = 0.2\nlet j = k * 2\n\
@@ -1063,18 +1072,10 @@ fn a_let_edit_that_gives_or_takes_an_error_is_checked_with_what_names_it() {
                 }
             };
             text = lines.concat();
-            let mut loader = MemLoader::new();
-            loader.insert(path, text.clone());
-            let mut sources = SourceMap::new();
-            let got = inc.compile(path, &loader, &mut sources);
-            let label = format!("seed {seed} step {step} ({:?})", inc.reuse);
-            assert_as_full_compile(
-                &label,
-                &got,
-                &sources,
-                &loader,
-                &Overrides::default(),
+            let (got, label) = compile_as_a_full_compile_does(
+                &mut inc,
                 &text,
+                &format!("seed {seed} step {step}"),
             );
             let fast = matches!(inc.reuse, Reuse::Statements { .. } | Reuse::Unchanged);
             let in_line = |d: &scnc::diag::Diagnostic| {

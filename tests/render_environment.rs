@@ -461,49 +461,71 @@ fn ground_and_ball(sky: EnvSource) -> SceneDesc {
     desc
 }
 
-#[test]
-fn the_sky_control_variate_is_unbiased_where_the_sky_is_partly_hidden() {
-    // MIS on a diffuse surface under a sky alone subtracts the sky's spherical-harmonic fit
-    // and adds its closed-form integral (`env_harmonics`); cosine sampling alone (BrdfOnly)
-    // does not. Both must agree on pixels whose sky the ball hides in part.
+/// [`ground_and_ball`] under the sky image `sky` (a PFM file's bytes), built.
+fn ground_and_ball_under(sky: Vec<u8>) -> (SceneDesc, Scene) {
     let mut loader = MemLoader::new();
-    loader.insert("sky.pfm", gradient_sky());
+    loader.insert("sky.pfm", sky);
     let file = AssetPath {
         path: "sky.pfm".into(),
         written: "sky.pfm".into(),
         span: span(),
     };
     let desc = ground_and_ball(EnvSource::Image(file));
-    let (mut scene, warnings) = build_with(&desc, &loader).expect("builds");
+    let (scene, warnings) = build_with(&desc, &loader).expect("builds");
     assert!(warnings.is_empty(), "{warnings:?}");
+    (desc, scene)
+}
+
+/// Asserts that two strategies (each with its name for a failure) agree within four standard
+/// errors of 8,192 samples each on [`ground_and_ball`]'s pixels whose sky the ball hides in
+/// part (the ground beside and in front of it, its lower side and its top, at 16 × 12), and
+/// that the estimates are sharp: their combined error below `sharp` of the value.
+fn assert_strategies_agree(
+    scene: &mut Scene,
+    desc: &SceneDesc,
+    (a, a_name): (DirectStrategy, &str),
+    (b, b_name): (DirectStrategy, &str),
+    sharp: f64,
+) {
     let cam = PinholeCamera::new(&desc.cameras[0], 16, 12);
-    let mut checked = 0;
-    // Ground beside and in front of the ball, the ball's lower side and its top.
     for (x, y) in [(4, 9), (11, 10), (8, 10), (8, 7), (8, 4), (3, 11)] {
         let ray = cam.ray(Vec2::new(x as f32 + 0.5, y as f32 + 0.5));
-        scene.strategy = DirectStrategy::Mis;
-        let (cv, se_cv) = estimate(&scene, &ray, x, y, 8192);
-        scene.strategy = DirectStrategy::BrdfOnly;
-        let (cosine, se_cos) = estimate(&scene, &ray, x, y, 8192);
+        scene.strategy = a;
+        let (got_a, se_a) = estimate(scene, &ray, x, y, 8192);
+        scene.strategy = b;
+        let (got_b, se_b) = estimate(scene, &ray, x, y, 8192);
         for c in 0..3 {
-            let se = se_cv[c].hypot(se_cos[c]);
+            let se = se_a[c].hypot(se_b[c]);
             assert!(
-                se < 0.02 * cosine[c].abs().max(0.05),
+                se < sharp * got_b[c].abs().max(0.05),
                 "pixel ({x},{y}): not sharp, {se} against {}",
-                cosine[c]
+                got_b[c]
             );
             assert!(
-                (cv[c] - cosine[c]).abs() <= 4.0 * se + 1e-5,
-                "pixel ({x},{y}) channel {c}: {} ± {} with the fit, {} ± {} without",
-                cv[c],
-                se_cv[c],
-                cosine[c],
-                se_cos[c]
+                (got_a[c] - got_b[c]).abs() <= 4.0 * se + 1e-5,
+                "pixel ({x},{y}) channel {c}: {} ± {} {a_name}, {} ± {} {b_name}",
+                got_a[c],
+                se_a[c],
+                got_b[c],
+                se_b[c]
             );
         }
-        checked += 1;
     }
-    assert_eq!(checked, 6);
+}
+
+#[test]
+fn the_sky_control_variate_is_unbiased_where_the_sky_is_partly_hidden() {
+    // MIS on a diffuse surface under a sky alone subtracts the sky's spherical-harmonic fit
+    // and adds its closed-form integral (`env_harmonics`); cosine sampling alone (BrdfOnly)
+    // does not. Both must agree on pixels whose sky the ball hides in part.
+    let (desc, mut scene) = ground_and_ball_under(gradient_sky());
+    assert_strategies_agree(
+        &mut scene,
+        &desc,
+        (DirectStrategy::Mis, "with the fit"),
+        (DirectStrategy::BrdfOnly, "without"),
+        0.02,
+    );
 }
 
 #[test]
@@ -512,16 +534,7 @@ fn a_smooth_sky_left_to_cosine_rays_beside_its_sun_stays_unbiased() {
     // cosine directions per pick instead of one and a sample of its tables, the sun by its own
     // samples weighted against the BRDF alone (`render::mis`). Light sampling alone (the sky's
     // tables and the sun, no control variate) must agree where the ball hides part of the sky.
-    let mut loader = MemLoader::new();
-    loader.insert("sky.pfm", gradient_sky_with_sun());
-    let file = AssetPath {
-        path: "sky.pfm".into(),
-        written: "sky.pfm".into(),
-        span: span(),
-    };
-    let desc = ground_and_ball(EnvSource::Image(file));
-    let (mut scene, warnings) = build_with(&desc, &loader).expect("builds");
-    assert!(warnings.is_empty(), "{warnings:?}");
+    let (desc, mut scene) = ground_and_ball_under(gradient_sky_with_sun());
     assert!(
         scene
             .lights
@@ -530,30 +543,14 @@ fn a_smooth_sky_left_to_cosine_rays_beside_its_sun_stays_unbiased() {
             .is_some_and(|e| e.has_bright()),
         "the sun is a bright set"
     );
+    assert_strategies_agree(
+        &mut scene,
+        &desc,
+        (DirectStrategy::Mis, "by MIS"),
+        (DirectStrategy::LightOnly, "by light sampling"),
+        0.03,
+    );
     let cam = PinholeCamera::new(&desc.cameras[0], 16, 12);
-    let n = 8192;
-    for (x, y) in [(4, 9), (11, 10), (8, 10), (8, 7), (8, 4), (3, 11)] {
-        let ray = cam.ray(Vec2::new(x as f32 + 0.5, y as f32 + 0.5));
-        scene.strategy = DirectStrategy::Mis;
-        let (mis, se_mis) = estimate(&scene, &ray, x, y, n);
-        scene.strategy = DirectStrategy::LightOnly;
-        let (light, se_light) = estimate(&scene, &ray, x, y, n);
-        for c in 0..3 {
-            let se = se_mis[c].hypot(se_light[c]);
-            assert!(
-                se < 0.03 * light[c].abs().max(0.05),
-                "pixel ({x},{y}): {se}"
-            );
-            assert!(
-                (mis[c] - light[c]).abs() <= 4.0 * se + 1e-5,
-                "pixel ({x},{y}) channel {c}: {} ± {} by MIS, {} ± {} by light sampling",
-                mis[c],
-                se_mis[c],
-                light[c],
-                se_light[c]
-            );
-        }
-    }
     // The sky's light samples are gone: at most one shadow ray per sample (the sun's), and two
     // BRDF directions where light sampling alone draws none.
     let ray = cam.ray(Vec2::new(8.5, 4.5));

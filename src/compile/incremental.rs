@@ -259,19 +259,14 @@ impl Memo {
             };
             if let Some((old, new)) = setting {
                 self.check.recheck_setting(&sources, old, new, shift)?
-            } else if old_stmts.is_empty() != new.is_empty() && !lets {
-                let check = &mut self.check;
-                check.add_or_remove_decl(
-                    &sources,
-                    old_range,
-                    &old_stmts,
-                    &new,
-                    shift,
-                    &mut naming,
-                )?
             } else if old_stmts.is_empty() != new.is_empty() {
-                let check = &mut self.check;
-                check.add_or_remove_lets(
+                let add_or_remove = if lets {
+                    CheckMemo::add_or_remove_lets
+                } else {
+                    CheckMemo::add_or_remove_decl
+                };
+                add_or_remove(
+                    &mut self.check,
                     &sources,
                     old_range,
                     &old_stmts,
