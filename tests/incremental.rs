@@ -696,16 +696,23 @@ fn defines_and_frame_keep_their_values_across_edits() {
     assert_fast_path_taken(&r, 4);
 }
 
+/// An incremental front end after its first compile of `text` (at `path`, a full compile),
+/// with the loader and the sources the next compiles go on with.
+fn compiled_once(path: &Path, text: &str) -> (Incremental, MemLoader, SourceMap) {
+    let mut inc = Incremental::new(Overrides::default());
+    let mut loader = MemLoader::new();
+    loader.insert(path, text.to_string());
+    let mut sources = SourceMap::new();
+    let _ = inc.compile(path, &loader, &mut sources);
+    assert_eq!(inc.reuse, Reuse::Full);
+    (inc, loader, sources)
+}
+
 #[test]
 fn an_object_edit_rechecks_that_object_alone() {
     let path = Path::new("edit.scn");
     let text = base_scene();
-    let mut inc = Incremental::new(Overrides::default());
-    let mut loader = MemLoader::new();
-    loader.insert(path, text.clone());
-    let mut sources = SourceMap::new();
-    let _ = inc.compile(path, &loader, &mut sources);
-    assert_eq!(inc.reuse, Reuse::Full);
+    let (mut inc, mut loader, mut sources) = compiled_once(path, &text);
     let edited = text.replacen("translate (5.5, k, 0)", "translate (5.5, k, 9)", 1);
     assert_ne!(edited, text);
     loader.insert(path, edited);
@@ -725,12 +732,7 @@ fn an_object_edit_rechecks_that_object_alone() {
 fn a_declaration_edit_rechecks_it_and_what_names_it() {
     let path = Path::new("edit.scn");
     let text = base_scene();
-    let mut inc = Incremental::new(Overrides::default());
-    let mut loader = MemLoader::new();
-    loader.insert(path, text.clone());
-    let mut sources = SourceMap::new();
-    let _ = inc.compile(path, &loader, &mut sources);
-    assert_eq!(inc.reuse, Reuse::Full);
+    let (mut inc, mut loader, mut sources) = compiled_once(path, &text);
     let mut edit = |from: &str, to: &str, text: &mut String| {
         let edited = text.replacen(from, to, 1);
         assert_ne!(&edited, text);
