@@ -32,9 +32,10 @@
 //! geometric one.
 //!
 //! Shadow rays start at the offset origin (see `shade::surface`) and stop short of the light: towards a
-//! point light at `(1 − 1e-4)` of the distance, towards an area light at a point itself offset
-//! off the emitter's surface towards the shading point, so the sampled emitter never occludes
-//! itself while any other geometry in between still does.
+//! point light at `(1 − 1e-4)` of the distance, towards an area light at the point its sample
+//! names (`AreaSample::shadow_target`: off the emitter's surface on the shading point's side,
+//! `shade::light::shadow_end` for a rectangle), so the sampled emitter never occludes itself
+//! while any other geometry in between still does.
 
 use glam::Vec3;
 
@@ -47,7 +48,7 @@ use crate::scene::{DirectStrategy, Scene, Surface};
 use crate::shade::brdf::Phong;
 use crate::shade::light::env_harmonics::SkyHarmonics;
 use crate::shade::normal_map;
-use crate::shade::surface::{offset_origin, seen_hit, SeenHit, SurfaceHit};
+use crate::shade::surface::{seen_hit, SeenHit, SurfaceHit};
 use crate::shade::texture::footprint::{self, Footprint};
 use crate::shade::texture::FilterStats;
 use crate::shade::{AreaLight, Light, Picked};
@@ -328,9 +329,8 @@ impl Shading<'_> {
             let Some(s) = light.sample(self.hit.p, u, self.scene.light_sampling) else {
                 continue;
             };
-            // Stop the shadow ray just off the emitter, on the shading point's side.
-            let target = offset_origin(s.point.position, s.point.error, s.point.normal, -s.wi);
-            if let Some(cos) = self.unoccluded(s.wi, target, 0.0, counts) {
+            // The shadow ray stops just off the emitter, on the shading point's side.
+            if let Some(cos) = self.unoccluded(s.wi, s.shadow_target, 0.0, counts) {
                 let f = self.phong.eval(self.ns, s.wi, self.wo);
                 // Effective densities: `samples` light samples per pick of probability `pmf`
                 // against one BRDF sample per pick.

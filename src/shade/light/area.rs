@@ -13,15 +13,22 @@
 //! they must agree on, written once: which side emits and with what cosine
 //! (`AreaLight::emitting_cosine`), and when a triangle is sampled by solid angle rather than
 //! by area (`solid_angle_in_range`).
+//!
+//! Each sample also names where its shadow ray stops (`AreaSample::shadow_target`): a
+//! triangle's point is rebuilt from barycentrics with its error bound and offset off the
+//! emitter; a rectangle's is cut short of the point by a per-light bound instead
+//! (`shadow_end`), which needs no rebuilt point.
 
 use glam::{Vec2, Vec3};
 
+use super::shadow_end::RectShadowEnd;
 use super::spherical;
 use super::spherical_rect::{RectFrame, SphericalRect};
 use crate::geom::triangle::moller_trumbore;
 use crate::geom::Ray;
 use crate::scene::LightSampling;
 use crate::shade::distribution::Distribution1D;
+use crate::shade::surface::offset_origin;
 
 /// An emitting triangle mesh in world space, with the table that samples its triangles by area.
 #[derive(Debug, Clone)]
@@ -43,10 +50,20 @@ pub struct AreaLight {
     /// The frame of the rectangle the mesh is, when it is one (two triangles): it is then
     /// sampled whole as a spherical rectangle (see `spherical_rect`).
     rect_frame: Option<RectFrame>,
-    /// For a rectangle: per triangle, the affine map from the rectangle's parameters (s, t) to
-    /// the triangle's barycentrics (b₁, b₂), so a sampled point is rebuilt on its triangle
-    /// without a ray–triangle test.
-    rect_barycentrics: Box<[RectToBarycentric; 2]>,
+    /// For a rectangle: how a sampled point is placed (boxed, so that `Light`'s variants stay
+    /// close in size).
+    rect_points: Box<RectPoints>,
+}
+
+/// How a rectangle light places a point it sampled (see `AreaLight::sample_rect`).
+#[derive(Debug, Clone, Copy, Default)]
+struct RectPoints {
+    /// Per triangle, the affine map from the rectangle's parameters (s, t) to the triangle's
+    /// barycentrics (b₁, b₂), so a sampled point is rebuilt on its triangle without a
+    /// ray–triangle test (where the shadow ray's end needs it).
+    barycentrics: [RectToBarycentric; 2],
+    /// Where its shadow rays end, without rebuilding the point.
+    shadow: RectShadowEnd,
 }
 
 /// `(b₁, b₂) = m · ((s, t) − origin)`: a triangle of the rectangle in its (s, t) parameters.
@@ -126,13 +143,24 @@ pub struct LightPoint {
     pub normal: Vec3,
 }
 
+impl LightPoint {
+    /// Where a shadow ray arriving in direction `wi` (unit, towards the light) stops: the point
+    /// offset off the emitter's surface by its error bound, on the side the ray comes from.
+    fn shadow_target(&self, wi: Vec3) -> Vec3 {
+        offset_origin(self.position, self.error, self.normal, -wi)
+    }
+}
+
 /// A direction towards an area light, sampled from a shading point by [`AreaLight::sample`].
 #[derive(Debug, Clone, Copy)]
 pub struct AreaSample {
     /// Unit direction from the shading point towards `point`.
     pub wi: Vec3,
-    /// Where the direction meets the emitter: the shadow ray's end.
-    pub point: LightPoint,
+    /// Where the direction meets the emitter.
+    pub point: Vec3,
+    /// Where the shadow ray towards `point` ends (its segment's end, `t_max = 1`): off the
+    /// emitter on the shading point's side, so the emitter never occludes its own sample.
+    pub shadow_target: Vec3,
     /// The triangle of `point` (what [`AreaLight::pdf`] takes).
     pub triangle: usize,
     /// Radiance emitted towards the shading point.
@@ -179,7 +207,12 @@ impl AreaLight {
             two_sided,
             samples: samples.max(1),
             rect_frame: rect.and_then(|(c, ex, ey)| RectFrame::new(c, ex, ey)),
-            rect_barycentrics: Box::new(rect_barycentric_maps(&triangles, rect)),
+            rect_points: Box::new(RectPoints {
+                barycentrics: rect_barycentric_maps(&triangles, rect),
+                shadow: rect.map_or(RectShadowEnd::default(), |(c, ex, ey)| {
+                    RectShadowEnd::new(&triangles, c, ex, ey)
+                }),
+            }),
             normals,
             triangles,
             total_area,
@@ -205,7 +238,7 @@ impl AreaLight {
             return None;
         }
         if let Some(rect) = self.rect_in_range(p, mode) {
-            return self.sample_rect(&rect, u);
+            return self.sample_rect(p, &rect, u);
         }
         let (t, pmf_triangle, u0) = self.pick(u.x);
         let u = Vec2::new(u0, u.y);
@@ -220,9 +253,11 @@ impl AreaLight {
             // its error bound is the same as for area samples. A direction that rounds to just
             // outside an edge is dropped (a bias of the order of f32 rounding).
             let b = moller_trumbore(&Ray::new(p, wi), tri[0], tri[1], tri[2])?;
+            let point = self.at_barycentrics(t, b.u, b.v);
             return Some(AreaSample {
                 wi,
-                point: self.at_barycentrics(t, b.u, b.v),
+                point: point.position,
+                shadow_target: point.shadow_target(wi),
                 triangle: t,
                 radiance: self.radiance,
                 inv_pdf_solid_angle: omega / pmf_triangle,
@@ -239,7 +274,8 @@ impl AreaLight {
         let area = pmf_triangle * self.total_area;
         Some(AreaSample {
             wi,
-            point,
+            point: point.position,
+            shadow_target: point.shadow_target(wi),
             triangle: t,
             radiance: self.radiance,
             inv_pdf_solid_angle: cos_light * area / (dist2 * pmf_triangle),
@@ -286,7 +322,7 @@ impl AreaLight {
     /// A direction uniform over the spherical rectangle `rect` (`pdf = 1 / Ω`), from a `p` the
     /// light faces (the caller, [`AreaLight::sample`], checked). `None` for a direction that
     /// rounds off both triangles.
-    fn sample_rect(&self, rect: &SphericalRect, u: Vec2) -> Option<AreaSample> {
+    fn sample_rect(&self, p: Vec3, rect: &SphericalRect, u: Vec2) -> Option<AreaSample> {
         let sample = rect.sample(u);
         let wi = sample.offset.normalize_or_zero();
         if wi == Vec3::ZERO {
@@ -294,10 +330,24 @@ impl AreaLight {
         }
         // The corner's triangle holds s + t ≤ 1 (see `rectangle`), the other one the rest.
         let t = usize::from(sample.s + sample.t > 1.0);
-        let (b1, b2) = self.rect_barycentrics[t].barycentrics(Vec2::new(sample.s, sample.t));
+        let end = self
+            .rect_points
+            .shadow
+            .target(p, sample.offset, rect.plane_offset());
+        let (point, shadow_target) = match end {
+            Some(end) => (p + sample.offset, end),
+            // Almost in the light's plane: the point rebuilt on its triangle and offset off it.
+            None => {
+                let st = Vec2::new(sample.s, sample.t);
+                let (b1, b2) = self.rect_points.barycentrics[t].barycentrics(st);
+                let point = self.at_barycentrics(t, b1, b2);
+                (point.position, point.shadow_target(wi))
+            }
+        };
         Some(AreaSample {
             wi,
-            point: self.at_barycentrics(t, b1, b2),
+            point,
+            shadow_target,
             triangle: t,
             radiance: self.radiance,
             inv_pdf_solid_angle: rect.solid_angle(),
@@ -431,7 +481,7 @@ mod tests {
                         continue;
                     };
                     let pdf = light
-                        .pdf(p, s.wi, s.triangle, s.point.position, mode)
+                        .pdf(p, s.wi, s.triangle, s.point, mode)
                         .expect("a sampled direction emits");
                     let rel = (pdf * s.inv_pdf_solid_angle - 1.0).abs();
                     assert!(
@@ -475,17 +525,11 @@ mod tests {
             let hit = moller_trumbore(&Ray::new(p, s.wi), tri[0], tri[1], tri[2]);
             let expected = hit.map(|h| light.at_barycentrics(s.triangle, h.u, h.v).position);
             let expected = expected.expect("the direction meets the point's triangle");
-            assert!((expected - s.point.position).length() < 1e-5, "{k}");
-            let along = (s.point.position - p).normalize();
+            assert!((expected - s.point).length() < 1e-5, "{k}");
+            let along = (s.point - p).normalize();
             assert!(along.dot(s.wi) > 1.0 - 1e-6, "{k}");
             let pdf = light
-                .pdf(
-                    p,
-                    s.wi,
-                    s.triangle,
-                    s.point.position,
-                    LightSampling::SolidAngle,
-                )
+                .pdf(p, s.wi, s.triangle, s.point, LightSampling::SolidAngle)
                 .expect("emits");
             assert!((pdf * s.inv_pdf_solid_angle - 1.0).abs() < 1e-6);
         }

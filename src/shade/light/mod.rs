@@ -27,6 +27,7 @@ pub mod env_sampler;
 pub mod env_texels;
 pub mod environment;
 pub mod point;
+pub mod shadow_end;
 pub mod spherical;
 pub mod spherical_rect;
 

@@ -188,6 +188,12 @@ impl SphericalRect {
         })
     }
 
+    /// The component across the rectangle's plane of every offset [`SphericalRect::sample`]
+    /// returns (negative: the frame's z points away from the rectangle).
+    pub fn plane_offset(&self) -> f32 {
+        self.z0
+    }
+
     /// The solid angle Ω (sr) the rectangle subtends: the sampling density is `1 / Ω`.
     pub fn solid_angle(&self) -> f32 {
         self.solid_angle
