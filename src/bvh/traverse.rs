@@ -1,7 +1,8 @@
 //! The stack traversal of a [`Wide`] tree: nearest child first, farther ones pushed with their
 //! entry distance and skipped on pop once a nearer hit has shrunk `t_max`; a pushed child's
-//! node or leaf is prefetched, so its cache misses overlap the nearer child's visit. Generic over the
-//! instruction set ([`Isa`]) and the leaf test ([`LeafVisitor`]), both inlined into the loop.
+//! node or leaf is prefetched, so its cache misses overlap the nearer child's visit. Generic
+//! over the instruction set ([`Isa`]) and the leaf test ([`LeafVisitor`]), both inlined into
+//! the loop.
 //!
 //! Stage: queries, under `mesh_bvh.rs` (bottom level) and `two_level.rs` (top level).
 
@@ -200,8 +201,8 @@ fn walk<I: Isa, F: LeafVisitor>(
 /// Asks for a deferred child's node or leaf primitives to be loaded while the nearer child is
 /// visited (the nearer one is read at once, so prefetching it would gain nothing). On a tree
 /// far larger than the L2 cache (dense-L8, 71 MB) this overlaps the misses of the pushed
-/// children with the visit of the nearer one: +8–14 % on shadow and incoherent rays, 1–3 %
-/// slower on a tree that stays in cache (dense-L5); see docs/bvh.md, 2026-11-26.
+/// children with the visit of the nearer one: +4–13 % on shadow and +10–14 % on incoherent
+/// rays, 1–3 % slower on a tree that stays in cache (dense-L5); see docs/bvh.md, 2026-11-26.
 #[inline(always)]
 fn prefetch<I: Isa, F: LeafVisitor>(isa: I, w: &Wide, leaf: &F, child: u32, count: u32) {
     if count > 0 {
