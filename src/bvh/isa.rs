@@ -42,6 +42,8 @@ pub trait Isa: Copy {
     ) -> Option<(usize, TriangleHit)>;
     /// Whether any triangle of `tris` is hit, as `triangle4::any4`.
     fn any_tris(self, r: &WatertightRay, t_max: f32, tris: &[Tri4]) -> bool;
+    /// Asks for the cache lines of `at` to be loaded ahead of use (a hint; may do nothing).
+    fn prefetch<T: ?Sized>(self, at: &T);
 }
 
 /// The portable kernels: [`WideRay::hit`] and the four-lane triangle test.
@@ -66,6 +68,10 @@ impl Isa for Portable {
     fn any_tris(self, r: &WatertightRay, t_max: f32, tris: &[Tri4]) -> bool {
         any4(r, t_max, tris)
     }
+    /// Nothing: a prefetch instruction needs the `unsafe` token module, and this path is
+    /// the one for CPUs without AVX2.
+    #[inline(always)]
+    fn prefetch<T: ?Sized>(self, _: &T) {}
 }
 
 /// [`WideRay::hit`] on all eight lanes at once, the same operations in the same order, up to
@@ -118,6 +124,10 @@ impl Isa for Avx2 {
     fn any_tris(self, r: &WatertightRay, t_max: f32, tris: &[Tri4]) -> bool {
         any8(self, r, t_max, tris)
     }
+    #[inline(always)]
+    fn prefetch<T: ?Sized>(self, at: &T) {
+        Avx2::prefetch(self, at);
+    }
 }
 
 impl Isa for Avx512 {
@@ -139,6 +149,10 @@ impl Isa for Avx512 {
     #[inline(always)]
     fn any_tris(self, r: &WatertightRay, t_max: f32, tris: &[Tri4]) -> bool {
         any8(self.avx2(), r, t_max, tris)
+    }
+    #[inline(always)]
+    fn prefetch<T: ?Sized>(self, at: &T) {
+        self.avx2().prefetch(at);
     }
 }
 

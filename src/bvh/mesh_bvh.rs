@@ -312,12 +312,19 @@ impl MeshBvh {
         traverse(isa, &self.tree, &wr, &mut t, leaf, stack)
     }
 
-    /// The packets of the leaf whose slots are `first..first + count` (`first` a multiple of 4).
+    /// The packets of the leaf whose slots are `first..first + count` (`first` a multiple of 4),
+    /// counted as tested (`bvh-counters`).
     #[inline(always)]
     fn leaf_packets(&self, first: u32, count: u32) -> &[Tri4] {
-        let p = first as usize / LANES;
         #[cfg(feature = "bvh-counters")]
         super::tally::counters::add(2, (count as usize).div_ceil(LANES) as u64);
+        self.packets(first, count)
+    }
+
+    /// The packets of the leaf whose slots are `first..first + count`.
+    #[inline(always)]
+    fn packets(&self, first: u32, count: u32) -> &[Tri4] {
+        let p = first as usize / LANES;
         &self.tris[p..p + (count as usize).div_ceil(LANES)]
     }
 }
@@ -340,6 +347,10 @@ impl<T: TriTest, I: Isa> LeafVisitor for &mut ClosestInLeaf<'_, T, I> {
         }
         false
     }
+    #[inline(always)]
+    fn prefetch(&self, first: u32, count: u32) {
+        self.isa.prefetch(self.bvh.packets(first, count));
+    }
 }
 
 /// The any-hit leaf test.
@@ -358,6 +369,10 @@ impl<T: TriTest, I: Isa> LeafVisitor for AnyInLeaf<'_, T, I> {
             *t_max,
             self.bvh.leaf_packets(first, count),
         )
+    }
+    #[inline(always)]
+    fn prefetch(&self, first: u32, count: u32) {
+        self.isa.prefetch(self.bvh.packets(first, count));
     }
 }
 
