@@ -260,6 +260,32 @@ fn a_sun_below_a_normal_s_horizon_is_said_so_only_when_none_of_its_samples_is_ab
 }
 
 #[test]
+fn the_sun_s_density_skipped_outside_its_cone_is_the_texel_s_everywhere() {
+    // `EnvMap::bright_density` answers 0 without a texel lookup outside the sun's cone: it must
+    // agree with the density read from the direction's texel for every direction, on the
+    // sun's texels (near the cone's edge) and all over the sphere.
+    let m = map(0.7);
+    let near_sun = (0..512).filter_map(|k| {
+        let u = Vec2::new((k as f32 + 0.5) / 512.0, ((k * 97) % 512) as f32 / 512.0);
+        m.sample_bright(u).map(|s| s.wi)
+    });
+    let sphere = (0..20_000).map(|i| {
+        let z = 1.0 - 2.0 * (i as f32 + 0.5) / 20_000.0;
+        let t = i as f32 * 2.399_963;
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        Vec3::new(r * t.cos(), z, r * t.sin())
+    });
+    let mut lit = 0;
+    for d in near_sun.chain(sphere) {
+        let (_, _, texel_bright) = m.densities_facing(d, None);
+        assert_eq!(m.bright_density(d), texel_bright, "{d}");
+        assert_eq!(m.radiance_and_bright_density(d).1, texel_bright, "{d}");
+        lit += usize::from(texel_bright > 0.0);
+    }
+    assert!(lit >= 512, "{lit} directions on the sun");
+}
+
+#[test]
 fn a_diffuse_plane_under_the_map_renders_its_irradiance_for_every_strategy() {
     plane_irradiance_for_every_strategy(0.0);
 }

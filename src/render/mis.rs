@@ -230,7 +230,12 @@ impl Shading<'_> {
         if pdf <= 0.0 {
             return Vec3::ZERO;
         }
-        let (_, light_density) = self.sky_seen(env, wi);
+        let light_density = if self.sky_by_cosine {
+            // Only the bright set's density counts, and no texel need be read for it.
+            self.scene.lights.pmf_environment() * env.bright_density(wi)
+        } else {
+            self.sky_seen(env, wi).1
+        };
         let w = power_heuristic(self.brdf_per_pick() as f32 * pdf, light_density);
         let f = self.phong.eval(self.ns, wi, self.wo);
         radiance * f * (self.ns.dot(wi) * w / pdf)

@@ -64,6 +64,7 @@ pub struct EnvMap {
 struct Cone {
     axis: Vec3,
     sin_half: f32,
+    cos_half: f32,
 }
 
 impl Cone {
@@ -94,7 +95,13 @@ impl Cone {
         (half < 0.5 * PI).then(|| Cone {
             axis,
             sin_half: half.sin(),
+            cos_half: half.cos(),
         })
+    }
+
+    /// Whether unit direction `d` may lie in the cone (`false`: it surely does not).
+    fn may_hold(&self, d: Vec3) -> bool {
+        d.dot(self.axis) >= self.cos_half
     }
 
     /// Whether every direction `d` of the cone has `n · d < 0` (`n` unit).
@@ -423,9 +430,32 @@ impl EnvMap {
     pub fn radiance_and_bright_density(&self, d: Vec3) -> (Vec3, f32) {
         let (col, row, jacobian, radiance) = self.texel_towards(d);
         match &self.bright {
-            Some(b) if jacobian > 0.0 => (radiance, b.pdf_uv(col, row) / jacobian),
+            Some(b) if jacobian > 0.0 && self.may_be_bright(d) => {
+                (radiance, b.pdf_uv(col, row) / jacobian)
+            }
             _ => (radiance, 0.0),
         }
+    }
+
+    /// The density of [`EnvMap::sample_bright`] at direction `d` (unit), without its radiance:
+    /// outside the bright set's cone no texel is looked up (most directions).
+    pub fn bright_density(&self, d: Vec3) -> f32 {
+        let Some(b) = self.bright.as_ref().filter(|_| self.may_be_bright(d)) else {
+            return 0.0;
+        };
+        let (col, row, sin_theta) = self.texel_of(d);
+        let jacobian = 2.0 * PI * PI * sin_theta.max(0.0);
+        if jacobian > 0.0 {
+            b.pdf_uv(col, row) / jacobian
+        } else {
+            0.0
+        }
+    }
+
+    /// Whether unit direction `d` may read a texel of the bright set: `false` only when it
+    /// lies outside the set's cone (which holds every direction of the set's box).
+    fn may_be_bright(&self, d: Vec3) -> bool {
+        self.bright_cone.is_none_or(|c| c.may_hold(d))
     }
 
     /// The texel world direction `d` (unit) reads, the Jacobian `2π² sin θ` from the map's

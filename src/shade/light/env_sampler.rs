@@ -211,10 +211,12 @@ impl EnvSampler {
                     .iter()
                     .zip(&cell_points)
                     .map(|(&p, points)| {
+                        // Finite cosines: a plain comparison gives `f32::max`'s result
+                        // without its NaN handling (this loop was most of the build's time).
                         let most = normals
                             .iter()
                             .flat_map(|n| points.iter().map(move |d| n.dot(*d)))
-                            .fold(f32::NEG_INFINITY, f32::max);
+                            .fold(f32::NEG_INFINITY, |m, c| if c > m { c } else { m });
                         p * (most + MARGIN).max(0.0)
                     })
                     .collect();

@@ -110,11 +110,17 @@ fn pack(t: Vec3, offset: Offset) -> Option<[u8; 4]> {
     if !(1..=254).contains(&biased) {
         return None;
     }
-    let scale = f32::from_bits((biased as u32) << 23);
+    // 2^(127 − biased): a power of two (subnormal at worst), so `c · inv_scale` is `c / scale`
+    // without a division; the round trip below checks the record either way.
+    let inv_scale = match 254 - biased {
+        0 => f32::from_bits(1 << 22),
+        field => f32::from_bits((field as u32) << 23),
+    };
     let mut record = [0u8; 4];
     for (m, c) in record.iter_mut().zip(t.to_array()) {
-        let q = c / scale - offset.value();
-        if !(0.0..=255.0).contains(&q) || q != q.trunc() {
+        let q = c * inv_scale - offset.value();
+        // In range, `q as u8` truncates exactly (no libm `truncf` call on baseline x86-64).
+        if !(0.0..=255.0).contains(&q) || f32::from(q as u8) != q {
             return None;
         }
         *m = q as u8;

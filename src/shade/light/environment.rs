@@ -239,6 +239,13 @@ impl Environment {
         (self.constant + map_radiance, bright)
     }
 
+    /// The bright strategy's density at direction `d` (unit) alone
+    /// ([`Environment::radiance_and_bright_density`] without the radiance): for a BRDF
+    /// direction whose sky is not seen.
+    pub fn bright_density(&self, d: Vec3) -> f32 {
+        self.map.as_ref().map_or(0.0, |m| m.bright_density(d))
+    }
+
     /// The density of [`Environment::sample_facing`] for the same `normal`.
     #[inline]
     pub fn pdf_facing(&self, d: Vec3, normal: Option<Vec3>) -> f32 {
