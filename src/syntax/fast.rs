@@ -64,17 +64,12 @@ pub(super) fn parse_each(
         match c.statement() {
             Some(s) => each(s),
             None => {
-                let within = within_line(text, start);
-                let parses_within = || pest_statement(file, within, start, &mut Vec::new());
                 match fallback {
                     Fallback::Line => {
-                        parses_within()?;
+                        pest_statement(file, within_line(text, start), start, &mut Vec::new())?;
                     }
-                    Fallback::Whole => {
-                        if parses_within().is_none() && fails_over_a_run(file, text, start) {
-                            return None;
-                        }
-                    }
+                    Fallback::Whole if fails_over_a_run(file, text, start) => return None,
+                    Fallback::Whole => {}
                 }
                 let (s, end) = pest_statement(file, text, start, &mut diags)?;
                 each(s);
@@ -93,12 +88,16 @@ fn within_line(text: &str, start: usize) -> &str {
     next.map_or(text, |n| &text[..start + n + 1])
 }
 
-/// Whether pest fails on the statement at `start` (which fails within [`within_line`]) in the
-/// whole `text`, told without pest reading the `object`s and `group`s after it: the run of
-/// them from the first line after `start` that starts with one ([`nesting_run`], the fast
-/// parser alone), which a `{` left open at `start` would take as its items, is spared as
+/// Whether pest fails on the statement at `start` (one the fast parser does not accept) in
+/// the whole `text`, told without pest reading the `object`s and `group`s after it: when it
+/// fails within [`within_line`] and leaves a bracket open before the run of them from the
+/// first line after `start` that starts with one ([`nesting_run`], the fast parser alone),
+/// which a `{` left open at `start` would take as its items, that run is spared as
 /// `tail::statement_fails` argues. `false` when it cannot tell (pest parses it whole).
 fn fails_over_a_run(file: FileId, text: &str, start: usize) -> bool {
+    if pest_statement(file, within_line(text, start), start, &mut Vec::new()).is_some() {
+        return false;
+    }
     let mut from = start;
     let first = loop {
         let Some(line) = text.get(from..).and_then(|t| t.find('\n')) else {
@@ -109,6 +108,11 @@ fn fails_over_a_run(file: FileId, text: &str, start: usize) -> bool {
             break from;
         }
     };
+    // With nothing left open before the run, pest fails before it (a stray `=`) or reads past
+    // it for another reason: the run would be parsed for nothing.
+    if super::scan::unclosed(&text[start..first]).is_none() {
+        return false;
+    }
     let mut c = Cursor::new(file, text);
     let (run, _) = nesting_run(&mut c, first, &mut |_| None);
     super::tail::statement_fails(text, start, &run)
@@ -229,6 +233,9 @@ fn statements_between(file: FileId, text: &str, start: usize, end: usize) -> Opt
         match c.statement() {
             Some(s) => statements.push(s),
             None => {
+                if fails_over_a_run(file, text, at) {
+                    return None;
+                }
                 let (s, after) = pest_statement(file, text, at, &mut diags)?;
                 if !diags.is_empty() {
                     return None;
