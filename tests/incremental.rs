@@ -14,9 +14,11 @@
 //! compacted again), and a `material`, `mesh` or `texture` value edit that gives a diagnostic
 //! (a digit, or its kind misspelt: not lowered) and the edit that takes it out again, and a
 //! `material`, `mesh` or `texture` nothing names inserted and deleted (the tables' indices
-//! after it move). Two focused replays beside it: a number of a camera, a light or the render
-//! block changed (fast whenever the scene keeps only its own warning), and a `let` given an
-//! error and put back (fast whenever no other error stands).
+//! after it move). Three focused replays beside it: a number of a camera, a light or the render
+//! block changed (fast whenever the scene keeps only its own warning), a `let` given an
+//! error and put back (fast whenever no other error stands), and a syntax error that loses a
+//! `let`, `material`, `mesh` or `texture` other statements name, and the line put back (always
+//! answered from the memo).
 
 use scnc::assets::MemLoader;
 use scnc::compile::{compile_with, Incremental, Overrides, Reuse};
