@@ -2,7 +2,7 @@
 //! [-- --edits N] [-- --objects N] [-- --no-watch] [-- --only Uses,BadValue]`.
 //!
 //! The scene of issue 22: 100,000 `object` statements, each with a rotate and a translate, over
-//! three meshes and 100 materials that name one constant, `gloss` (about 9 MB). Sixteen kinds
+//! three meshes and 100 materials that name one constant, `gloss` (about 9 MB). Eighteen kinds
 //! of edit, one line each: one object's translate in the middle of the file (a person nudging one
 //! object), one material's colour, the value of `gloss` (its 100 materials re-checked), an
 //! `object` line inserted, one deleted, an object's material misspelt then put back (every
@@ -14,7 +14,8 @@
 //! change both times), and a material's albedo set above 1 (an error, the material not
 //! lowered) and put back; a material nothing names inserted (unused: a
 //! warning) and deleted; `gloss` given an error (its materials fail quietly) and put back; the camera's eye, the light's intensity and the render block's sample
-//! count changed (one number each).
+//! count changed (one number each); a stray `=` typed into `let gloss` and into one material's
+//! line (syntax errors that lose a constant and a declaration others name), each taken out.
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
 //!    each edit (the text served from memory; diagnostics are ready when it returns).
@@ -157,9 +158,15 @@ enum Kind {
     Light,
     /// The render block's sample count changes (9, 4, 9, …).
     Render,
+    /// Edits 0, 2, 4, …: a stray `=` typed into `let gloss` (a syntax error that loses the
+    /// constant all 100 materials name); 1, 3, 5, …: taken out.
+    LetLost,
+    /// Edits 0, 2, 4, …: a stray `=` typed into one material's line (a syntax error that loses
+    /// a material 1,000 objects name; another material each pair); 1, 3, 5, …: taken out.
+    MaterialLost,
 }
 
-const KINDS: [Kind; 16] = [
+const KINDS: [Kind; 18] = [
     Kind::Object,
     Kind::Material,
     Kind::Let,
@@ -177,6 +184,8 @@ const KINDS: [Kind; 16] = [
     Kind::Typo,
     Kind::Stray,
     Kind::Cut,
+    Kind::LetLost,
+    Kind::MaterialLost,
 ];
 
 /// Kinds whose even edits make an error (`scnc watch` builds nothing then: its figure is save →
@@ -184,7 +193,13 @@ const KINDS: [Kind; 16] = [
 fn errs(kind: Kind) -> bool {
     matches!(
         kind,
-        Kind::Typo | Kind::Stray | Kind::Cut | Kind::BadValue | Kind::LetError
+        Kind::Typo
+            | Kind::Stray
+            | Kind::Cut
+            | Kind::BadValue
+            | Kind::LetError
+            | Kind::LetLost
+            | Kind::MaterialLost
     )
 }
 
@@ -271,6 +286,18 @@ fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String
             lines[last] = light_line(100_001 + k % 1000);
         }
         Kind::Render => lines[RENDER_LINE] = render_line([9, 4][k % 2]),
+        Kind::LetLost if k.is_multiple_of(2) => {
+            lines[LET_LINE] = lines[LET_LINE].replacen("gloss =", "gloss = =", 1);
+        }
+        Kind::LetLost => lines[LET_LINE] = lines[LET_LINE].replacen("= =", "=", 1),
+        Kind::MaterialLost => {
+            let m = (k / 2 * 37) % 100;
+            lines[FIRST_MATERIAL + m] = if k.is_multiple_of(2) {
+                material_line(m, m % 10).replacen("= phong", "= = phong", 1)
+            } else {
+                material_line(m, m % 10)
+            };
+        }
     }
     let mut text = lines.join("\n");
     text.push('\n');
@@ -499,7 +526,7 @@ fn watch(objects: usize, edits: usize) {
     }
     // The errors, each then taken out: save -> the `error` event (the diagnostics; nothing is
     // built) and, for the edit taking it out, save -> `checked`, and the first pass after it.
-    for kind in KINDS.into_iter().filter(|&k| errs(k)) {
+    for kind in KINDS.into_iter().filter(|&k| errs(k) && only(k)) {
         let mut figures: [Vec<f64>; 3] = Default::default();
         for k in 0..edits + edits % 2 {
             let text = edit(&mut lines, objects, kind, 1000 + k);

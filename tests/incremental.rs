@@ -14,9 +14,11 @@
 //! compacted again), and a `material`, `mesh` or `texture` value edit that gives a diagnostic
 //! (a digit, or its kind misspelt: not lowered) and the edit that takes it out again, and a
 //! `material`, `mesh` or `texture` nothing names inserted and deleted (the tables' indices
-//! after it move). Two focused replays beside it: a number of a camera, a light or the render
-//! block changed (fast whenever the scene keeps only its own warning), and a `let` given an
-//! error and put back (fast whenever no other error stands).
+//! after it move). Three focused replays beside it: a number of a camera, a light or the render
+//! block changed (fast whenever the scene keeps only its own warning), a `let` given an
+//! error and put back (fast whenever no other error stands), and a syntax error that loses a
+//! `let`, `material`, `mesh` or `texture` other statements name, and the line put back (always
+//! answered from the memo).
 
 use scnc::assets::MemLoader;
 use scnc::compile::{compile_with, Incremental, Overrides, Reuse};
@@ -842,8 +844,12 @@ fn a_let_nothing_names_added_or_removed_is_checked_alone() {
         Reuse::Statements { checked: 0, .. }
     ));
     assert_eq!(compile(&added), Reuse::Unchanged);
+    // One that objects name is lost too (their unknown names are cascades: dropped).
     let named = added.replacen("let k = 2", "let k =", 1);
-    assert_eq!(compile(&named), Reuse::Full);
+    assert!(matches!(
+        compile(&named),
+        Reuse::Statements { checked: 0, .. }
+    ));
 }
 
 /// A scene whose `object`s and `group`s (groups over several lines, a group inside a group,
@@ -1098,4 +1104,127 @@ fn a_let_edit_that_gives_or_takes_an_error_is_checked_with_what_names_it() {
         "only {} edits gave or took an error",
         made[1]
     );
+}
+
+/// The named statements of [`named_scene`] and what a syntax error that loses one of them
+/// names them by: `let k` (every object of the row), `let kk = k + 1` (a constant that comes
+/// to fail with `k`, named by an object), the meshes, the texture the floor names, the
+/// materials.
+const NAMED: [&str; 9] = [
+    "let k ",
+    "let kk ",
+    "mesh box1 ",
+    "mesh ball ",
+    "texture board ",
+    "material floor ",
+    "material m0 ",
+    "material m1 ",
+    "material m3 ",
+];
+
+/// [`base_scene`] with `let kk = k + 1`, named by one more object.
+fn named_scene() -> String {
+    base_scene().replacen(
+        "light sun",
+        "let kk = k + 1\nobject ball { material m2  transform { translate (0, kk, 0) } }\nlight sun",
+        1,
+    )
+}
+
+/// `text` with the statement on the line starting `head` broken: a stray `=` after its `=`,
+/// cut after its `=`, or cut at a seeded byte after its name.
+fn break_line(rng: &mut SplitMix64, text: &str, head: &str) -> String {
+    let at = text.find(&format!("\n{head}")).map_or(0, |i| i + 1);
+    let end = text[at..].find('\n').map_or(text.len(), |n| at + n);
+    let eq = at + text[at..end].find('=').unwrap_or(0);
+    match rng.below(3) {
+        0 => format!("{}= {}", &text[..eq + 2], &text[eq + 2..]),
+        1 => format!("{}{}", &text[..eq + 1], &text[end..]),
+        _ => {
+            let cut = at + head.len() + rng.below(end - at - head.len());
+            format!("{}{}", &text[..cut], &text[end..])
+        }
+    }
+}
+
+/// A syntax error that loses a `let`, `material`, `mesh` or `texture` that other statements
+/// name gives, in a full compile, the syntax error alone (what names the lost statement gets
+/// an unknown-name diagnostic, a cascade, which a compile with a syntax error drops): it is
+/// answered from the memo (nothing checked), identical to `compile_with`, and putting the line
+/// back gives the text before it. Seeded breaks of each named statement, after seeded object
+/// edits (so the memo is not the first compile's). Declined (a full compile, identical too):
+/// a lost name another statement declares (a `let board` beside the texture `board`, which
+/// the floor's `diffuse board` would then name), and a lost `let` with a `--define`, which the
+/// define may name (`--define k=3`: the define becomes unused, an error whose did-you-mean
+/// lists the constants).
+#[test]
+fn a_syntax_error_that_loses_a_named_statement_is_answered_from_the_memo() {
+    let path = Path::new("scenes/edit.scn");
+    let mut made = 0;
+    for seed in 1..=8u64 {
+        let mut rng = SplitMix64(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+        let mut inc = Incremental::new(Overrides::default());
+        let mut text = named_scene();
+        let _ = compile_as_a_full_compile_does(&mut inc, &text, "first");
+        for step in 0..24 {
+            let digits: Vec<usize> = (text.match_indices(".5, k").map(|(i, _)| i)).collect();
+            let d = digits[rng.below(digits.len())];
+            text.replace_range(d - 1..d, &rng.below(10).to_string());
+            let _ = compile_as_a_full_compile_does(&mut inc, &text, "object edit");
+            let head = NAMED[rng.below(NAMED.len())];
+            let broken = break_line(&mut rng, &text, head);
+            let label = format!("seed {seed} step {step}: {head}broken");
+            let (got, label) = compile_as_a_full_compile_does(&mut inc, &broken, &label);
+            let syntax = |d: &scnc::diag::Diagnostic| d.code.as_str().starts_with("scnc::syntax");
+            let lost = got.diagnostics.iter().any(syntax);
+            if lost {
+                made += 1;
+                assert!(
+                    matches!(inc.reuse, Reuse::Statements { checked: 0, .. }),
+                    "{label}: took the full path on\n{broken}"
+                );
+            }
+            let (_, label) = compile_as_a_full_compile_does(&mut inc, &text, &label);
+            assert!(
+                !lost || inc.reuse == Reuse::Unchanged,
+                "{label}: putting it back is not the text the memo kept"
+            );
+        }
+    }
+    eprintln!("{made} syntax errors losing a named statement, all answered from the memo");
+    assert!(made >= 120, "only {made} such syntax errors");
+    // Declined: another declaration of the lost name.
+    let shadowed =
+        named_scene().replacen("material floor", "let board = #808080\nmaterial floor", 1);
+    let mut inc = Incremental::new(Overrides::default());
+    let _ = compile_as_a_full_compile_does(&mut inc, &shadowed, "shadowed");
+    for head in ["texture board ", "let board "] {
+        let broken = shadowed.replacen(head, &format!("{head}= "), 1);
+        let _ = compile_as_a_full_compile_does(&mut inc, &broken, head);
+        assert_eq!(inc.reuse, Reuse::Full, "{head}lost beside another `board`");
+    }
+    // Declined: a lost `let` with a `--define` (the define may name it).
+    let overrides = Overrides {
+        frame: 0.0,
+        defines: vec![("k".into(), "3".into())],
+    };
+    let mut inc = Incremental::new(overrides.clone());
+    let broken_k = named_scene().replacen("let k = 2", "let k = = 2", 1);
+    let broken_m0 = named_scene().replacen("material m0 =", "material m0 = =", 1);
+    // After a full compile of a syntax error there is no memo: the scene again first.
+    for (text, fast) in [
+        (named_scene(), false),
+        (broken_k, false),
+        (named_scene(), false),
+        (broken_m0, true),
+    ] {
+        let mut loader = MemLoader::new();
+        loader.insert(path, text.clone());
+        let mut sources = SourceMap::new();
+        let got = inc.compile(path, &loader, &mut sources);
+        let label = format!("with --define k=3 ({:?})", inc.reuse);
+        assert_as_full_compile(&label, &got, &sources, &loader, &overrides, &text);
+        let took = matches!(inc.reuse, Reuse::Statements { checked: 0, .. });
+        assert_eq!(took, fast, "{label}");
+    }
 }

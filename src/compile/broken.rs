@@ -11,9 +11,11 @@
 //! diagnostic. So the chunks from the region's start to the first old statement where the
 //! scan is at depth 0 again are parsed alone (`syntax::parse_recovering_from`), and their
 //! diagnostics are the compile's when the statements they lose are top-level `object`s and
-//! `group`s (whose loss the check answers only with cascades: a material or mesh now unused), every other
-//! statement there parses again with its old text, and the old check had no diagnostic but
-//! cascades. A chunk whose tail is those old statements (an object line cut inside its
+//! `group`s (whose loss the check answers only with cascades: a material or mesh now unused), or
+//! `let`s, `material`s, `mesh`es and `texture`s whose names, once lost, resolve to nothing else
+//! (what names them gets an unknown-name diagnostic, a cascade, and fails quietly:
+//! [`lost_quietly_by_name`]), every other statement there parses again with its old text, and
+//! the old check had no diagnostic but cascades. A chunk whose tail is those old statements (an object line cut inside its
 //! braces leaves a `{` open over every `object` and `group` after it) is not parsed whole:
 //! `syntax::parse_recovering_from` tells pest's error for it from the chunk's head and the
 //! first of them (`src/syntax/tail.rs`). Anything else is declined (a full compile).
@@ -77,7 +79,7 @@ pub(super) fn diagnostics(
     let lost_quietly = |i: usize| {
         let (s, e) = spans[i];
         old.get(s as usize..e as usize)
-            .is_some_and(|was| syntax::nests(was) || (!defines && unnamed_let(old, spans, i)))
+            .is_some_and(|was| syntax::nests(was) || lost_quietly_by_name(old, spans, i, defines))
     };
     let mut olds = region.stmts.start..end;
     for stmt in parsed {
@@ -103,27 +105,79 @@ pub(super) fn diagnostics(
     Some((diags, end - region.stmts.start - recovered.spared))
 }
 
-/// Whether old statement `i` (of `old`, statements at `spans`) is a `let` that no statement
-/// but itself names (a whole-word search): its loss changes no other statement's check. (A
-/// `--define` naming it would become unused, an error: the caller declines when there is one.)
-fn unnamed_let(old: &str, spans: &[(u32, u32)], i: usize) -> bool {
-    let (s, e) = spans[i];
-    let stmt = old.get(s as usize..e as usize).unwrap_or_default();
-    let Some(rest) = stmt
-        .strip_prefix("let")
-        .filter(|r| r.starts_with(char::is_whitespace))
-    else {
+/// Whether old statement `i` (of `old`, statements at `spans`) is a `let`, `material`, `mesh`
+/// or `texture` whose loss the check answers only with cascades (dropped from a compile with
+/// a syntax error). A statement that names a lost constant or declaration gets an unknown-name
+/// diagnostic (a cascade, did-you-mean and all) and its value fails quietly; a `let` naming it
+/// fails too and is poisoned, so what names that one fails quietly in turn. That holds while a
+/// name that comes to fail resolves to nothing else: declined when another statement declares
+/// one of those names (as any kind: a material's `diffuse t` names a texture `t` only when no
+/// constant `t` exists), when there are more than [`MAX_FAILING`] of them, and for a lost `let`
+/// when there is a `--define` (it may name it, and an unused define is an error whose
+/// did-you-mean lists the constants). Found by whole-word searches of `old`, each found
+/// statement's head read (its keyword and the name it declares).
+fn lost_quietly_by_name(old: &str, spans: &[(u32, u32)], i: usize, defines: bool) -> bool {
+    let Some((keyword, Some(name))) = head(old, spans, i) else {
         return false;
     };
-    let rest = rest.trim_start();
-    let len = rest
-        .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
-        .unwrap_or(rest.len());
-    let name = &rest[..len];
-    if name.is_empty() {
+    if !matches!(keyword, "let" | "material" | "mesh" | "texture") || (defines && keyword == "let")
+    {
         return false;
     }
-    dependents::naming(old, spans, name).is_some_and(|found| found.iter().all(|(j, _)| *j == i))
+    // The statements whose names come to fail, with those names.
+    let mut failing = vec![(i, name)];
+    let mut next = 0;
+    while let Some(&(declared_by, name)) = failing.get(next) {
+        next += 1;
+        for j in dependents::statements_naming(old, spans, name) {
+            if j == declared_by {
+                continue;
+            }
+            let Some((keyword, declares)) = head(old, spans, j) else {
+                return false;
+            };
+            if keyword != "object" && declares == Some(name) {
+                return false;
+            }
+            if let ("let", Some(poisoned)) = (keyword, declares) {
+                if !failing.iter().any(|&(k, _)| k == j) {
+                    if failing.len() == MAX_FAILING {
+                        return false;
+                    }
+                    failing.push((j, poisoned));
+                }
+            }
+        }
+    }
+    true
+}
+
+/// Most names [`lost_quietly_by_name`] follows (a lost constant and the `let`s that come to
+/// fail with it); past that, a full compile.
+const MAX_FAILING: usize = 64;
+
+/// Statement `i`'s keyword and the name after it (the name a declaration declares; an
+/// `object`'s mesh), or `None` for a name there that is not read (a comment between).
+fn head<'t>(text: &'t str, spans: &[(u32, u32)], i: usize) -> Option<(&'t str, Option<&'t str>)> {
+    let (s, e) = *spans.get(i)?;
+    let stmt = text.get(s as usize..e as usize)?;
+    let word = |t: &'t str| {
+        let len = t
+            .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+            .unwrap_or(t.len());
+        &t[..len]
+    };
+    let keyword = word(stmt);
+    let rest = &stmt[keyword.len()..];
+    let name = word(rest.trim_start_matches([' ', '\t']));
+    let names = !matches!(keyword, "scnc" | "include" | "render");
+    if !names {
+        return Some((keyword, None));
+    }
+    let read = !name.is_empty()
+        && rest.starts_with([' ', '\t'])
+        && !name.starts_with(|c: char| c.is_ascii_digit());
+    read.then_some((keyword, Some(name)))
 }
 
 /// Whether no line inside a statement of `text` (statements at `spans`) starts where the

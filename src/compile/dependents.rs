@@ -16,9 +16,18 @@ use crate::syntax::{self, Stmt};
 /// `name` occurs as a word: index and statement, in order; `None` when one of them does not
 /// parse alone into one statement.
 pub(super) fn naming(text: &str, spans: &[(u32, u32)], name: &str) -> Option<Vec<(usize, Stmt)>> {
+    let found = statements_naming(text, spans, name);
+    (found.into_iter())
+        .map(|i| Some((i, parse_one(text, spans, i)?)))
+        .collect()
+}
+
+/// The indices of the statements of `text` (at `spans`) in which `name` occurs as a word, in
+/// order, not parsed.
+pub(super) fn statements_naming(text: &str, spans: &[(u32, u32)], name: &str) -> Vec<usize> {
     let bytes = text.as_bytes();
     let word = |b: Option<&u8>| b.is_some_and(|b| b.is_ascii_alphanumeric() || *b == b'_');
-    let mut found = Vec::new();
+    let mut found: Vec<usize> = Vec::new();
     for at in memchr::memmem::find_iter(bytes, name.as_bytes()) {
         let before = at.checked_sub(1).and_then(|i| bytes.get(i));
         if word(before) || word(bytes.get(at + name.len())) {
@@ -26,11 +35,11 @@ pub(super) fn naming(text: &str, spans: &[(u32, u32)], name: &str) -> Option<Vec
         }
         let i = spans.partition_point(|&(_, end)| end as usize <= at);
         let inside = spans.get(i).is_some_and(|&(start, _)| start as usize <= at);
-        if inside && found.last().is_none_or(|(last, _)| *last != i) {
-            found.push((i, parse_one(text, spans, i)?));
+        if inside && found.last() != Some(&i) {
+            found.push(i);
         }
     }
-    Some(found)
+    found
 }
 
 /// Top-level statement `i` of `text`, parsed alone.

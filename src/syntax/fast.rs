@@ -64,18 +64,87 @@ pub(super) fn parse_each(
         match c.statement() {
             Some(s) => each(s),
             None => {
-                if fallback == Fallback::Line {
-                    let line = |n: usize| text.as_bytes().get(start + n + 1);
-                    let word = |n: &usize| line(*n).is_some_and(u8::is_ascii_alphabetic);
-                    let next = text[start..].match_indices('\n').map(|(n, _)| n).find(word);
-                    let within = next.map_or(text, |n| &text[..start + n + 1]);
-                    pest_statement(file, within, start, &mut Vec::new())?;
+                match fallback {
+                    Fallback::Line => {
+                        pest_statement(file, within_line(text, start), start, &mut Vec::new())?;
+                    }
+                    Fallback::Whole if fails_over_a_run(file, text, start) => return None,
+                    Fallback::Whole => {}
                 }
                 let (s, end) = pest_statement(file, text, start, &mut diags)?;
                 each(s);
                 c.pos = end;
             }
         }
+    }
+}
+
+/// `text` up to the first line after `start` that starts with a word in its first column (all of
+/// it when there is none): where [`Fallback::Line`] has pest parse a statement first.
+fn within_line(text: &str, start: usize) -> &str {
+    let line = |n: usize| text.as_bytes().get(start + n + 1);
+    let word = |n: &usize| line(*n).is_some_and(u8::is_ascii_alphabetic);
+    let next = text[start..].match_indices('\n').map(|(n, _)| n).find(word);
+    next.map_or(text, |n| &text[..start + n + 1])
+}
+
+/// Whether pest fails on the statement at `start` (one the fast parser does not accept) in
+/// the whole `text`, told without pest reading the `object`s and `group`s after it: when it
+/// fails within [`within_line`] and leaves a bracket open before the run of them from the
+/// first line after `start` that starts with one ([`nesting_run`], the fast parser alone),
+/// which a `{` left open at `start` would take as its items, that run is spared as
+/// `tail::statement_fails` argues. `false` when it cannot tell (pest parses it whole).
+fn fails_over_a_run(file: FileId, text: &str, start: usize) -> bool {
+    if pest_statement(file, within_line(text, start), start, &mut Vec::new()).is_some() {
+        return false;
+    }
+    let mut from = start;
+    let first = loop {
+        let Some(line) = text.get(from..).and_then(|t| t.find('\n')) else {
+            return false;
+        };
+        from += line + 1;
+        if super::tail::nests(&text[from..]) {
+            break from;
+        }
+    };
+    // With nothing left open before the run, pest fails before it (a stray `=`) or reads past
+    // it for another reason: the run would be parsed for nothing.
+    if super::scan::unclosed(&text[start..first]).is_none() {
+        return false;
+    }
+    let mut c = Cursor::new(file, text);
+    let (run, _) = nesting_run(&mut c, first, &mut |_| None);
+    super::tail::statement_fails(text, start, &run)
+}
+
+/// The run of `object` and `group` statements from `from` (where one starts), each parsed at
+/// its place by the fast parser or, when it does not accept one, `fallback` (its end, or
+/// `None`), with only blanks and comments between them: their byte ranges, and where the run
+/// stops (past the blanks and comments after the last: the end of the text, or the first byte
+/// that does not continue the run).
+fn nesting_run(
+    c: &mut Cursor,
+    from: usize,
+    fallback: &mut dyn FnMut(usize) -> Option<usize>,
+) -> (Vec<(usize, usize)>, usize) {
+    let mut run = Vec::new();
+    c.pos = from;
+    loop {
+        c.skip();
+        let at = c.pos;
+        if at >= c.text.len() || !super::tail::nests(&c.text[at..]) {
+            return (run, at);
+        }
+        let after = match c.statement() {
+            Some(_) => c.pos,
+            None => match fallback(at) {
+                Some(after) => after,
+                None => return (run, at),
+            },
+        };
+        run.push((at, after));
+        c.pos = after;
     }
 }
 
@@ -127,9 +196,9 @@ pub(super) fn nesting_tail(
     };
     let mut c = Cursor::new(file, text);
     let mut from = start;
-    let mut run = Vec::new();
     let mut diags = Vec::new();
-    'candidates: loop {
+    let mut pest = |at: usize| pest_statement(file, text, at, &mut diags).map(|(_, after)| after);
+    loop {
         // The next line start past `from` with an `object` or `group` on it.
         let Some(line) = text.get(from..).and_then(|t| t.find('\n')) else {
             return Vec::new();
@@ -138,31 +207,11 @@ pub(super) fn nesting_tail(
         if !super::tail::nests(&text[from..]) {
             continue;
         }
-        run.clear();
-        c.pos = from;
-        loop {
-            c.skip();
-            if c.pos == end {
-                return run;
-            }
-            let at = c.pos;
-            if !super::tail::nests(&text[at..]) {
-                from = at;
-                continue 'candidates;
-            }
-            let after = match c.statement() {
-                Some(_) => c.pos,
-                None => match pest_statement(file, text, at, &mut diags) {
-                    Some((_, after)) => after,
-                    None => {
-                        from = at;
-                        continue 'candidates;
-                    }
-                },
-            };
-            run.push((at, after));
-            c.pos = after;
+        let (run, stop) = nesting_run(&mut c, from, &mut pest);
+        if stop == end {
+            return run;
         }
+        from = stop;
     }
 }
 
@@ -184,6 +233,9 @@ fn statements_between(file: FileId, text: &str, start: usize, end: usize) -> Opt
         match c.statement() {
             Some(s) => statements.push(s),
             None => {
+                if fails_over_a_run(file, text, at) {
+                    return None;
+                }
                 let (s, after) = pest_statement(file, text, at, &mut diags)?;
                 if !diags.is_empty() {
                     return None;

@@ -83,6 +83,42 @@ pub(super) fn error(
     Some((diag, tail.len() - 1))
 }
 
+/// Whether pest's `Rule::statement` fails at `start` of `text`, told without parsing the run
+/// `run` (byte ranges of statements after `start`, each known to parse as the `object` or
+/// `group` rule at its place over exactly its range, with only blanks and comments between
+/// them): the whole-file parse of a statement cut inside its braces, whose open `{` would have
+/// pest read every later `object` as its items. With `A` the text from `start` to the first of
+/// the run, `T = s1 w1 … sn` the run and `R` the rest of the text (`wn` and all after it), pest
+/// is run on `A s1 R` instead of `A T R`, and the two fail alike (the argument of [`error`],
+/// with `R` in place of the chunk's end): when `A` ends with a newline and `T` has no `]`, `*/`
+/// or `/*`, a token begun in `A` either ends before `s1` or (an array, a block comment) runs
+/// through `T` into `R` and ends at the same place of `R` in both; otherwise the only rules
+/// that consume `s1` are `object` and `group` at its start, as an item of a block (the `{` of
+/// `s1` belongs to a block, whose rules need before it what `s1` has not), and then `w1 s2 …
+/// sn` are consumed as items of that block too, each as its rule, so both parses reach `R`
+/// in the same state and go on alike; a parse that does not consume `s1` reads nothing past
+/// it. `false` when it cannot tell (fewer than two in the run, a condition unmet, or the
+/// shortened statement parses): the caller parses the whole text.
+pub(super) fn statement_fails(text: &str, start: usize, run: &[(usize, usize)]) -> bool {
+    let bytes = text.as_bytes();
+    let (Some(&(p, s1_end)), Some(&(_, sn_end))) = (run.first(), run.last()) else {
+        return false;
+    };
+    if run.len() < 2 || p <= start || p.checked_sub(1).and_then(|i| bytes.get(i)) != Some(&b'\n') {
+        return false;
+    }
+    let Some(t) = bytes.get(p..sn_end) else {
+        return false;
+    };
+    let crosses = memchr::memchr(b']', t).is_some()
+        || memchr::memmem::find(t, b"*/").is_some()
+        || memchr::memmem::find(t, b"/*").is_some();
+    let (Some(head), Some(rest)) = (text.get(start..s1_end), text.get(sn_end..)) else {
+        return false;
+    };
+    !crosses && SceneParser::parse(Rule::statement, &[head, rest].concat()).is_err()
+}
+
 /// Whether a statement's text is an `object` or a `group`: the statements that also parse as
 /// items of a block.
 pub(crate) fn nests(stmt: &str) -> bool {

@@ -289,3 +289,69 @@ fn cut_object_line(rng: &mut Rng, text: &str) -> String {
     let cut = at + 1 + rng.below(line_end - at - 1);
     format!("{}\n{}", &text[..cut], &text[line_end..])
 }
+
+/// A statement cut inside its braces, which pest fails to parse before the next line that
+/// starts a word: `fails_over_a_run`'s verdict (pest would fail on it in the whole text,
+/// told without reading the `object`s after it) is pest's, on seeded cuts of object lines
+/// (with tokens typed after the cut, and a `}` line or an `include` line that may close or
+/// continue the open block later on), and the whole-file parse is pest's.
+#[test]
+fn a_cut_statements_failure_is_told_over_the_run_after_it() {
+    let mut rng = Rng(0xC07_5EED);
+    let (mut told, mut total) = (0, 0);
+    let extras = [
+        "",
+        " (1, 2",
+        " [1 2",
+        " /* c",
+        " \"str",
+        " =",
+        " }",
+        " object q {",
+        " { {",
+    ];
+    let later = [
+        "}\n",
+        "include \"a.scn\"\n",
+        "/* a comment */\n",
+        "}}\n",
+        "object box { points [1 2 3] }\n",
+        "object box { points [1 2 3] }  object box { }\n",
+        "",
+    ];
+    for _ in 0..400 {
+        let text = object_lines(&mut rng);
+        let lines: Vec<usize> = text.match_indices("\nobject").map(|(i, _)| i + 1).collect();
+        let at = lines[rng.below(lines.len())];
+        let line_end = text[at..].find('\n').map_or(text.len(), |n| at + n);
+        let cut = at + 1 + rng.below(line_end - at - 1);
+        let mut rest = text[line_end..].to_string();
+        let more = later[rng.below(later.len())];
+        let lines_after: Vec<usize> = rest.match_indices('\n').map(|(i, _)| i + 1).collect();
+        // Near the cut: inside the run after it, more often than not.
+        let put = lines_after[rng.below(lines_after.len().min(4))];
+        rest.insert_str(put.min(rest.len()), more);
+        let mutated = format!(
+            "{}{}\n{rest}",
+            &text[..cut],
+            extras[rng.below(extras.len())]
+        );
+        if crate::syntax::scan::too_deep(&mutated).is_some() {
+            continue;
+        }
+        total += 1;
+        assert_same(&mutated);
+        if super::fails_over_a_run(FileId(0), &mutated, at) {
+            use pest::Parser;
+            let whole =
+                crate::syntax::SceneParser::parse(crate::syntax::Rule::statement, &mutated[at..]);
+            assert!(
+                whole.is_err(),
+                "told to fail, but pest parses it:\n{mutated}"
+            );
+            told += 1;
+        }
+    }
+    eprintln!("{told} of {total} told");
+    assert!(told >= 120, "only {told} of {total} told");
+}
