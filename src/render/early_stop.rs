@@ -42,15 +42,13 @@
 //! alone could not have yet, [`NeighbourPrior::seen`]), and the black-pixel, emitter and
 //! sliver rules apply first. The same count lets a pixel past its first round stop on its own
 //! replicates' estimate before it alone has taken `1/target` samples (since 2026-11-26, later:
-//! at 2%, 36 samples instead of 52); where no pixel may stop after its first batch (targets
-//! tighter than `1/18`), every neighbour takes its whole first round, and those are counted
-//! ([`NeighbourPrior::seen_past_first_round`]: at 2%, 20 samples).
+//! at 2%, 36 samples instead of 52).
 //!
 //! Deterministic for any thread count and any tiling: the decisions use the neighbours' first
 //! batches only, which every pixel takes whatever happens next and which a render computes for
 //! all pixels (and a one-pixel margin around a `--tile` window) before any pixel goes on.
 
-use super::estimate::{Accumulator, FIRST_BATCH, REL_FLOOR, REPLICATES};
+use super::estimate::{Accumulator, FIRST_BATCH, REL_FLOOR};
 
 /// One-sided confidence with which an early stop's relative error is within the target.
 pub const CONFIDENCE: f64 = 0.9;
@@ -64,15 +62,6 @@ const Z_CONFIDENCE: f64 = 1.281_551_565_5;
 pub const LAST_EARLY: u32 = super::estimate::REPLICATES;
 /// The neighbourhood's half side: 1 is the 3×3 block around the pixel.
 pub const RADIUS: u32 = 1;
-/// The most neighbours a pixel has: the `(2·RADIUS+1)² − 1` pixels around it.
-pub const NEIGHBOURS: u32 = (2 * RADIUS + 1) * (2 * RADIUS + 1) - 1;
-
-/// Whether a pixel may stop after its first batch at `target`: only if that batch and its
-/// neighbours' can make up `1/target` samples ([`NeighbourPrior::seen`]). If not (targets
-/// tighter than `1/18`), every pixel takes its whole first round whatever follows.
-pub fn first_batch_stop_possible(target: f64) -> bool {
-    f64::from(FIRST_BATCH * (1 + NEIGHBOURS)) >= 1.0 / target
-}
 
 /// The neighbours' first batches, pooled: their per-sample relative variance, its degrees of
 /// freedom and their samples.
@@ -85,8 +74,6 @@ pub struct NeighbourPrior {
     dof: f64,
     /// Samples the neighbours took, black ones included.
     samples: u32,
-    /// Neighbours pooled (fewer than [`NEIGHBOURS`] at the image's edge).
-    neighbours: u32,
 }
 
 impl NeighbourPrior {
@@ -97,27 +84,11 @@ impl NeighbourPrior {
         own.saturating_add(self.samples)
     }
 
-    /// What a pixel past its first round counts towards the rule of three at `target`: its own
-    /// samples and its neighbours' whole first rounds where no pixel may stop after its first
-    /// batch ([`first_batch_stop_possible`]: each neighbour then takes its first round whatever
-    /// follows), else their first batches ([`NeighbourPrior::seen`]). At 2% a pixel may so stop
-    /// after 20 samples (20 + 8·4 ≥ 50) instead of 36: cornell's walls, which measured a third
-    /// of the target there, pooled 0.54× the target over seeds 7–14 (worst seed 0.46×), now
-    /// 0.71× (0.63×; docs/quality.md).
-    pub fn seen_past_first_round(&self, own: u32, target: f64) -> u32 {
-        if first_batch_stop_possible(target) {
-            self.seen(own)
-        } else {
-            own.saturating_add(self.neighbours * REPLICATES)
-        }
-    }
-
     /// Pools the neighbours' first-batch accumulators (the pixel's own excluded).
     pub fn pool<'a>(neighbours: impl IntoIterator<Item = &'a Accumulator>) -> NeighbourPrior {
         let mut prior = NeighbourPrior::default();
         let mut weighted = 0.0;
         for acc in neighbours {
-            prior.neighbours += 1;
             prior.samples += acc.count();
             if let Some((r, dof)) = acc.relative_sample_variance() {
                 weighted += r * dof;
@@ -454,22 +425,5 @@ mod tests {
             confident_error(&flat, &flat_prior, &FirstBatchSpread::default(), 0.02),
             None
         );
-    }
-
-    #[test]
-    fn past_the_first_round_neighbours_count_their_first_rounds_where_none_stops_before() {
-        // First batches of 2 samples, as the first pass takes them; five neighbours at an edge.
-        let first = pixel(&[1.0, 1.05]);
-        let prior = NeighbourPrior::pool(&[first; 8]);
-        let edge = NeighbourPrior::pool(&[first; 5]);
-        // At 10% a neighbour may stop after its first batch: only that batch counts.
-        assert!(first_batch_stop_possible(0.1));
-        assert_eq!(prior.seen_past_first_round(20, 0.1), 36);
-        // At 5% (2 + 16 < 20) and 2% none may: each neighbour's first round (4) counts, so
-        // 20 samples of its own let a pixel at 2% stop (20 + 32 ≥ 50), 36 before.
-        assert!(!first_batch_stop_possible(0.05));
-        assert_eq!(prior.seen_past_first_round(20, 0.02), 52);
-        assert_eq!(prior.seen(20), 36);
-        assert_eq!(edge.seen_past_first_round(20, 0.02), 40);
     }
 }

@@ -104,10 +104,9 @@ pub const MIN_PER_TARGET: f64 = 1.0;
 /// unseen event can still be worth (the rule of three, as the black-pixel term does for
 /// all-black pixels), without entering the reported estimate. Counted, once the pixel may lean
 /// on its neighbourhood, over its own samples and its 8 neighbours' first batches
-/// (`early_stop::NeighbourPrior::seen`), or their first rounds where no pixel may stop before
-/// them (`early_stop::NeighbourPrior::seen_past_first_round`): the pixel's own count alone kept
-/// three quarters of cornell's pixels at 2% sampling to 52, where they estimated 0.33× the
-/// target and measured less than the references' own noise (docs/quality.md).
+/// (`early_stop::NeighbourPrior::seen`): the pixel's own count alone kept three quarters of
+/// cornell's pixels at 2% sampling to 52, where they estimated 0.33× the target and measured
+/// less than the references' own noise (docs/quality.md).
 pub fn min_samples(target: f64) -> u32 {
     (MIN_PER_TARGET / target.max(1e-6))
         .ceil()

@@ -512,12 +512,9 @@ impl Job<'_> {
                 if let Some(e) = early_stop::confident_error(&acc, &prior, &spread, a.target) {
                     return acc.finish_with(taken, false, e);
                 }
-            } else if prior.seen_past_first_round(taken, a.target) >= a.min
-                && acc.relative_error() <= a.target
-            {
-                // `1/target` samples counted over the pixel and its neighbours' first batches,
-                // or first rounds where none may stop before (the rule of three, as for the
-                // early stop).
+            } else if prior.seen(taken) >= a.min && acc.relative_error() <= a.target {
+                // `1/target` samples counted over the pixel and its neighbours' first batches
+                // (the rule of three, as for the early stop).
                 return acc.finish(taken, false);
             }
         }
