@@ -25,7 +25,10 @@ mod added;
 mod compact;
 mod decls;
 mod lets;
+mod redo;
+mod reevaluate;
 mod settings;
+mod splice_decls;
 
 pub use compact::Dropped;
 pub use decls::Dependents;

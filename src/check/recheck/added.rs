@@ -128,7 +128,7 @@ impl CheckMemo {
         d: &Decl,
         relowered: &mut Relowered,
     ) -> Option<()> {
-        if ns == Namespace::Material && super::decls::names_a_normal_map(d) {
+        if ns == Namespace::Material && super::redo::names_a_normal_map(d) {
             return None;
         }
         let mut cx = self.lend(sources);
