@@ -14,7 +14,8 @@
 //! compacted again), and a `material`, `mesh` or `texture` value edit that gives a diagnostic
 //! (a digit, or its kind misspelt: not lowered) and the edit that takes it out again, and a
 //! `material`, `mesh` or `texture` nothing names inserted and deleted (the tables' indices
-//! after it move). Two focused replays beside it: a number of a camera, a light or the render
+//! after it move), and a `group` edited (a digit, a nested group's name among them; an object's
+//! material and mesh replaced; an object added to it). Two focused replays beside it: a number of a camera, a light or the render
 //! block changed (fast whenever the scene keeps only its own warning), and a `let` given an
 //! error and put back (fast whenever no other error stands).
 
@@ -50,8 +51,14 @@ fn base_scene() -> String {
             i % 5
         ));
         if i % 8 == 3 {
+            // One group holds another.
+            let nested = if i == 11 {
+                "  group h11 { transform { rotate y 10deg }  object box1 { material m2 } }"
+            } else {
+                ""
+            };
             s.push_str(&format!(
-                "group g{i} {{ transform {{ translate (0, {i}, 0) }}  object ball {{ material m1 }} }}\n"
+                "group g{i} {{ transform {{ translate (0, {i}, 0) }}  object ball {{ material m1 }}{nested} }}\n"
             ));
         }
     }
@@ -108,10 +115,14 @@ enum Kind {
     DeclInsert,
     /// Such a line deleted.
     DeclDelete,
+    /// A `group` line edited, its names kept or a nested one's renamed: a digit of its body,
+    /// an object's material and mesh in it replaced by other declared ones (which may make
+    /// one used or unused), or an object added to it.
+    GroupEdit,
 }
 
 /// The edits of whole lines asserted to take the fast path, in [`Replayed::line_edits`].
-const LINE_KINDS: [Kind; 16] = [
+const LINE_KINDS: [Kind; 17] = [
     Kind::ObjectInsert,
     Kind::ObjectDelete,
     Kind::ObjectTypo,
@@ -128,6 +139,7 @@ const LINE_KINDS: [Kind; 16] = [
     Kind::DeclFixed,
     Kind::DeclInsert,
     Kind::DeclDelete,
+    Kind::GroupEdit,
 ];
 
 /// The mesh and material an `object` line names (`object MESH { material MATERIAL ...`).
@@ -185,7 +197,40 @@ fn edit(rng: &mut SplitMix64, text: &str) -> (String, Option<(Kind, String)>) {
     let lines: Vec<&str> = text.split_inclusive('\n').collect();
     let line = rng.below(lines.len());
     let mut out: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
-    match rng.below(27) {
+    match rng.below(29) {
+        // A group edited, its names kept.
+        27 | 28 => {
+            let groups: Vec<usize> = (0..lines.len())
+                .filter(|&i| lines[i].starts_with("group "))
+                .collect();
+            let Some(&i) = groups.get(rng.below(groups.len())) else {
+                return (text.to_string(), None);
+            };
+            let line = &mut out[i];
+            let body = line.find('{').unwrap_or(0);
+            match rng.below(3) {
+                0 => {
+                    if !replace_digit(rng, line, body) {
+                        return (text.to_string(), None);
+                    }
+                }
+                1 => {
+                    let at = line.find("material ").unwrap_or(0) + "material ".len();
+                    let end = at + line[at..].find(' ').unwrap_or(0);
+                    let to = ["m0", "m1", "m2", "m3", "floor"][rng.below(5)];
+                    line.replace_range(at..end, to);
+                    // Its mesh too, now and then the one nothing else places.
+                    let to = ["box1", "ball", "spare"][rng.below(3)];
+                    *line = line.replacen("object ball ", &format!("object {to} "), 1);
+                }
+                _ => {
+                    let end = line.rfind('}').unwrap_or(0);
+                    let object = format!(" object ball {{ material m{} }} ", rng.below(4));
+                    line.insert_str(end, &object);
+                }
+            }
+            return (out.concat(), Some((Kind::GroupEdit, String::new())));
+        }
         // A declaration nothing names inserted (a material, a mesh, a texture), or one deleted.
         25 | 26 => {
             if let Some(i) = (0..out.len()).find(|&i| out[i].contains(" added")) {
@@ -497,7 +542,7 @@ struct Replayed {
     /// Per line edit of [`LINE_KINDS`] (an object inserted, deleted, its material misspelt and
     /// put back; a `let` nothing names inserted, deleted) made to a scene that compiled without
     /// an error: made, and those that took the fast path.
-    line_edits: [(usize, usize); 16],
+    line_edits: [(usize, usize); 17],
     /// Value edits of a `material`, `mesh` or `texture` of a clean scene that gave an error.
     decl_errors: usize,
 }
@@ -639,7 +684,8 @@ fn seeded_edits_compile_as_a_fresh_compile_does() {
     eprintln!(
         "object line inserted, deleted, material misspelt, put back, syntax broken, put back; \
          a half-typed object line, taken out; unused let inserted, deleted, cut, put back; an object's mesh or \
-         material changed; a declaration's diagnostic taken out (made, fast) {:?}; declaration \
+         material changed; a declaration's diagnostic taken out, inserted, deleted; a group \
+         edited (made, fast) {:?}; declaration \
          value edits that gave an error {}",
         total.line_edits, total.decl_errors
     );
@@ -1098,4 +1144,68 @@ fn a_let_edit_that_gives_or_takes_an_error_is_checked_with_what_names_it() {
         "only {} edits gave or took an error",
         made[1]
     );
+}
+
+/// A `group` edited with its names kept (a transform's digit, an object's material replaced
+/// by one nothing else uses, an object added to it, inside a nested group), and a `let` only a
+/// group names changed: checked as an edit of objects is, each result the full compile's.
+#[test]
+fn a_group_edit_is_checked_with_its_names_kept() {
+    let scene = base_scene().replace(
+        "let spin = 15deg\n",
+        "let spin = 15deg\nlet lift = 4\n\
+         material lone = phong { diffuse #777 }\n\
+         group deck { transform { translate (0, lift, 0) }  object ball { material m0 }\n  \
+         group inner { object box1 { material m3 } } }\n",
+    );
+    let mut inc = Incremental::new(Overrides::default());
+    let mut text = scene.clone();
+    let (_, label) = compile_as_a_full_compile_does(&mut inc, &text, "first");
+    assert_eq!(inc.reuse, Reuse::Full, "{label}");
+    let edits = [
+        ("translate (0, 3, 0)", "translate (0, 5, 0)"),
+        (
+            "group inner { object box1 { material m3 }",
+            "group inner { object box1 { material lone }",
+        ),
+        (
+            "group inner { object box1 { material lone }",
+            "group inner { object box1 { material m3 }",
+        ),
+        (
+            "object ball { material m0 }\n",
+            "object ball { material m0 }  object ball { material m2 }\n",
+        ),
+        ("let lift = 4", "let lift = 6"),
+        (
+            "group inner { object box1 { material m3 }",
+            "group inner { object box1 { material nosuch }",
+        ),
+        (
+            "group inner { object box1 { material nosuch }",
+            "group inner { object box1 { material m3 }",
+        ),
+        // The group's object names a material that fails to lower (an error: the IR holds a 0
+        // in its place) while the group is edited, then the material is fixed.
+        (
+            "group inner { object box1 { material m3 }",
+            "group inner { object box1 { material lone }",
+        ),
+        ("diffuse #777", "diffuse rgb(1.5, 0.5, 0.5)"),
+        ("translate (0, lift, 0)", "translate (0, lift, 1)"),
+        ("diffuse rgb(1.5, 0.5, 0.5)", "diffuse #777"),
+        // A nested group renamed, and renamed back.
+        ("group inner {", "group outer {"),
+        ("group outer {", "group inner {"),
+    ];
+    for (from, to) in edits {
+        let edited = text.replacen(from, to, 1);
+        assert_ne!(edited, text, "{from}");
+        text = edited;
+        let (_, label) = compile_as_a_full_compile_does(&mut inc, &text, to);
+        assert!(
+            matches!(inc.reuse, Reuse::Statements { .. }),
+            "{label}: a group edit took the full path"
+        );
+    }
 }

@@ -14,7 +14,9 @@
 //! statement, a redeclaration (not the first of its name), an `obj` mesh, an `image` texture,
 //! a material with a normal map (its warning reads the texture's IR), a `let` that a
 //! `--define` overrides or that names a constant declared after it, and a constant named by
-//! any other kind of statement (a camera, a light, a group, the render block) make it decline.
+//! any other kind of statement (a camera, a light, the render block) make it decline. A `group`
+//! that names a changed constant is checked again as an edited group is ([`super::groups`]:
+//! its names kept in the group table, its uses of meshes and materials the same as before).
 //! So the names and their table indices stay. A declaration's diagnostics (before the
 //! placement phase: an albedo above 1, an unknown kind) lie in its own text; those of each
 //! declaration checked again are replaced by its new ones (the order among statements is the
@@ -62,6 +64,8 @@ pub(super) struct Redone {
     /// those declarations' spans (in the new text).
     pub(super) early: Vec<Diagnostic>,
     pub(super) early_spans: Vec<Span>,
+    /// The `group`s checked again (they name a changed constant): their spans.
+    pub(super) group_spans: Vec<Span>,
     /// Statements checked again.
     pub(super) checked: usize,
 }

@@ -10,6 +10,7 @@ use std::collections::BTreeMap;
 use super::super::names::Namespace;
 use super::super::{Checker, StmtRecord};
 use super::decls::{Dependents, Redone};
+use super::groups::declared_groups;
 use super::reevaluate::reevaluate;
 use crate::diag::Diagnostic;
 use crate::source::Span;
@@ -106,6 +107,11 @@ pub(super) fn redo(
                 let texture = cx.texture(d);
                 redone.relowered.textures.push((at, texture));
             }
+            Stmt::Group(_) => {
+                let (record, diags, objects) = group_again(cx, &stmt, *records.get(i)?)?;
+                redone.objects.insert(i, (record, diags, objects));
+                redone.group_spans.push(stmt.span());
+            }
             _ => return None,
         }
         if let Stmt::Decl(d) = &stmt {
@@ -151,4 +157,44 @@ fn forget_use(uses: &mut [u32], at: Option<u32>) -> Option<()> {
         *n = n.checked_sub(1)?;
     }
     Some(())
+}
+
+/// A `group` that names a changed constant (its text unchanged, moved: its names are the
+/// table's at their spans already) checked again, as [`super::groups`] checks an edited one:
+/// against an empty group table (its names must each be the first of theirs), its uses of
+/// meshes and materials the same as before (the same names resolve the same way), so put back
+/// as they were. Its record, diagnostics and objects (table indices).
+fn group_again(
+    cx: &mut Checker,
+    stmt: &Stmt,
+    old: StmtRecord,
+) -> Option<(StmtRecord, Vec<Diagnostic>, Vec<crate::ir::Object>)> {
+    let groups = &cx.tables[Namespace::Group as usize];
+    let first = |(name, span): (&str, Span)| {
+        groups
+            .get(name)
+            .is_some_and(|at| groups.spans.get(at) == Some(&span))
+    };
+    if old.object
+        || !declared_groups(std::slice::from_ref(stmt))
+            .into_iter()
+            .all(first)
+    {
+        return None;
+    }
+    let uses = (cx.mesh_uses.clone(), cx.material_uses.clone());
+    let groups = std::mem::take(&mut cx.tables[Namespace::Group as usize]);
+    let _ = cx.placement(stmt);
+    cx.tables[Namespace::Group as usize] = groups;
+    (cx.mesh_uses, cx.material_uses) = uses;
+    let objects = std::mem::take(&mut cx.objects);
+    let diags = std::mem::take(&mut cx.diags);
+    let record = StmtRecord {
+        object: false,
+        diags: diags.len() as u32,
+        objects: objects.len() as u32,
+        mesh: None,
+        material: None,
+    };
+    Some((record, diags, objects))
 }

@@ -55,6 +55,7 @@ impl CheckMemo {
             material_textures,
             early,
             early_spans,
+            group_spans,
             checked,
         } = redone;
         let mut ok = true;
@@ -131,6 +132,15 @@ impl CheckMemo {
             )?;
         }
         ok &= self.dropped.shift_spans(shift);
+        // The groups' objects that name a declaration the IR does not hold, noted again.
+        let inside = |s: &Span| {
+            (group_spans.iter()).any(|g| g.file == s.file && (g.start..g.end).contains(&s.start))
+        };
+        self.dropped.unresolved.retain(|(s, _, _)| !inside(s));
+        for (record, _, objects) in objects.values() {
+            let unresolved = self.unresolved_in_groups(std::slice::from_ref(record), objects);
+            self.dropped.unresolved.extend(unresolved);
+        }
         for (i, (record, _, _)) in objects {
             *self.records.get_mut(i)? = record;
         }
