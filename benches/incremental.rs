@@ -2,7 +2,8 @@
 //! [-- --edits N] [-- --objects N] [-- --no-watch] [-- --only Uses,BadValue]`.
 //!
 //! The scene of issue 22: 100,000 `object` statements, each with a rotate and a translate, over
-//! three meshes and 100 materials that name one constant, `gloss` (about 9 MB). Sixteen kinds
+//! three meshes and 100 materials that name one constant, `gloss`, and one `group` (about 9 MB).
+//! Seventeen kinds
 //! of edit, one line each: one object's translate in the middle of the file (a person nudging one
 //! object), one material's colour, the value of `gloss` (its 100 materials re-checked), an
 //! `object` line inserted, one deleted, an object's material misspelt then put back (every
@@ -14,7 +15,7 @@
 //! change both times), and a material's albedo set above 1 (an error, the material not
 //! lowered) and put back; a material nothing names inserted (unused: a
 //! warning) and deleted; `gloss` given an error (its materials fail quietly) and put back; the camera's eye, the light's intensity and the render block's sample
-//! count changed (one number each).
+//! count changed (one number each); a group of two objects (one in a nested group) lifted.
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
 //!    each edit (the text served from memory; diagnostics are ready when it returns).
@@ -64,6 +65,7 @@ fn scene(objects: usize) -> Vec<String> {
     s.extend((0..100).map(|m| material_line(m, m % 10)));
     // Unused (a warning) until a `Uses` edit names it.
     s.push("material spare = phong { diffuse #808080 }".into());
+    s.push(group_line(0));
     debug_assert_eq!(s.len(), HEADER);
     s.extend((0..objects).map(|i| object_line(i, 0)));
     s.push(light_line(100_000));
@@ -85,7 +87,17 @@ fn light_line(intensity: usize) -> String {
     format!("light sun = point {{ position (500, 100, 0)  intensity {intensity} }}")
 }
 
-const HEADER: usize = 108;
+/// A group of two objects, one in a nested group, lifted by `y`.
+fn group_line(y: usize) -> String {
+    format!(
+        "group cluster {{ transform {{ translate (500, {y}, 50) }}  object tree {{ material m0 }}  \
+         group twig {{ object rock {{ material m1  transform {{ scale 2 }} }} }} }}"
+    )
+}
+
+const HEADER: usize = 109;
+/// The line of the group.
+const GROUP_LINE: usize = 108;
 /// The lines of the camera and the render block.
 const CAMERA_LINE: usize = 1;
 const RENDER_LINE: usize = 2;
@@ -157,9 +169,11 @@ enum Kind {
     Light,
     /// The render block's sample count changes (9, 4, 9, …).
     Render,
+    /// The group's transform changes (it is lifted).
+    Group,
 }
 
-const KINDS: [Kind; 16] = [
+const KINDS: [Kind; 17] = [
     Kind::Object,
     Kind::Material,
     Kind::Let,
@@ -171,6 +185,7 @@ const KINDS: [Kind; 16] = [
     Kind::Camera,
     Kind::Light,
     Kind::Render,
+    Kind::Group,
     // Last: each error is taken out again (an even number of edits).
     Kind::BadValue,
     Kind::LetError,
@@ -271,6 +286,7 @@ fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String
             lines[last] = light_line(100_001 + k % 1000);
         }
         Kind::Render => lines[RENDER_LINE] = render_line([9, 4][k % 2]),
+        Kind::Group => lines[GROUP_LINE] = group_line(1 + k % 9),
     }
     let mut text = lines.join("\n");
     text.push('\n');

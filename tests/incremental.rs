@@ -15,7 +15,8 @@
 //! (a digit, or its kind misspelt: not lowered) and the edit that takes it out again, and a
 //! `material`, `mesh` or `texture` nothing names inserted and deleted (the tables' indices
 //! after it move), and a `group` edited (a digit, a nested group's name among them; an object's
-//! material and mesh replaced; an object added to it). Two focused replays beside it: a number of a camera, a light or the render
+//! material and mesh replaced; an object added to it), and a `material`, `mesh` or `texture`
+//! renamed at its declaration (what named it now names an unknown one) and named back. Two focused replays beside it: a number of a camera, a light or the render
 //! block changed (fast whenever the scene keeps only its own warning), and a `let` given an
 //! error and put back (fast whenever no other error stands).
 
@@ -119,10 +120,15 @@ enum Kind {
     /// an object's material and mesh in it replaced by other declared ones (which may make
     /// one used or unused), or an object added to it.
     GroupEdit,
+    /// A `material`, `mesh` or `texture` renamed at its declaration (what names it then names
+    /// an unknown one), when no `group` names it.
+    Rename,
+    /// The old name put back (the edit after a [`Kind::Rename`]).
+    RenameBack,
 }
 
 /// The edits of whole lines asserted to take the fast path, in [`Replayed::line_edits`].
-const LINE_KINDS: [Kind; 17] = [
+const LINE_KINDS: [Kind; 19] = [
     Kind::ObjectInsert,
     Kind::ObjectDelete,
     Kind::ObjectTypo,
@@ -140,6 +146,8 @@ const LINE_KINDS: [Kind; 17] = [
     Kind::DeclInsert,
     Kind::DeclDelete,
     Kind::GroupEdit,
+    Kind::Rename,
+    Kind::RenameBack,
 ];
 
 /// The mesh and material an `object` line names (`object MESH { material MATERIAL ...`).
@@ -197,7 +205,24 @@ fn edit(rng: &mut SplitMix64, text: &str) -> (String, Option<(Kind, String)>) {
     let lines: Vec<&str> = text.split_inclusive('\n').collect();
     let line = rng.below(lines.len());
     let mut out: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
-    match rng.below(29) {
+    match rng.below(31) {
+        // A declaration renamed, when no group names it.
+        29 | 30 => {
+            let (head, name) = [
+                ("material ", "m0"),
+                ("material ", "m3"),
+                ("mesh ", "spare"),
+                ("mesh ", "ball"),
+                ("texture ", "board"),
+            ][rng.below(5)];
+            let decl = format!("{head}{name} =");
+            let in_group = |l: &&str| l.starts_with("group") && l.contains(&format!(" {name} "));
+            if !text.contains(&decl) || lines.iter().any(in_group) {
+                return (text.to_string(), None);
+            }
+            let renamed = text.replacen(&decl, &format!("{head}{name}x ="), 1);
+            return (renamed, Some((Kind::Rename, text.to_string())));
+        }
         // A group edited, its names kept.
         27 | 28 => {
             let groups: Vec<usize> = (0..lines.len())
@@ -542,7 +567,7 @@ struct Replayed {
     /// Per line edit of [`LINE_KINDS`] (an object inserted, deleted, its material misspelt and
     /// put back; a `let` nothing names inserted, deleted) made to a scene that compiled without
     /// an error: made, and those that took the fast path.
-    line_edits: [(usize, usize); 17],
+    line_edits: [(usize, usize); 19],
     /// Value edits of a `material`, `mesh` or `texture` of a clean scene that gave an error.
     decl_errors: usize,
 }
@@ -619,10 +644,12 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
                     Kind::ObjectBroken => Some(Kind::ObjectBrokenFixed),
                     Kind::HalfTyped => Some(Kind::HalfTypedFixed),
                     Kind::LetBroken => Some(Kind::LetBrokenFixed),
+                    Kind::Rename => Some(Kind::RenameBack),
                     _ => None,
                 };
                 if let Some(fixed) = fixed {
-                    assert!(failed, "{label}: a {kind:?} edit is an error");
+                    let unused = kind == Kind::Rename;
+                    assert!(failed || unused, "{label}: a {kind:?} edit is an error");
                     text = before;
                     clean_edit = Some((fixed, String::new()));
                     continue;
@@ -685,7 +712,7 @@ fn seeded_edits_compile_as_a_fresh_compile_does() {
         "object line inserted, deleted, material misspelt, put back, syntax broken, put back; \
          a half-typed object line, taken out; unused let inserted, deleted, cut, put back; an object's mesh or \
          material changed; a declaration's diagnostic taken out, inserted, deleted; a group \
-         edited (made, fast) {:?}; declaration \
+         edited; a declaration renamed, put back (made, fast) {:?}; declaration \
          value edits that gave an error {}",
         total.line_edits, total.decl_errors
     );
@@ -734,9 +761,9 @@ fn defines_and_frame_keep_their_values_across_edits() {
         frame: 3.0,
         defines: vec![("k".into(), "frame * 2".into())],
     };
-    let r = replay(0xDEAD_BEEF, 320, overrides);
+    let r = replay(0xDEAD_BEEF, 480, overrides);
     eprintln!(
-        "fast {} of 320; number edits of clean scenes {}, fast {}",
+        "fast {} of 480; number edits of clean scenes {}, fast {}",
         r.fast, r.number_edits_of_clean_scenes, r.number_edits_fast
     );
     assert_fast_path_taken(&r, 4);
@@ -835,9 +862,15 @@ fn a_declaration_edit_rechecks_it_and_what_names_it() {
             checked: 1
         }
     );
-    // A renamed material is not the same declaration.
+    // A renamed material: it, and the 6 objects that named it (now an unknown name).
     let renamed = edit("material m3 =", "material m7 =", &mut text);
-    assert_eq!(renamed, Reuse::Full);
+    assert_eq!(
+        renamed,
+        Reuse::Statements {
+            parsed: 2,
+            checked: 7
+        }
+    );
 }
 
 #[test]
@@ -1207,5 +1240,36 @@ fn a_group_edit_is_checked_with_its_names_kept() {
             matches!(inc.reuse, Reuse::Statements { .. }),
             "{label}: a group edit took the full path"
         );
+    }
+}
+
+/// A `material`, `mesh` or `texture` renamed at its declaration: it is checked again with what
+/// names the old or the new name, and with every statement whose unknown-name diagnostic lists
+/// the names (a second rename while the first one's errors stand); one a `group` names is a
+/// full compile. Every result is the full compile's.
+#[test]
+fn a_renamed_declaration_is_checked_with_what_names_either_name() {
+    let mut inc = Incremental::new(Overrides::default());
+    let mut text = base_scene();
+    let _ = compile_as_a_full_compile_does(&mut inc, &text, "first");
+    let edits = [
+        ("material m3 =", "material m3x =", true),
+        ("material m0 =", "material mo =", true),
+        ("material m3x =", "material m3 =", true),
+        ("material mo =", "material m0 =", true),
+        ("texture board =", "texture tiles =", true),
+        ("texture tiles =", "texture board =", true),
+        ("mesh spare =", "mesh extra =", true),
+        ("mesh extra =", "mesh spare =", true),
+        // Named by a group.
+        ("material m1 =", "material m1x =", false),
+    ];
+    for (from, to, fast) in edits {
+        let edited = text.replacen(from, to, 1);
+        assert_ne!(edited, text, "{from}");
+        text = edited;
+        let (_, label) = compile_as_a_full_compile_does(&mut inc, &text, to);
+        let took = matches!(inc.reuse, Reuse::Statements { .. });
+        assert_eq!(took, fast, "{label}");
     }
 }

@@ -6,7 +6,8 @@
 //! keeps their names is re-checked in place with what names a changed constant
 //! ([`decls`]); `let`s added or removed that nothing names are checked alone ([`lets`]); a
 //! value edit of a camera, a light or the render block is checked alone ([`settings`]); an
-//! edit of `group`s that keeps their names is checked as one of `object`s ([`groups`]);
+//! edit of `group`s that keeps their names is checked as one of `object`s ([`groups`]); a
+//! renamed declaration is checked with what reads either name ([`renamed`]);
 //! everything else is a full check.
 //!
 //! Why the result is the full check's: an `object` is checked in the placement phase, after
@@ -29,6 +30,7 @@ mod groups;
 mod lets;
 mod redo;
 mod reevaluate;
+mod renamed;
 mod settings;
 mod splice_decls;
 

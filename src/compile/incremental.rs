@@ -10,7 +10,9 @@
 //! (not `image`) and `object`s, one for one and each keeping its name, it re-checks them and the statements that
 //! name a constant whose value changed ([`CheckMemo::recheck_decls`], which finds them through
 //! [`super::dependents`]). An edit of `group`s (and `object`s) that keeps the groups' names is
-//! checked as an edit of objects is ([`CheckMemo::recheck_placements`]). `let`s added or removed that nothing else names, in a scene without
+//! checked as an edit of objects is ([`CheckMemo::recheck_placements`]); a `material`, `mesh`
+//! or `texture` renamed is checked with what names either name and what has an unknown-name
+//! diagnostic of its kind (in [`CheckMemo::recheck_decls`]). `let`s added or removed that nothing else names, in a scene without
 //! a diagnostic, are checked alone ([`CheckMemo::add_or_remove_lets`]); so is a value edit of a
 //! camera, a (not `area`) light or the render block ([`CheckMemo::recheck_setting`]), and one `material`,
 //! `mesh` or `texture` that nothing names, added or removed ([`CheckMemo::add_or_remove_decl`]). An edit that breaks the

@@ -37,9 +37,11 @@
 use std::collections::BTreeMap;
 use std::ops::Range;
 
+use super::super::names::Namespace;
 use super::super::StmtRecord;
 use super::compact::Relowered;
 use super::redo::redo;
+use super::renamed::renamed;
 use super::CheckMemo;
 use crate::diag::Diagnostic;
 use crate::ir;
@@ -68,6 +70,9 @@ pub(super) struct Redone {
     pub(super) group_spans: Vec<Span>,
     /// Statements checked again.
     pub(super) checked: usize,
+    /// The declaration renamed, if one was (namespace and table index): the IR is compacted
+    /// again (its unused warning names it).
+    pub(super) renamed: Option<(Namespace, usize)>,
 }
 
 impl CheckMemo {
@@ -89,12 +94,23 @@ impl CheckMemo {
         if !same || self.records.len() < old.end {
             return None;
         }
-        if !old_stmts
-            .iter()
-            .zip(&new)
-            .all(|(o, n)| same_declaration(o, n))
-        {
+        let rename = match (old_stmts, &new[..]) {
+            ([o], [n]) => renamed(o, n),
+            _ => None,
+        };
+        let same_names = (old_stmts.iter().zip(&new)).all(|(o, n)| same_declaration(o, n));
+        if rename.is_none() && !same_names {
             return None;
+        }
+        // A renamed declaration: its table entry takes the new name, and what reads either
+        // name is checked again.
+        let mut changed = BTreeMap::new();
+        let mut renamed_at = None;
+        if let Some((ns, was, now)) = rename {
+            let at = self.rename_entry(ns, was, now)?;
+            let names = [was.name.as_str(), now.name.as_str()];
+            changed = self.rename_dependents(sources, ns, names, shift, dependents)?;
+            renamed_at = Some((ns, at, now.span));
         }
         // The old statements' own diagnostics go (their spans lie in the old text), then the
         // names and constants move to the new text: the re-check reports against them.
@@ -103,17 +119,24 @@ impl CheckMemo {
         if !self.shift_names(shift) {
             return None;
         }
+        if let Some((ns, at, span)) = renamed_at {
+            *self.tables[ns as usize].spans.get_mut(at)? = span;
+        }
         let was_used = (self.used_meshes(), self.used_materials());
-        let changed = (old.start..).zip(new).collect();
+        changed.extend((old.start..).zip(new));
         let mut cx = self.lend(sources);
         let textures = &self.material_textures;
         // A `let` may come to have a diagnostic, or lose one, only when no other error stands
         // (an unknown name's did-you-mean lists the constants, which such an edit changes).
         let clean = !self.diagnostics.iter().any(Diagnostic::is_error);
         let records = &self.records;
-        let redone = redo(&mut cx, changed, records, textures, clean, dependents);
+        let renaming = renamed_at.is_some();
+        let redone = redo(
+            &mut cx, changed, records, textures, clean, dependents, renaming,
+        );
         self.take_back(&mut cx);
-        let redone = redone?;
+        let mut redone = redone?;
+        redone.renamed = renamed_at.map(|(ns, at, _)| (ns, at));
         let used_changed = was_used != (self.used_meshes(), self.used_materials());
         self.splice_decls(sources, redone, shift, used_changed)
     }

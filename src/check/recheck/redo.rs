@@ -25,6 +25,7 @@ pub(super) fn redo(
     material_textures: &[(u32, Vec<usize>)],
     clean: bool,
     dependents: &mut Dependents,
+    renaming: bool,
 ) -> Option<Redone> {
     let (mut lets, mut others): (BTreeMap<_, _>, BTreeMap<_, _>) = changed
         .into_iter()
@@ -107,6 +108,8 @@ pub(super) fn redo(
                 let texture = cx.texture(d);
                 redone.relowered.textures.push((at, texture));
             }
+            // A group's uses, counted under the old names, are not known one by one.
+            Stmt::Group(_) if renaming => return None,
             Stmt::Group(_) => {
                 let (record, diags, objects) = group_again(cx, &stmt, *records.get(i)?)?;
                 redone.objects.insert(i, (record, diags, objects));

@@ -57,6 +57,7 @@ impl CheckMemo {
             early_spans,
             group_spans,
             checked,
+            renamed,
         } = redone;
         let mut ok = true;
         // The diagnostics before the placement phase, the placement phase's, and those after.
@@ -66,6 +67,12 @@ impl CheckMemo {
             return None;
         }
         let mut tail = self.diagnostics.split_off(before + placed);
+        if renamed.is_some() {
+            // The last pass's own (an unused warning may be the renamed one's, in the edited
+            // bytes): the re-compaction gives them again.
+            tail.truncate(tail.len().checked_sub(self.finish_diags)?);
+            self.finish_diags = 0;
+        }
         for d in &mut tail {
             ok &= d.shift_spans(shift);
         }
@@ -105,6 +112,9 @@ impl CheckMemo {
                 (Err(_), true) => {}
             }
         }
+        // The renamed declaration's entries keep their old spans (in the edited bytes): the
+        // re-compaction puts the one lowered again in their place.
+        let aside = renamed.and_then(|(ns, at)| self.set_aside(ns, at));
         if let Some(scene) = &mut self.scene {
             let scene = std::sync::Arc::make_mut(scene);
             let old_objects = std::mem::take(&mut scene.objects);
@@ -132,6 +142,9 @@ impl CheckMemo {
             )?;
         }
         ok &= self.dropped.shift_spans(shift);
+        if let Some(aside) = aside {
+            self.put_back(aside);
+        }
         // The groups' objects that name a declaration the IR does not hold, noted again.
         let inside = |s: &Span| {
             (group_spans.iter()).any(|g| g.file == s.file && (g.start..g.end).contains(&s.start))
@@ -146,7 +159,11 @@ impl CheckMemo {
         }
         // Declarations now used or unused, lowered or not, textures now used or not: the IR's
         // indices change.
-        if used_changed || textures_changed || !self.put_in_place(&mut relowered) {
+        if used_changed
+            || textures_changed
+            || renamed.is_some()
+            || !self.put_in_place(&mut relowered)
+        {
             self.recompact(sources, relowered)?;
         }
         ok.then_some(checked)
