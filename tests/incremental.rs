@@ -1273,3 +1273,42 @@ fn a_renamed_declaration_is_checked_with_what_names_either_name() {
         assert_eq!(took, fast, "{label}");
     }
 }
+
+/// A declaration nothing names added and removed while an unknown-name diagnostic of another
+/// kind stands (its did-you-mean lists other names): checked alone; one of the same kind is a
+/// full compile (the did-you-mean would list it).
+#[test]
+fn a_declaration_added_beside_an_unknown_name_of_another_kind_is_checked_alone() {
+    let mut inc = Incremental::new(Overrides::default());
+    let text = base_scene().replacen("{ material m2 ", "{ material m2zz ", 1);
+    let _ = compile_as_a_full_compile_does(&mut inc, &text, "first");
+    let edits = [
+        ("light sun", "mesh extra = box { size 2 }\nlight sun", true),
+        ("mesh extra = box { size 2 }\n", "", true),
+        (
+            "light sun",
+            "texture extra = checker { even #fff  odd #000 }\nlight sun",
+            true,
+        ),
+        (
+            "texture extra = checker { even #fff  odd #000 }\n",
+            "",
+            true,
+        ),
+        (
+            "light sun",
+            "material extra = phong { diffuse #888 }\nlight sun",
+            false,
+        ),
+    ];
+    let mut text = text;
+    for (from, to, fast) in edits {
+        let edited = text.replacen(from, to, 1);
+        assert_ne!(edited, text, "{from}");
+        text = edited;
+        let (got, label) = compile_as_a_full_compile_does(&mut inc, &text, to);
+        assert!(got.has_errors(), "{label}: the unknown material stands");
+        let took = matches!(inc.reuse, Reuse::Statements { .. });
+        assert_eq!(took, fast, "{label}");
+    }
+}
