@@ -543,7 +543,7 @@ fn watch(objects: usize, edits: usize) {
     }
     // The errors, each then taken out: save -> the `error` event (the diagnostics; nothing is
     // built) and, for the edit taking it out, save -> `checked`, and the first pass after it.
-    for kind in KINDS.into_iter().filter(|&k| errs(k)) {
+    for kind in KINDS.into_iter().filter(|&k| errs(k) && only(k)) {
         let mut figures: [Vec<f64>; 3] = Default::default();
         for k in 0..edits + edits % 2 {
             let text = edit(&mut lines, objects, kind, 1000 + k);
