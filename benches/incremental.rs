@@ -2,7 +2,8 @@
 //! [-- --edits N] [-- --objects N] [-- --no-watch] [-- --only Uses,BadValue]`.
 //!
 //! The scene of issue 22: 100,000 `object` statements, each with a rotate and a translate, over
-//! three meshes and 100 materials that name one constant, `gloss` (about 9 MB). Eighteen kinds
+//! three meshes and 100 materials that name one constant, `gloss`, and one `group` (about 9 MB).
+//! Twenty kinds
 //! of edit, one line each: one object's translate in the middle of the file (a person nudging one
 //! object), one material's colour, the value of `gloss` (its 100 materials re-checked), an
 //! `object` line inserted, one deleted, an object's material misspelt then put back (every
@@ -14,7 +15,8 @@
 //! change both times), and a material's albedo set above 1 (an error, the material not
 //! lowered) and put back; a material nothing names inserted (unused: a
 //! warning) and deleted; `gloss` given an error (its materials fail quietly) and put back; the camera's eye, the light's intensity and the render block's sample
-//! count changed (one number each); a stray `=` typed into `let gloss` and into one material's
+//! count changed (one number each); a group of two objects (one in a nested group) lifted; material `m5`
+//! renamed (its 1,000 objects then name an unknown material) and named back; a stray `=` typed into `let gloss` and into one material's
 //! line (syntax errors that lose a constant and a declaration others name), each taken out.
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
@@ -65,6 +67,7 @@ fn scene(objects: usize) -> Vec<String> {
     s.extend((0..100).map(|m| material_line(m, m % 10)));
     // Unused (a warning) until a `Uses` edit names it.
     s.push("material spare = phong { diffuse #808080 }".into());
+    s.push(group_line(0));
     debug_assert_eq!(s.len(), HEADER);
     s.extend((0..objects).map(|i| object_line(i, 0)));
     s.push(light_line(100_000));
@@ -86,7 +89,17 @@ fn light_line(intensity: usize) -> String {
     format!("light sun = point {{ position (500, 100, 0)  intensity {intensity} }}")
 }
 
-const HEADER: usize = 108;
+/// A group of two objects, one in a nested group, lifted by `y`.
+fn group_line(y: usize) -> String {
+    format!(
+        "group cluster {{ transform {{ translate (500, {y}, 50) }}  object tree {{ material m0 }}  \
+         group twig {{ object rock {{ material m1  transform {{ scale 2 }} }} }} }}"
+    )
+}
+
+const HEADER: usize = 109;
+/// The line of the group.
+const GROUP_LINE: usize = 108;
 /// The lines of the camera and the render block.
 const CAMERA_LINE: usize = 1;
 const RENDER_LINE: usize = 2;
@@ -164,9 +177,14 @@ enum Kind {
     /// Edits 0, 2, 4, …: a stray `=` typed into one material's line (a syntax error that loses
     /// a material 1,000 objects name; another material each pair); 1, 3, 5, …: taken out.
     MaterialLost,
+    /// The group's transform changes (it is lifted).
+    Group,
+    /// Edits 0, 2, 4, …: material `m5` renamed `m5x` (its 1,000 objects now name an unknown
+    /// material: errors, each with a did-you-mean); 1, 3, 5, …: named back.
+    Rename,
 }
 
-const KINDS: [Kind; 18] = [
+const KINDS: [Kind; 20] = [
     Kind::Object,
     Kind::Material,
     Kind::Let,
@@ -178,9 +196,11 @@ const KINDS: [Kind; 18] = [
     Kind::Camera,
     Kind::Light,
     Kind::Render,
+    Kind::Group,
     // Last: each error is taken out again (an even number of edits).
     Kind::BadValue,
     Kind::LetError,
+    Kind::Rename,
     Kind::Typo,
     Kind::Stray,
     Kind::Cut,
@@ -200,6 +220,7 @@ fn errs(kind: Kind) -> bool {
             | Kind::LetError
             | Kind::LetLost
             | Kind::MaterialLost
+            | Kind::Rename
     )
 }
 
@@ -297,6 +318,17 @@ fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String
             } else {
                 material_line(m, m % 10)
             };
+        }
+        Kind::Group => lines[GROUP_LINE] = group_line(1 + k % 9),
+        Kind::Rename => {
+            let (name, renamed) = ("material m5 =", "material m5x =");
+            let (from, to) = if k.is_multiple_of(2) {
+                (name, renamed)
+            } else {
+                (renamed, name)
+            };
+            let line = &mut lines[FIRST_MATERIAL + 5];
+            *line = line.replacen(from, to, 1);
         }
     }
     let mut text = lines.join("\n");
@@ -402,9 +434,14 @@ fn front_end(objects: usize, edits: usize) {
                 assert_eq!(r.value.is_none(), k % 2 == 0, "{kind:?} edit {k}: an error");
                 // A syntax error is answered from the memo of the text before it (nothing
                 // checked); taking it out gives that text again (`Unchanged`) or another value.
-                let checks = matches!(kind, Kind::Typo | Kind::BadValue | Kind::LetError);
+                let checks = matches!(
+                    kind,
+                    Kind::Typo | Kind::BadValue | Kind::LetError | Kind::Rename
+                );
                 let checked = match kind {
                     Kind::LetError => checked(Kind::Let, k),
+                    // The material and the objects that name `m5` (or `m5x`).
+                    Kind::Rename => 1 + objects / 100 + usize::from(objects % 100 > 5),
                     _ => usize::from(checks || k % 2 == 1),
                 };
                 let unchanged = !checks && inc.reuse == Reuse::Unchanged;
@@ -462,6 +499,15 @@ fn front_end(objects: usize, edits: usize) {
     }
 }
 
+/// Saves `text` to `scn` as most editors do: written beside it, then renamed into place, so
+/// that the watcher never reads it half-written (a plain `fs::write` of the 8.8 MB file was
+/// read half-written at load 12–16: a false syntax error that stops the bench).
+fn save(scn: &Path, text: &str) {
+    let tmp = scn.with_extension("scn.saving");
+    std::fs::write(&tmp, text).expect("save");
+    std::fs::rename(&tmp, scn).expect("save: rename into place");
+}
+
 fn watch(objects: usize, edits: usize) {
     let mut lines = scene(objects);
     let original = lines.join("\n") + "\n";
@@ -487,7 +533,7 @@ fn watch(objects: usize, edits: usize) {
         for k in 0..edits {
             let text = edit(&mut lines, objects, kind, 1000 + k);
             let t0 = Instant::now();
-            std::fs::write(&scn, text).expect("save");
+            save(&scn, &text);
             let (t1, _) = wait("checked", false);
             let (t3, c) = wait("compiled", false);
             let (t2, p) = wait("pass", false);
@@ -531,7 +577,7 @@ fn watch(objects: usize, edits: usize) {
         for k in 0..edits + edits % 2 {
             let text = edit(&mut lines, objects, kind, 1000 + k);
             let t0 = Instant::now();
-            std::fs::write(&scn, text).expect("save");
+            save(&scn, &text);
             if k.is_multiple_of(2) {
                 let (t1, _) = wait("error", false);
                 figures[0].push((t1 - t0).as_secs_f64() * 1e3);

@@ -14,11 +14,13 @@
 //! compacted again), and a `material`, `mesh` or `texture` value edit that gives a diagnostic
 //! (a digit, or its kind misspelt: not lowered) and the edit that takes it out again, and a
 //! `material`, `mesh` or `texture` nothing names inserted and deleted (the tables' indices
-//! after it move). Three focused replays beside it: a number of a camera, a light or the render
-//! block changed (fast whenever the scene keeps only its own warning), a `let` given an
-//! error and put back (fast whenever no other error stands), and a syntax error that loses a
-//! `let`, `material`, `mesh` or `texture` other statements name, and the line put back (always
-//! answered from the memo).
+//! after it move), and a `group` edited (a digit, a nested group's name among them; an object's
+//! material and mesh replaced; an object added to it), and a `material`, `mesh` or `texture`
+//! renamed at its declaration (what named it now names an unknown one) and named back. Three
+//! focused replays beside it: a number of a camera, a light or the render block changed (fast
+//! whenever the scene keeps only its own warning), a `let` given an error and put back (fast
+//! whenever no other error stands), and a syntax error that loses a `let`, `material`, `mesh`
+//! or `texture` other statements name, and the line put back (always answered from the memo).
 
 use scnc::assets::MemLoader;
 use scnc::compile::{compile_with, Incremental, Overrides, Reuse};
@@ -52,8 +54,14 @@ fn base_scene() -> String {
             i % 5
         ));
         if i % 8 == 3 {
+            // One group holds another.
+            let nested = if i == 11 {
+                "  group h11 { transform { rotate y 10deg }  object box1 { material m2 } }"
+            } else {
+                ""
+            };
             s.push_str(&format!(
-                "group g{i} {{ transform {{ translate (0, {i}, 0) }}  object ball {{ material m1 }} }}\n"
+                "group g{i} {{ transform {{ translate (0, {i}, 0) }}  object ball {{ material m1 }}{nested} }}\n"
             ));
         }
     }
@@ -110,10 +118,19 @@ enum Kind {
     DeclInsert,
     /// Such a line deleted.
     DeclDelete,
+    /// A `group` line edited, its names kept or a nested one's renamed: a digit of its body,
+    /// an object's material and mesh in it replaced by other declared ones (which may make
+    /// one used or unused), or an object added to it.
+    GroupEdit,
+    /// A `material`, `mesh` or `texture` renamed at its declaration (what names it then names
+    /// an unknown one), when no `group` names it.
+    Rename,
+    /// The old name put back (the edit after a [`Kind::Rename`]).
+    RenameBack,
 }
 
 /// The edits of whole lines asserted to take the fast path, in [`Replayed::line_edits`].
-const LINE_KINDS: [Kind; 16] = [
+const LINE_KINDS: [Kind; 19] = [
     Kind::ObjectInsert,
     Kind::ObjectDelete,
     Kind::ObjectTypo,
@@ -130,6 +147,9 @@ const LINE_KINDS: [Kind; 16] = [
     Kind::DeclFixed,
     Kind::DeclInsert,
     Kind::DeclDelete,
+    Kind::GroupEdit,
+    Kind::Rename,
+    Kind::RenameBack,
 ];
 
 /// The mesh and material an `object` line names (`object MESH { material MATERIAL ...`).
@@ -187,7 +207,57 @@ fn edit(rng: &mut SplitMix64, text: &str) -> (String, Option<(Kind, String)>) {
     let lines: Vec<&str> = text.split_inclusive('\n').collect();
     let line = rng.below(lines.len());
     let mut out: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
-    match rng.below(27) {
+    match rng.below(31) {
+        // A declaration renamed, when no group names it.
+        29 | 30 => {
+            let (head, name) = [
+                ("material ", "m0"),
+                ("material ", "m3"),
+                ("mesh ", "spare"),
+                ("mesh ", "ball"),
+                ("texture ", "board"),
+            ][rng.below(5)];
+            let decl = format!("{head}{name} =");
+            let in_group = |l: &&str| l.starts_with("group") && l.contains(&format!(" {name} "));
+            if !text.contains(&decl) || lines.iter().any(in_group) {
+                return (text.to_string(), None);
+            }
+            let renamed = text.replacen(&decl, &format!("{head}{name}x ="), 1);
+            return (renamed, Some((Kind::Rename, text.to_string())));
+        }
+        // A group edited, its names kept.
+        27 | 28 => {
+            let groups: Vec<usize> = (0..lines.len())
+                .filter(|&i| lines[i].starts_with("group "))
+                .collect();
+            let Some(&i) = groups.get(rng.below(groups.len())) else {
+                return (text.to_string(), None);
+            };
+            let line = &mut out[i];
+            let body = line.find('{').unwrap_or(0);
+            match rng.below(3) {
+                0 => {
+                    if !replace_digit(rng, line, body) {
+                        return (text.to_string(), None);
+                    }
+                }
+                1 => {
+                    let at = line.find("material ").unwrap_or(0) + "material ".len();
+                    let end = at + line[at..].find(' ').unwrap_or(0);
+                    let to = ["m0", "m1", "m2", "m3", "floor"][rng.below(5)];
+                    line.replace_range(at..end, to);
+                    // Its mesh too, now and then the one nothing else places.
+                    let to = ["box1", "ball", "spare"][rng.below(3)];
+                    *line = line.replacen("object ball ", &format!("object {to} "), 1);
+                }
+                _ => {
+                    let end = line.rfind('}').unwrap_or(0);
+                    let object = format!(" object ball {{ material m{} }} ", rng.below(4));
+                    line.insert_str(end, &object);
+                }
+            }
+            return (out.concat(), Some((Kind::GroupEdit, String::new())));
+        }
         // A declaration nothing names inserted (a material, a mesh, a texture), or one deleted.
         25 | 26 => {
             if let Some(i) = (0..out.len()).find(|&i| out[i].contains(" added")) {
@@ -499,7 +569,7 @@ struct Replayed {
     /// Per line edit of [`LINE_KINDS`] (an object inserted, deleted, its material misspelt and
     /// put back; a `let` nothing names inserted, deleted) made to a scene that compiled without
     /// an error: made, and those that took the fast path.
-    line_edits: [(usize, usize); 16],
+    line_edits: [(usize, usize); 19],
     /// Value edits of a `material`, `mesh` or `texture` of a clean scene that gave an error.
     decl_errors: usize,
 }
@@ -576,10 +646,12 @@ fn replay(seed: u64, edits: usize, overrides: Overrides) -> Replayed {
                     Kind::ObjectBroken => Some(Kind::ObjectBrokenFixed),
                     Kind::HalfTyped => Some(Kind::HalfTypedFixed),
                     Kind::LetBroken => Some(Kind::LetBrokenFixed),
+                    Kind::Rename => Some(Kind::RenameBack),
                     _ => None,
                 };
                 if let Some(fixed) = fixed {
-                    assert!(failed, "{label}: a {kind:?} edit is an error");
+                    let unused = kind == Kind::Rename;
+                    assert!(failed || unused, "{label}: a {kind:?} edit is an error");
                     text = before;
                     clean_edit = Some((fixed, String::new()));
                     continue;
@@ -641,7 +713,8 @@ fn seeded_edits_compile_as_a_fresh_compile_does() {
     eprintln!(
         "object line inserted, deleted, material misspelt, put back, syntax broken, put back; \
          a half-typed object line, taken out; unused let inserted, deleted, cut, put back; an object's mesh or \
-         material changed; a declaration's diagnostic taken out (made, fast) {:?}; declaration \
+         material changed; a declaration's diagnostic taken out, inserted, deleted; a group \
+         edited; a declaration renamed, put back (made, fast) {:?}; declaration \
          value edits that gave an error {}",
         total.line_edits, total.decl_errors
     );
@@ -690,9 +763,9 @@ fn defines_and_frame_keep_their_values_across_edits() {
         frame: 3.0,
         defines: vec![("k".into(), "frame * 2".into())],
     };
-    let r = replay(0xDEAD_BEEF, 320, overrides);
+    let r = replay(0xDEAD_BEEF, 480, overrides);
     eprintln!(
-        "fast {} of 320; number edits of clean scenes {}, fast {}",
+        "fast {} of 480; number edits of clean scenes {}, fast {}",
         r.fast, r.number_edits_of_clean_scenes, r.number_edits_fast
     );
     assert_fast_path_taken(&r, 4);
@@ -791,9 +864,15 @@ fn a_declaration_edit_rechecks_it_and_what_names_it() {
             checked: 1
         }
     );
-    // A renamed material is not the same declaration.
+    // A renamed material: it, and the 6 objects that named it (now an unknown name).
     let renamed = edit("material m3 =", "material m7 =", &mut text);
-    assert_eq!(renamed, Reuse::Full);
+    assert_eq!(
+        renamed,
+        Reuse::Statements {
+            parsed: 2,
+            checked: 7
+        }
+    );
 }
 
 #[test]
@@ -1225,6 +1304,140 @@ fn a_syntax_error_that_loses_a_named_statement_is_answered_from_the_memo() {
         let label = format!("with --define k=3 ({:?})", inc.reuse);
         assert_as_full_compile(&label, &got, &sources, &loader, &overrides, &text);
         let took = matches!(inc.reuse, Reuse::Statements { checked: 0, .. });
+        assert_eq!(took, fast, "{label}");
+    }
+}
+
+/// A `group` edited with its names kept (a transform's digit, an object's material replaced
+/// by one nothing else uses, an object added to it, inside a nested group), and a `let` only a
+/// group names changed: checked as an edit of objects is, each result the full compile's.
+#[test]
+fn a_group_edit_is_checked_with_its_names_kept() {
+    let scene = base_scene().replace(
+        "let spin = 15deg\n",
+        "let spin = 15deg\nlet lift = 4\n\
+         material lone = phong { diffuse #777 }\n\
+         group deck { transform { translate (0, lift, 0) }  object ball { material m0 }\n  \
+         group inner { object box1 { material m3 } } }\n",
+    );
+    let mut inc = Incremental::new(Overrides::default());
+    let mut text = scene.clone();
+    let (_, label) = compile_as_a_full_compile_does(&mut inc, &text, "first");
+    assert_eq!(inc.reuse, Reuse::Full, "{label}");
+    let edits = [
+        ("translate (0, 3, 0)", "translate (0, 5, 0)"),
+        (
+            "group inner { object box1 { material m3 }",
+            "group inner { object box1 { material lone }",
+        ),
+        (
+            "group inner { object box1 { material lone }",
+            "group inner { object box1 { material m3 }",
+        ),
+        (
+            "object ball { material m0 }\n",
+            "object ball { material m0 }  object ball { material m2 }\n",
+        ),
+        ("let lift = 4", "let lift = 6"),
+        (
+            "group inner { object box1 { material m3 }",
+            "group inner { object box1 { material nosuch }",
+        ),
+        (
+            "group inner { object box1 { material nosuch }",
+            "group inner { object box1 { material m3 }",
+        ),
+        // The group's object names a material that fails to lower (an error: the IR holds a 0
+        // in its place) while the group is edited, then the material is fixed.
+        (
+            "group inner { object box1 { material m3 }",
+            "group inner { object box1 { material lone }",
+        ),
+        ("diffuse #777", "diffuse rgb(1.5, 0.5, 0.5)"),
+        ("translate (0, lift, 0)", "translate (0, lift, 1)"),
+        ("diffuse rgb(1.5, 0.5, 0.5)", "diffuse #777"),
+        // A nested group renamed, and renamed back.
+        ("group inner {", "group outer {"),
+        ("group outer {", "group inner {"),
+    ];
+    for (from, to) in edits {
+        let edited = text.replacen(from, to, 1);
+        assert_ne!(edited, text, "{from}");
+        text = edited;
+        let (_, label) = compile_as_a_full_compile_does(&mut inc, &text, to);
+        assert!(
+            matches!(inc.reuse, Reuse::Statements { .. }),
+            "{label}: a group edit took the full path"
+        );
+    }
+}
+
+/// A `material`, `mesh` or `texture` renamed at its declaration: it is checked again with what
+/// names the old or the new name, and with every statement whose unknown-name diagnostic lists
+/// the names (a second rename while the first one's errors stand); one a `group` names is a
+/// full compile. Every result is the full compile's.
+#[test]
+fn a_renamed_declaration_is_checked_with_what_names_either_name() {
+    let mut inc = Incremental::new(Overrides::default());
+    let mut text = base_scene();
+    let _ = compile_as_a_full_compile_does(&mut inc, &text, "first");
+    let edits = [
+        ("material m3 =", "material m3x =", true),
+        ("material m0 =", "material mo =", true),
+        ("material m3x =", "material m3 =", true),
+        ("material mo =", "material m0 =", true),
+        ("texture board =", "texture tiles =", true),
+        ("texture tiles =", "texture board =", true),
+        ("mesh spare =", "mesh extra =", true),
+        ("mesh extra =", "mesh spare =", true),
+        // Named by a group.
+        ("material m1 =", "material m1x =", false),
+    ];
+    for (from, to, fast) in edits {
+        let edited = text.replacen(from, to, 1);
+        assert_ne!(edited, text, "{from}");
+        text = edited;
+        let (_, label) = compile_as_a_full_compile_does(&mut inc, &text, to);
+        let took = matches!(inc.reuse, Reuse::Statements { .. });
+        assert_eq!(took, fast, "{label}");
+    }
+}
+
+/// A declaration nothing names added and removed while an unknown-name diagnostic of another
+/// kind stands (its did-you-mean lists other names): checked alone; one of the same kind is a
+/// full compile (the did-you-mean would list it).
+#[test]
+fn a_declaration_added_beside_an_unknown_name_of_another_kind_is_checked_alone() {
+    let mut inc = Incremental::new(Overrides::default());
+    let text = base_scene().replacen("{ material m2 ", "{ material m2zz ", 1);
+    let _ = compile_as_a_full_compile_does(&mut inc, &text, "first");
+    let edits = [
+        ("light sun", "mesh extra = box { size 2 }\nlight sun", true),
+        ("mesh extra = box { size 2 }\n", "", true),
+        (
+            "light sun",
+            "texture extra = checker { even #fff  odd #000 }\nlight sun",
+            true,
+        ),
+        (
+            "texture extra = checker { even #fff  odd #000 }\n",
+            "",
+            true,
+        ),
+        (
+            "light sun",
+            "material extra = phong { diffuse #888 }\nlight sun",
+            false,
+        ),
+    ];
+    let mut text = text;
+    for (from, to, fast) in edits {
+        let edited = text.replacen(from, to, 1);
+        assert_ne!(edited, text, "{from}");
+        text = edited;
+        let (got, label) = compile_as_a_full_compile_does(&mut inc, &text, to);
+        assert!(got.has_errors(), "{label}: the unknown material stands");
+        let took = matches!(inc.reuse, Reuse::Statements { .. });
         assert_eq!(took, fast, "{label}");
     }
 }

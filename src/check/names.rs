@@ -47,7 +47,7 @@ impl Namespace {
 
     /// Nothing refers to a light or a group by name yet, so an unknown one cannot be reported;
     /// when something does, that namespace gets its own code.
-    fn unknown_code(self) -> Code {
+    pub(in crate::check) fn unknown_code(self) -> Code {
         match self {
             Namespace::Texture => Code::CheckUnknownTexture,
             Namespace::Material => Code::CheckUnknownMaterial,

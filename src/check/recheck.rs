@@ -5,7 +5,9 @@
 //! when an edit is such an edit). An edit of `let`, `material` and `mesh` declarations that
 //! keeps their names is re-checked in place with what names a changed constant
 //! ([`decls`]); `let`s added or removed that nothing names are checked alone ([`lets`]); a
-//! value edit of a camera, a light or the render block is checked alone ([`settings`]);
+//! value edit of a camera, a light or the render block is checked alone ([`settings`]); an
+//! edit of `group`s that keeps their names is checked as one of `object`s ([`groups`]); a
+//! renamed declaration is checked with what reads either name ([`renamed`]);
 //! everything else is a full check.
 //!
 //! Why the result is the full check's: an `object` is checked in the placement phase, after
@@ -24,13 +26,18 @@ use std::sync::Arc;
 mod added;
 mod compact;
 mod decls;
+mod groups;
 mod lets;
+mod redo;
+mod reevaluate;
+mod renamed;
 mod settings;
+mod splice_decls;
 
 pub use compact::Dropped;
 pub use decls::Dependents;
 
-use super::names::Table;
+use super::names::{Namespace, Table};
 use super::{Checker, PlacementStart, StmtRecord};
 use crate::diag::Diagnostic;
 use crate::ir;
@@ -232,22 +239,25 @@ impl CheckMemo {
         ok
     }
 
-    /// Checks `new` (top-level `object`s) as the placement phase would, against the memo's
-    /// constants and tables, counting their uses.
+    /// Checks `new` (top-level `object`s and `group`s) as the placement phase would, against
+    /// the memo's constants and tables, counting their uses. The groups are checked against an
+    /// empty group table (the caller answers for their names: [`groups`]).
     fn check_objects(&mut self, sources: &SourceMap, new: &[Stmt]) -> Rechecked {
         let mut cx = self.lend(sources);
+        let groups = std::mem::take(&mut cx.tables[Namespace::Group as usize]);
         let mut records = Vec::with_capacity(new.len());
         for stmt in new {
             let (diags, objects) = (cx.diags.len(), cx.objects.len());
             let (mesh, material) = cx.placement(stmt);
             records.push(StmtRecord {
-                object: true,
+                object: matches!(stmt, Stmt::Object(_)),
                 diags: (cx.diags.len() - diags) as u32,
                 objects: (cx.objects.len() - objects) as u32,
                 mesh: mesh.map(|m| m as u32),
                 material: material.map(|m| m as u32),
             });
         }
+        cx.tables[Namespace::Group as usize] = groups;
         self.take_back(&mut cx);
         Rechecked {
             diags: std::mem::take(&mut cx.diags),

@@ -9,7 +9,10 @@
 //! edit. When the changed statements are `let`s, `material`s, `mesh`es (not `obj`), `texture`s
 //! (not `image`) and `object`s, one for one and each keeping its name, it re-checks them and the statements that
 //! name a constant whose value changed ([`CheckMemo::recheck_decls`], which finds them through
-//! [`super::dependents`]). `let`s added or removed that nothing else names, in a scene without
+//! [`super::dependents`]). An edit of `group`s (and `object`s) that keeps the groups' names is
+//! checked as an edit of objects is ([`CheckMemo::recheck_placements`]); a `material`, `mesh`
+//! or `texture` renamed is checked with what names either name and what has an unknown-name
+//! diagnostic of its kind (in [`CheckMemo::recheck_decls`]). `let`s added or removed that nothing else names, in a scene without
 //! a diagnostic, are checked alone ([`CheckMemo::add_or_remove_lets`]); so is a value edit of a
 //! camera, a (not `area`) light or the render block ([`CheckMemo::recheck_setting`]), and one `material`,
 //! `mesh` or `texture` that nothing names, added or removed ([`CheckMemo::add_or_remove_decl`]). An edit that breaks the
@@ -257,8 +260,20 @@ impl Memo {
                 ([old], [new]) if CheckMemo::same_setting(old, new) => Some((old, new)),
                 _ => None,
             };
+            let groups = (old_stmts.iter().chain(&new)).any(|s| matches!(s, Stmt::Group(_)));
             if let Some((old, new)) = setting {
                 self.check.recheck_setting(&sources, old, new, shift)?
+            } else if groups {
+                let old_sources = &self.sources;
+                let check = &mut self.check;
+                check.recheck_placements(
+                    old_sources,
+                    &sources,
+                    old_range,
+                    &old_stmts,
+                    &new,
+                    shift,
+                )?
             } else if old_stmts.is_empty() != new.is_empty() {
                 let add_or_remove = if lets {
                     CheckMemo::add_or_remove_lets

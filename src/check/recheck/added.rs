@@ -6,7 +6,8 @@
 //! Why the result is the full check's: nothing names the declaration (the whole-word search of
 //! the new text through [`Dependents`] finds only its own statement when added, none when
 //! removed), so no other statement checks differently; and no diagnostic lists the names of
-//! its namespace (an unknown name's did-you-mean: the edit declines while there is one). What
+//! its namespace (an unknown name's did-you-mean of its kind: the edit declines while there is
+//! one; one of another kind lists other names). What
 //! changes is its table: a declaration's table index is its place among those of its kind in
 //! statement order, so the added one is put at its place and every table index after it (in
 //! statement records, use counts, index maps, texture lists, dropped declarations) moves up by
@@ -21,7 +22,7 @@ use super::super::names::Namespace;
 use super::super::StmtRecord;
 use super::compact::Relowered;
 use super::{CheckMemo, Dependents, Rechecked};
-use crate::diag::{Code, Diagnostic};
+use crate::diag::Diagnostic;
 use crate::source::{Shift, SourceMap};
 use crate::syntax::{Decl, DeclKind, Stmt};
 
@@ -56,12 +57,8 @@ impl CheckMemo {
             _ => return None,
         };
         let ns = namespace(d)?;
-        let unknown = |d: &Diagnostic| {
-            matches!(
-                d.code,
-                Code::CheckUnknownMaterial | Code::CheckUnknownMesh | Code::CheckUnknownTexture
-            )
-        };
+        // An unknown name's did-you-mean lists the names of its own namespace only.
+        let unknown = |d: &Diagnostic| d.code == ns.unknown_code();
         if old.len() != old_stmts.len() || self.diagnostics.iter().any(unknown) {
             return None;
         }
@@ -128,7 +125,7 @@ impl CheckMemo {
         d: &Decl,
         relowered: &mut Relowered,
     ) -> Option<()> {
-        if ns == Namespace::Material && super::decls::names_a_normal_map(d) {
+        if ns == Namespace::Material && super::redo::names_a_normal_map(d) {
             return None;
         }
         let mut cx = self.lend(sources);

@@ -1,0 +1,203 @@
+//! Stage 2, check, incrementally: the statements of a declaration edit ([`super::decls`])
+//! checked again against the memo's state — the `let`s first, in statement order, each
+//! evaluated again ([`super::reevaluate`]) and followed by every statement that names it when
+//! its value changed; then the declarations and `object`s, in statement order, against every
+//! constant — with what each of them produced (IR, diagnostics, statement records) kept for
+//! [`super::splice_decls`] to put in place.
+
+use std::collections::BTreeMap;
+
+use super::super::names::Namespace;
+use super::super::{Checker, StmtRecord};
+use super::decls::{Dependents, Redone};
+use super::groups::declared_groups;
+use super::reevaluate::reevaluate;
+use crate::diag::Diagnostic;
+use crate::source::Span;
+use crate::syntax::{DeclKind, Item, Stmt};
+
+/// Checks the statements `changed` (index → new statement) again against the memo's state in
+/// `cx`, then those that name a constant whose value changed: `None` when it must decline.
+pub(super) fn redo(
+    cx: &mut Checker,
+    changed: BTreeMap<usize, Stmt>,
+    records: &[StmtRecord],
+    material_textures: &[(u32, Vec<usize>)],
+    clean: bool,
+    dependents: &mut Dependents,
+    renaming: bool,
+) -> Option<Redone> {
+    let (mut lets, mut others): (BTreeMap<_, _>, BTreeMap<_, _>) = changed
+        .into_iter()
+        .partition(|(_, s)| matches!(s, Stmt::Let { .. }));
+    let mut redone = Redone::default();
+    // `let`s in statement order: each reads only constants before it.
+    while let Some((i, stmt)) = lets.pop_first() {
+        redone.checked += 1;
+        let Stmt::Let { name, value, span } = &stmt else {
+            return None;
+        };
+        let changed = reevaluate(cx, name, value, clean)?;
+        // Its diagnostics lie in its own text, where the next re-check of it finds them.
+        if !cx.diags.iter().all(|d| lies_in(d, *span)) {
+            return None;
+        }
+        redone.early.append(&mut cx.diags);
+        redone.early_spans.push(*span);
+        if !changed {
+            continue;
+        }
+        for (j, s) in dependents(&name.name)? {
+            match s {
+                // A `let` before this one cannot name it (the check would have reported it).
+                Stmt::Let { .. } if j <= i => {}
+                Stmt::Let { .. } => {
+                    lets.entry(j).or_insert(s);
+                }
+                _ => {
+                    others.entry(j).or_insert(s);
+                }
+            }
+        }
+    }
+    // Declarations and objects, in statement order, against every constant.
+    for (i, stmt) in others {
+        redone.checked += 1;
+        match &stmt {
+            Stmt::Object(_) => {
+                let old = *records.get(i)?;
+                if !old.object {
+                    return None;
+                }
+                let (mesh, material) = cx.placement(&stmt);
+                forget_use(&mut cx.mesh_uses, old.mesh)?;
+                forget_use(&mut cx.material_uses, old.material)?;
+                let objects = std::mem::take(&mut cx.objects);
+                let record = StmtRecord {
+                    object: true,
+                    diags: cx.diags.len() as u32,
+                    objects: objects.len() as u32,
+                    mesh: mesh.map(|m| m as u32),
+                    material: material.map(|m| m as u32),
+                };
+                let diags = std::mem::take(&mut cx.diags);
+                redone.objects.insert(i, (record, diags, objects));
+            }
+            Stmt::Decl(d) if d.kind == DeclKind::Material => {
+                // A normal map's warning reads the texture's IR, which the memo does not keep.
+                if names_a_normal_map(d) {
+                    return None;
+                }
+                let at = declared_at(cx, Namespace::Material, d)?;
+                let (material, textures) = cx.material(d);
+                let old = material_textures.binary_search_by_key(&(at as u32), |(m, _)| *m);
+                let old_textures = old.map_or(&[][..], |k| &material_textures[k].1);
+                if textures != old_textures {
+                    redone.material_textures.push((at as u32, textures));
+                }
+                redone.relowered.materials.push((at, material));
+            }
+            Stmt::Decl(d) if d.kind == DeclKind::Mesh && d.ctor.args.is_none() => {
+                let at = declared_at(cx, Namespace::Mesh, d)?;
+                let mesh = cx.mesh(d);
+                redone.relowered.meshes.push((at, mesh));
+            }
+            // Not an image: a normal map's warning reads only an image's encoding.
+            Stmt::Decl(d) if d.kind == DeclKind::Texture && d.ctor.args.is_none() => {
+                let at = declared_at(cx, Namespace::Texture, d)?;
+                let texture = cx.texture(d);
+                redone.relowered.textures.push((at, texture));
+            }
+            // A group's uses, counted under the old names, are not known one by one.
+            Stmt::Group(_) if renaming => return None,
+            Stmt::Group(_) => {
+                let (record, diags, objects) = group_again(cx, &stmt, *records.get(i)?)?;
+                redone.objects.insert(i, (record, diags, objects));
+                redone.group_spans.push(stmt.span());
+            }
+            _ => return None,
+        }
+        if let Stmt::Decl(d) = &stmt {
+            // Its diagnostics (before the placement phase) must lie in its own text, where
+            // the next re-check of it finds them.
+            if !cx.diags.iter().all(|e| lies_in(e, d.span)) {
+                return None;
+            }
+            redone.early.append(&mut cx.diags);
+            redone.early_spans.push(d.span);
+        }
+    }
+    Some(redone)
+}
+
+/// Whether a material declaration has a `normal_map` key.
+pub(super) fn names_a_normal_map(d: &crate::syntax::Decl) -> bool {
+    let items = d.body.iter().flat_map(|b| &b.items);
+    items
+        .into_iter()
+        .any(|i| matches!(i, Item::Value(e) if e.as_name() == Some("normal_map")))
+}
+
+/// Whether the primary label of `d` starts inside `span`.
+fn lies_in(d: &Diagnostic, span: Span) -> bool {
+    let inside = |l: &crate::diag::Label| {
+        l.span.file == span.file && (span.start..span.end).contains(&l.span.start)
+    };
+    d.primary.as_ref().is_some_and(inside)
+}
+
+/// The table index of the declaration `d`, if it is the one its name resolves to.
+fn declared_at(cx: &Checker, ns: Namespace, d: &crate::syntax::Decl) -> Option<usize> {
+    let table = &cx.tables[ns as usize];
+    let at = table.get(&d.name.name)?;
+    (table.spans.get(at) == Some(&d.name.span)).then_some(at)
+}
+
+/// One use fewer of the declaration `at` (`None` when it had none: the memo is not this one).
+fn forget_use(uses: &mut [u32], at: Option<u32>) -> Option<()> {
+    if let Some(at) = at {
+        let n = uses.get_mut(at as usize)?;
+        *n = n.checked_sub(1)?;
+    }
+    Some(())
+}
+
+/// A `group` that names a changed constant (its text unchanged, moved: its names are the
+/// table's at their spans already) checked again, as [`super::groups`] checks an edited one:
+/// against an empty group table (its names must each be the first of theirs), its uses of
+/// meshes and materials the same as before (the same names resolve the same way), so put back
+/// as they were. Its record, diagnostics and objects (table indices).
+fn group_again(
+    cx: &mut Checker,
+    stmt: &Stmt,
+    old: StmtRecord,
+) -> Option<(StmtRecord, Vec<Diagnostic>, Vec<crate::ir::Object>)> {
+    let groups = &cx.tables[Namespace::Group as usize];
+    let first = |(name, span): (&str, Span)| {
+        groups
+            .get(name)
+            .is_some_and(|at| groups.spans.get(at) == Some(&span))
+    };
+    if old.object
+        || !declared_groups(std::slice::from_ref(stmt))
+            .into_iter()
+            .all(first)
+    {
+        return None;
+    }
+    let uses = (cx.mesh_uses.clone(), cx.material_uses.clone());
+    let groups = std::mem::take(&mut cx.tables[Namespace::Group as usize]);
+    let _ = cx.placement(stmt);
+    cx.tables[Namespace::Group as usize] = groups;
+    (cx.mesh_uses, cx.material_uses) = uses;
+    let objects = std::mem::take(&mut cx.objects);
+    let diags = std::mem::take(&mut cx.diags);
+    let record = StmtRecord {
+        object: false,
+        diags: diags.len() as u32,
+        objects: objects.len() as u32,
+        mesh: None,
+        material: None,
+    };
+    Some((record, diags, objects))
+}
