@@ -235,6 +235,65 @@ render { resolution 8 x 8 }
     assert!(scene.accel.is_none());
 }
 
+/// Normal-bin tables of the environment built so far, and the inventory's line for them.
+fn normal_bins_built(scene: &Scene) -> (usize, String) {
+    let map = scene
+        .lights
+        .environment
+        .as_ref()
+        .and_then(|e| e.map.as_ref());
+    let detail = scene
+        .inventory()
+        .into_iter()
+        .find(|b| b.what == "environment table")
+        .map(|b| b.detail)
+        .unwrap_or_default();
+    (map.map_or(0, |m| m.normal_bins_built()), detail)
+}
+
+#[test]
+fn a_sky_left_to_cosine_rays_builds_no_normal_bin_tables_and_an_adaptive_render_does() {
+    let src = r#"scnc 1
+camera main { eye (0, 2, -5)  target (0, 0.5, 0)  fov 40deg }
+material white = phong { diffuse 0.8  specular 0 }
+mesh floor = quad { size (6, 6) }
+mesh ball = sphere { radius 0.5  segments 16 }
+object floor { material white }
+object ball { material white  transform { translate (0, 0.5, 0) } }
+light sky = environment { image("sky.pfm") }
+render { resolution 24 x 16 }
+"#;
+    // A smooth sky, `1 + 0.5 cos θ` (brighter towards the zenith): its harmonic fit is close,
+    // so a fixed-count render leaves it to cosine rays (`render::mis::sky_by_cosine`).
+    let texels: Vec<Vec3> = (0..128 * 64)
+        .map(|i| {
+            let theta = std::f32::consts::PI * ((i / 128) as f32 + 0.5) / 64.0;
+            Vec3::splat(1.0 + 0.5 * theta.cos())
+        })
+        .collect();
+    let mut loader = MemLoader::new();
+    loader.insert("sky.pfm", pfm_bytes(128, 64, &texels));
+    let (mut scene, _, _) = build_src(src, &loader);
+    assert_eq!(normal_bins_built(&scene).0, 0, "none before a render");
+    let c = render_small(&scene).counts;
+    assert!(c.environment > 0 && c.brdf > 0, "{c:?}");
+    let (built, detail) = normal_bins_built(&scene);
+    assert_eq!(built, 0, "the fixed-count render reads no bin's table");
+    assert!(detail.contains("for 0 of 256 normal bins"), "{detail}");
+
+    // The same scene (as the watch cache keeps it) rendered adaptively samples the sky by its
+    // tables, and builds those its normals fall in.
+    scene.settings.noise = Some(0.5);
+    scene.settings.max_samples = Some(8);
+    render_small(&scene);
+    let (built, detail) = normal_bins_built(&scene);
+    assert!(built > 0 && built <= 256, "{built}");
+    assert!(
+        detail.contains(&format!("for {built} of 256 normal bins")),
+        "{detail}"
+    );
+}
+
 #[test]
 fn a_one_sided_light_facing_away_from_everything_is_warned_about() {
     let with_light = |light: &str| {

@@ -214,9 +214,10 @@ impl Scene {
             out.push(Built {
                 what: "environment table",
                 detail: format!(
-                    "{w}x{h} luminance x sin(theta), in {}x{} cells, weighted for {} normal bins",
+                    "{w}x{h} luminance x sin(theta), in {}x{} cells, weighted for {} of {} normal bins (built on first use)",
                     crate::shade::light::env_sampler::CELLS_X.min(w),
                     crate::shade::light::env_sampler::CELLS_Y.min(h),
+                    map.normal_bins_built(),
                     crate::shade::light::env_sampler::NORMAL_BINS.pow(2)
                 ),
                 bytes: table,

@@ -256,6 +256,14 @@ impl EnvMap {
         self.distribution.is_some() || self.bright.is_some()
     }
 
+    /// How many normal bins' tables the renders so far have built (they are built on first
+    /// use: `env_sampler`); 0 without a table.
+    pub fn normal_bins_built(&self) -> usize {
+        self.distribution
+            .as_ref()
+            .map_or(0, EnvSampler::normal_bins_built)
+    }
+
     /// Whether the map has a bright set sampled on its own ([`EnvMap::sample_bright`]).
     pub fn has_bright(&self) -> bool {
         self.bright.is_some()

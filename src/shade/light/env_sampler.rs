@@ -20,6 +20,13 @@
 //! can light the point is left to the BRDF samples alone (multiple importance sampling would
 //! still be unbiased, but those would be fireflies). The bins depend only on the normal,
 //! which the light and BRDF strategies both pass, so their MIS weights agree.
+//!
+//! A bin's table is built the first time a sample or a density asks for it: a render that
+//! leaves the sky to cosine rays (`render::mis::sky_by_cosine`) never reads one, and was
+//! spending a fifth of the environment's build on all of them. Each table is a function of
+//! the bin alone, so when (and on which thread) it is built does not change a bit of it.
+
+use std::sync::OnceLock;
 
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
@@ -66,14 +73,20 @@ pub struct EnvSampler {
     width: usize,
     height: usize,
     cells_x: usize,
+    cells_y: usize,
     cells: Vec<Cell>,
     /// Cell of each map column and row.
     cell_of_col: Vec<u16>,
     cell_of_row: Vec<u16>,
     /// Cells by power alone, as a 2-D table over the grid of cells (row `cy`, column `cx`).
     plain: Distribution2D,
-    /// Cells by power × widened cosine, per octahedral bin (`None`: no cell above its horizon).
-    by_normal: Vec<Option<Distribution2D>>,
+    /// Each cell's power (the weight of its table).
+    power: Vec<f32>,
+    /// Each cell's corners and centre as world directions.
+    cell_points: Vec<[Vec3; 5]>,
+    /// Cells by power × widened cosine, per octahedral bin, built on first use
+    /// ([`EnvSampler::bin_table`]; `None`: no cell above its horizon).
+    by_normal: Vec<OnceLock<Option<Distribution2D>>>,
 }
 
 /// The bin of unit normal `n` in the octahedral map.
@@ -178,10 +191,6 @@ impl EnvSampler {
             })
             .collect();
         let plain = Distribution2D::new(cells_x, cells_y, power.clone())?;
-        // Each cell's corners and centre, and each bin's corners, edge midpoints and centre:
-        // the largest cosine between them, plus [`MARGIN`] for the gaps, bounds the cosine of
-        // any normal of the bin with any direction of the cell.
-        let spots = [0.0, 0.5, 1.0];
         let cell_points: Vec<[Vec3; 5]> = cells
             .iter()
             .map(|c| {
@@ -200,29 +209,6 @@ impl EnvSampler {
                 ]
             })
             .collect();
-        let by_normal = (0..NORMAL_BINS * NORMAL_BINS)
-            .into_par_iter()
-            .map(|b| {
-                let normals: Vec<Vec3> = spots
-                    .iter()
-                    .flat_map(|&x| spots.iter().map(move |&y| bin_point(b, Vec2::new(x, y))))
-                    .collect();
-                let w: Vec<f32> = power
-                    .iter()
-                    .zip(&cell_points)
-                    .map(|(&p, points)| {
-                        // Finite cosines: a plain comparison gives `f32::max`'s result
-                        // without its NaN handling (this loop was most of the build's time).
-                        let most = normals
-                            .iter()
-                            .flat_map(|n| points.iter().map(move |d| n.dot(*d)))
-                            .fold(f32::NEG_INFINITY, |m, c| if c > m { c } else { m });
-                        p * (most + MARGIN).max(0.0)
-                    })
-                    .collect();
-                Distribution2D::new(cells_x, cells_y, w)
-            })
-            .collect();
         let lookup = |n: usize, size: usize| -> Vec<u16> {
             (0..size)
                 .map(|i| ((0..n).rfind(|&c| c * size / n <= i).unwrap_or(0)) as u16)
@@ -232,18 +218,63 @@ impl EnvSampler {
             width,
             height,
             cells_x,
+            cells_y,
             cell_of_col: lookup(cells_x, width),
             cell_of_row: lookup(cells_y, height),
             cells,
             plain,
-            by_normal,
+            power,
+            cell_points,
+            by_normal: (0..NORMAL_BINS * NORMAL_BINS)
+                .map(|_| OnceLock::new())
+                .collect(),
         })
+    }
+
+    /// The cells' table of normal bin `b`, built on first use.
+    fn bin_table(&self, b: usize) -> Option<&Distribution2D> {
+        self.by_normal
+            .get(b)?
+            .get_or_init(|| self.weigh_cells_for_bin(b))
+            .as_ref()
+    }
+
+    /// The cells weighted by power × widened cosine for bin `b`: each cell's corners and
+    /// centre, and the bin's corners, edge midpoints and centre; the largest cosine between
+    /// them, plus [`MARGIN`] for the gaps, bounds the cosine of any normal of the bin with any
+    /// direction of the cell.
+    fn weigh_cells_for_bin(&self, b: usize) -> Option<Distribution2D> {
+        let spots = [0.0, 0.5, 1.0];
+        let normals: Vec<Vec3> = spots
+            .iter()
+            .flat_map(|&x| spots.iter().map(move |&y| bin_point(b, Vec2::new(x, y))))
+            .collect();
+        let w: Vec<f32> = self
+            .power
+            .iter()
+            .zip(&self.cell_points)
+            .map(|(&p, points)| {
+                // Finite cosines: a plain comparison gives `f32::max`'s result without its
+                // NaN handling (this loop was most of the tables' time).
+                let most = normals
+                    .iter()
+                    .flat_map(|n| points.iter().map(move |d| n.dot(*d)))
+                    .fold(f32::NEG_INFINITY, |m, c| if c > m { c } else { m });
+                p * (most + MARGIN).max(0.0)
+            })
+            .collect();
+        Distribution2D::new(self.cells_x, self.cells_y, w)
+    }
+
+    /// How many of the [`NORMAL_BINS`]² normal bins' tables have been built so far.
+    pub fn normal_bins_built(&self) -> usize {
+        self.by_normal.iter().filter(|b| b.get().is_some()).count()
     }
 
     fn cells_for(&self, normal: Option<Vec3>) -> Option<&Distribution2D> {
         match normal {
             None => Some(&self.plain),
-            Some(n) => self.by_normal.get(normal_bin(n))?.as_ref(),
+            Some(n) => self.bin_table(normal_bin(n)),
         }
     }
 
@@ -308,9 +339,16 @@ impl EnvSampler {
         let bins: usize = self
             .by_normal
             .iter()
-            .map(|d| d.as_ref().map_or(0, |d| d.bytes()))
+            .map(|d| d.get().and_then(Option::as_ref).map_or(0, |d| d.bytes()))
             .sum();
-        cells + bins + self.plain.bytes() + 2 * (self.cell_of_col.len() + self.cell_of_row.len())
+        let bin_inputs = std::mem::size_of_val(self.power.as_slice())
+            + std::mem::size_of_val(self.cell_points.as_slice())
+            + std::mem::size_of_val(self.by_normal.as_slice());
+        cells
+            + bins
+            + bin_inputs
+            + self.plain.bytes()
+            + 2 * (self.cell_of_col.len() + self.cell_of_row.len())
     }
 }
 
