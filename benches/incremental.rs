@@ -3,7 +3,7 @@
 //!
 //! The scene of issue 22: 100,000 `object` statements, each with a rotate and a translate, over
 //! three meshes and 100 materials that name one constant, `gloss`, and one `group` (about 9 MB).
-//! Twenty kinds
+//! Twenty-one kinds
 //! of edit, one line each: one object's translate in the middle of the file (a person nudging one
 //! object), one material's colour, the value of `gloss` (its 100 materials re-checked), an
 //! `object` line inserted, one deleted, an object's material misspelt then put back (every
@@ -15,7 +15,7 @@
 //! change both times), and a material's albedo set above 1 (an error, the material not
 //! lowered) and put back; a material nothing names inserted (unused: a
 //! warning) and deleted; `gloss` given an error (its materials fail quietly) and put back; the camera's eye, the light's intensity and the render block's sample
-//! count changed (one number each); a group of two objects (one in a nested group) lifted; material `m5`
+//! count changed (one number each); the constant the camera's `fov` names changed; a group of two objects (one in a nested group) lifted; material `m5`
 //! renamed (its 1,000 objects then name an unknown material) and named back; a stray `=` typed into `let gloss` and into one material's
 //! line (syntax errors that lose a constant and a declaration others name), each taken out.
 //!
@@ -70,13 +70,19 @@ fn scene(objects: usize) -> Vec<String> {
     s.push(group_line(0));
     debug_assert_eq!(s.len(), HEADER);
     s.extend((0..objects).map(|i| object_line(i, 0)));
+    s.push(lens_line(0));
     s.push(light_line(100_000));
     s
 }
 
 /// The camera, its eye at `x`.
 fn camera_line(x: usize) -> String {
-    format!("camera main {{ eye ({x}, 80, -300)  target (500, 0, 50)  fov 50deg }}")
+    format!("camera main {{ eye ({x}, 80, -300)  target (500, 0, 50)  fov lens }}")
+}
+
+/// The constant the camera's `fov` names (the line before the light), at its `k`-th value.
+fn lens_line(k: usize) -> String {
+    format!("let lens = {}deg", 40 + k % 30)
 }
 
 /// The render block, with `samples` samples per pixel.
@@ -171,6 +177,8 @@ enum Kind {
     Light,
     /// The render block's sample count changes (9, 4, 9, …).
     Render,
+    /// The constant `lens`, which the camera's `fov` names, changes (the camera checked again).
+    SettingLet,
     /// Edits 0, 2, 4, …: a stray `=` typed into `let gloss` (a syntax error that loses the
     /// constant all 100 materials name); 1, 3, 5, …: taken out.
     LetLost,
@@ -184,7 +192,7 @@ enum Kind {
     Rename,
 }
 
-const KINDS: [Kind; 20] = [
+const KINDS: [Kind; 21] = [
     Kind::Object,
     Kind::Material,
     Kind::Let,
@@ -196,6 +204,7 @@ const KINDS: [Kind; 20] = [
     Kind::Camera,
     Kind::Light,
     Kind::Render,
+    Kind::SettingLet,
     Kind::Group,
     // Last: each error is taken out again (an even number of edits).
     Kind::BadValue,
@@ -307,6 +316,10 @@ fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String
             lines[last] = light_line(100_001 + k % 1000);
         }
         Kind::Render => lines[RENDER_LINE] = render_line([9, 4][k % 2]),
+        Kind::SettingLet => {
+            let at = lines.len() - 2;
+            lines[at] = lens_line(k + 1);
+        }
         Kind::LetLost if k.is_multiple_of(2) => {
             lines[LET_LINE] = lines[LET_LINE].replacen("gloss =", "gloss = =", 1);
         }
@@ -341,6 +354,7 @@ fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String
 fn checked(kind: Kind, k: usize) -> usize {
     match kind {
         Kind::Let => 101,
+        Kind::SettingLet => 2,
         Kind::UnusedLet | Kind::NewMaterial => 1 - k % 2,
         Kind::Delete => 0,
         _ => 1,

@@ -1185,6 +1185,103 @@ fn a_let_edit_that_gives_or_takes_an_error_is_checked_with_what_names_it() {
     );
 }
 
+/// A `let` named by a camera (`fov fv`, `eye (ey, ...)`: `ey` also by an object), a `point`
+/// light (`intensity pw`), an `environment` light (`color rgb(lc, ...)`) or the render block
+/// (`light_samples sp`) edited: a digit changed (which may give the setting an error: `0`),
+/// the constant given an error (`+ #fff`: poisoned, the setting failing quietly) or taken out
+/// again, or a tuple made of it (` * (1, 2)`: the setting's error). When the scene had no
+/// diagnostic but its own and the edit gives none, it takes the fast path (asserted), the
+/// settings that name the constant checked again alone; every result is the full compile's.
+#[test]
+fn a_let_edit_named_by_a_camera_light_or_render_is_checked_with_them() {
+    let scene = base_scene()
+        .replace(
+            "let spin = 15deg\n",
+            "let spin = 15deg\nlet fv = 35deg\nlet ey = 2\nlet pw = 100\nlet lc = 0.1\nlet sp = 4\n\
+             object ball { material m1  transform { translate (ey, 1, 0) } }\n",
+        )
+        .replace(
+            "camera main { eye (0, 5, -20)  target (0, 0, 0)  fov 40deg }",
+            "camera main { eye (0, 5, -20)  target (0, 0, 0)  fov 40deg }\n\
+             camera cam1 { eye (9, ey, -9)  target (0, 1, 0)  fov fv }",
+        )
+        .replace(
+            "render { resolution 8 x 6 }",
+            "render { resolution 8 x 6  light_samples sp  camera cam1 }",
+        )
+        .replace("intensity 100 }", "intensity pw }")
+        + "light sky = environment { color rgb(lc, 0.2, 0.3)  rotate 10deg }\n";
+    let named = ["let fv ", "let ey ", "let pw ", "let lc ", "let sp "];
+    let path = Path::new("scenes/edit.scn");
+    let mut loader = MemLoader::new();
+    loader.insert(path, scene.clone());
+    let messages = |d: &[scnc::diag::Diagnostic]| {
+        format!("{:?}", d.iter().map(|d| &d.message).collect::<Vec<_>>())
+    };
+    let own = compile_with(path, &loader, &mut SourceMap::new(), &Overrides::default());
+    let own = messages(&own.diagnostics);
+    // (made, fast) per constant, for edits of a clean scene that left it clean.
+    let mut counts = [(0usize, 0usize); 5];
+    let mut declined = 0;
+    for seed in 1..=8u64 {
+        let mut rng = SplitMix64(seed.wrapping_mul(0xE703_7ED1_A0B4_28DB));
+        let mut text = scene.clone();
+        let mut inc = Incremental::new(Overrides::default());
+        // The first compile is a full one (nothing to reuse).
+        let mut clean = false;
+        for step in 0..60 {
+            let mut lines: Vec<String> = text.split_inclusive('\n').map(String::from).collect();
+            let which = rng.below(named.len());
+            let i = (0..lines.len())
+                .find(|&i| lines[i].starts_with(named[which]))
+                .expect("the let is in the scene");
+            let value = lines[i].find('=').unwrap_or(0);
+            match rng.below(6) {
+                0 if lines[i].contains(" + #fff") => {
+                    lines[i] = lines[i].replacen(" + #fff", "", 1);
+                }
+                0 => lines[i] = lines[i].replacen('\n', " + #fff\n", 1),
+                1 if lines[i].contains(" * (1, 2)") => {
+                    lines[i] = lines[i].replacen(" * (1, 2)", "", 1);
+                }
+                1 => lines[i] = lines[i].replacen('\n', " * (1, 2)\n", 1),
+                _ => {
+                    replace_digit(&mut rng, &mut lines[i], value);
+                }
+            }
+            text = lines.concat();
+            let (got, label) = compile_as_a_full_compile_does(
+                &mut inc,
+                &text,
+                &format!("seed {seed} step {step}"),
+            );
+            let fast = matches!(inc.reuse, Reuse::Statements { .. } | Reuse::Unchanged);
+            let now_clean = messages(&got.diagnostics) == own;
+            if clean && now_clean {
+                counts[which].0 += 1;
+                counts[which].1 += usize::from(fast);
+                assert!(
+                    fast,
+                    "{label}: a `{}` edit took the full path on\n{text}",
+                    named[which]
+                );
+            } else if !fast {
+                declined += 1;
+            }
+            clean = now_clean;
+            if !clean && rng.below(2) == 0 {
+                // Back to the scene without a diagnostic (a full compile's memo of it).
+                text = scene.clone();
+            }
+        }
+    }
+    eprintln!("lets named by settings, edits of clean scenes left clean (made, fast) {counts:?}; full compiles {declined}");
+    for (head, (made, _)) in named.iter().zip(counts) {
+        assert!(made >= 10, "only {made} `{head}` edits of clean scenes");
+    }
+    assert!(declined >= 10, "only {declined} edits gave a diagnostic");
+}
+
 /// The named statements of [`named_scene`] and what a syntax error that loses one of them
 /// names them by: `let k` (every object of the row), `let kk = k + 1` (a constant that comes
 /// to fail with `k`, named by an object), the meshes, the texture the floor names, the

@@ -73,6 +73,8 @@ pub(super) struct Redone {
     /// The declaration renamed, if one was (namespace and table index): the IR is compacted
     /// again (its unused warning names it).
     pub(super) renamed: Option<(Namespace, usize)>,
+    /// The cameras, lights and render block that name a changed constant (new text).
+    pub(super) settings: Vec<Stmt>,
 }
 
 impl CheckMemo {
@@ -138,7 +140,10 @@ impl CheckMemo {
         let mut redone = redone?;
         redone.renamed = renamed_at.map(|(ns, at, _)| (ns, at));
         let used_changed = was_used != (self.used_meshes(), self.used_materials());
-        self.splice_decls(sources, redone, shift, used_changed)
+        let settings = std::mem::take(&mut redone.settings);
+        let checked = self.splice_decls(sources, redone, shift, used_changed)?;
+        self.recheck_named_settings(sources, &settings)?;
+        Some(checked)
     }
 }
 

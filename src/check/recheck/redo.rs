@@ -115,6 +115,16 @@ pub(super) fn redo(
                 redone.objects.insert(i, (record, diags, objects));
                 redone.group_spans.push(stmt.span());
             }
+            // Checked after every declaration, once the rest is in place
+            // (`CheckMemo::recheck_named_settings`).
+            Stmt::Camera { .. } | Stmt::Render { .. } => {
+                redone.settings.push(stmt);
+                continue;
+            }
+            Stmt::Decl(d) if d.kind == DeclKind::Light => {
+                redone.settings.push(stmt);
+                continue;
+            }
             _ => return None,
         }
         if let Stmt::Decl(d) = &stmt {

@@ -11,7 +11,9 @@
 //! edit. The statement keeps its kind and name (the first of its name), so the tables stay. An
 //! `area` light is declined (it names a mesh, or lowers its `quad` to one: the meshes' use and
 //! the IR's indices could change), and so is any `--define` (its unused warning depends on
-//! what names it). A `let` a setting names, edited, is still a full compile.
+//! what names it). A `let` a setting names, edited ([`super::decls`]), checks the setting again
+//! here once the rest of the edit is in place ([`CheckMemo::recheck_named_settings`]), under
+//! the same conditions: the statement is unchanged but its value is not.
 
 use std::sync::Arc;
 
@@ -97,6 +99,30 @@ impl CheckMemo {
         self.take_back(&mut cx);
         let setting = setting.flatten().filter(|_| cx.diags.is_empty())?;
         self.put_setting(old_span, setting, shift).then_some(1)
+    }
+
+    /// Checks again the settings `settings` (statements of the new text, whose spans the memo
+    /// already holds) that name a constant whose value a declaration edit changed: each as
+    /// [`CheckMemo::recheck_setting`] checks an edited one (its spans unmoved), cameras and
+    /// lights before the render block (it reads the cameras lowered). `None`: decline.
+    pub(super) fn recheck_named_settings(
+        &mut self,
+        sources: &SourceMap,
+        settings: &[Stmt],
+    ) -> Option<()> {
+        let (render, others): (Vec<&Stmt>, Vec<&Stmt>) = settings
+            .iter()
+            .partition(|s| matches!(s, Stmt::Render { .. }));
+        for s in others.into_iter().chain(render) {
+            let unmoved = Shift {
+                file: s.span().file,
+                start: u32::MAX,
+                old_end: u32::MAX,
+                new_end: u32::MAX,
+            };
+            self.recheck_setting(sources, s, s, &unmoved)?;
+        }
+        Some(())
     }
 
     /// Moves every span by `shift` but those of the setting whose old statement is `old`,

@@ -58,6 +58,7 @@ impl CheckMemo {
             group_spans,
             checked,
             renamed,
+            settings: _,
         } = redone;
         let mut ok = true;
         // The diagnostics before the placement phase, the placement phase's, and those after.
