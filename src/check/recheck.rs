@@ -154,14 +154,7 @@ impl CheckMemo {
         {
             return false;
         }
-        let sum = |rs: &[StmtRecord], f: fn(&StmtRecord) -> u32| -> usize {
-            rs.iter().map(|r| f(r) as usize).sum()
-        };
-        let before = &self.records[..old.start];
-        let diag_at = self.used_before.diags + sum(before, |r| r.diags);
-        let diag_range = diag_at..diag_at + sum(old_records, |r| r.diags);
-        let object_at = sum(before, |r| r.objects);
-        let object_range = object_at..object_at + sum(old_records, |r| r.objects);
+        let (diag_range, object_range) = self.output_ranges(&old);
         let removed: Vec<StmtRecord> = old_records.to_vec();
         let was_used = (self.used_meshes(), self.used_materials());
         let rechecked = self.check_objects(sources, new);
@@ -290,6 +283,21 @@ impl CheckMemo {
         self.tables = std::mem::take(&mut cx.tables);
         self.mesh_uses = std::mem::take(&mut cx.mesh_uses);
         self.material_uses = std::mem::take(&mut cx.material_uses);
+    }
+
+    /// Where the statements `old` (indices into the memo's records) put their output: the range
+    /// of their diagnostics among the check's and of their objects among the IR's.
+    fn output_ranges(&self, old: &Range<usize>) -> (Range<usize>, Range<usize>) {
+        let sum = |rs: &[StmtRecord], f: fn(&StmtRecord) -> u32| -> usize {
+            rs.iter().map(|r| f(r) as usize).sum()
+        };
+        let (before, records) = (&self.records[..old.start], &self.records[old.clone()]);
+        let diag_at = self.used_before.diags + sum(before, |r| r.diags);
+        let object_at = sum(before, |r| r.objects);
+        (
+            diag_at..diag_at + sum(records, |r| r.diags),
+            object_at..object_at + sum(records, |r| r.objects),
+        )
     }
 
     /// Which meshes are used (by an object, or by something checked before the objects).

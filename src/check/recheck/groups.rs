@@ -77,15 +77,8 @@ impl CheckMemo {
             return None;
         }
         let renamed = self.rename_groups(old_stmts, new)?;
-        let old_records = self.records.get(old.clone())?;
-        let sum = |rs: &[StmtRecord], f: fn(&StmtRecord) -> u32| -> usize {
-            rs.iter().map(|r| f(r) as usize).sum()
-        };
-        let before = &self.records[..old.start];
-        let diag_at = self.used_before.diags + sum(before, |r| r.diags);
-        let diag_range = diag_at..diag_at + sum(old_records, |r| r.diags);
-        let object_at = sum(before, |r| r.objects);
-        let object_range = object_at..object_at + sum(old_records, |r| r.objects);
+        self.records.get(old.clone())?; // `old` lies inside the memo: `output_ranges` indexes it
+        let (diag_range, object_range) = self.output_ranges(&old);
         let was_used = (self.used_meshes(), self.used_materials());
         self.forget_uses(old_sources, old_stmts)?;
         // The old statements' objects that named an unlowered declaration: their entries go.
