@@ -202,7 +202,9 @@ fn walk<I: Isa, F: LeafVisitor>(
 /// visited (the nearer one is read at once, so prefetching it would gain nothing). On a tree
 /// far larger than the L2 cache (dense-L8, 71 MB) this overlaps the misses of the pushed
 /// children with the visit of the nearer one: +4–13 % on shadow and +5–14 % on incoherent
-/// rays, 1–3 % slower on a tree that stays in cache (dense-L5); see docs/bvh.md, 2026-11-26.
+/// rays in A/B runs on a loaded machine, 1–3 % slower on a tree that stays in cache
+/// (dense-L5); on the idle machine the gain was inside the run-to-run spread (docs/bvh.md,
+/// 2026-11-26, fourth session).
 #[inline(always)]
 fn prefetch<I: Isa, F: LeafVisitor>(isa: I, w: &Wide, leaf: &F, child: u32, count: u32) {
     if count > 0 {
