@@ -67,6 +67,10 @@ fn scene(objects: usize) -> Vec<String> {
     s.extend((0..100).map(|m| material_line(m, m % 10)));
     // Unused (a warning) until a `Uses` edit names it.
     s.push("material spare = phong { diffuse #808080 }".into());
+    // An OBJ mesh and an image texture, placed by the group.
+    s.push(obj_line(0));
+    s.push(image_line(0));
+    s.push("material grainy = phong { diffuse grain  specular 0.1 }".into());
     s.push(group_line(0));
     debug_assert_eq!(s.len(), HEADER);
     s.extend((0..objects).map(|i| object_line(i, 0)));
@@ -95,17 +99,57 @@ fn light_line(intensity: usize) -> String {
     format!("light sun = point {{ position (500, 100, 0)  intensity {intensity} }}")
 }
 
-/// A group of two objects, one in a nested group, lifted by `y`.
+/// A group of two objects, one in a nested group (the OBJ mesh, with the image texture), lifted
+/// by `y`.
 fn group_line(y: usize) -> String {
     format!(
         "group cluster {{ transform {{ translate (500, {y}, 50) }}  object tree {{ material m0 }}  \
-         group twig {{ object rock {{ material m1  transform {{ scale 2 }} }} }} }}"
+         group twig {{ object crate {{ material grainy  transform {{ scale 2 }} }} }} }}"
     )
 }
 
-const HEADER: usize = 109;
-/// The line of the group.
-const GROUP_LINE: usize = 108;
+/// The OBJ mesh, its `k`-th version: `crate_a.obj` and `crate_b.obj` in turn.
+fn obj_line(k: usize) -> String {
+    format!("mesh crate = obj(\"crate_{}.obj\")", ["a", "b"][k % 2])
+}
+
+/// The image texture, its `k`-th version: another wrap mode each time.
+fn image_line(k: usize) -> String {
+    let wrap = ["repeat", "clamp", "mirror"][k % 3];
+    format!("texture grain = image(\"grain.png\") {{ wrap {wrap} }}")
+}
+
+/// A group added after the other (edits 0, 2, 4, …), one object in it.
+fn added_group_line(k: usize) -> String {
+    format!("group added{k} {{ object rock {{ material m{}  transform {{ translate (0, {k}, 0) }} }} }}", k % 100)
+}
+
+/// The assets the scene reads: two versions of a cube OBJ and a 4×4 PNG.
+fn assets() -> Vec<(&'static str, Vec<u8>)> {
+    let cube = |s: f32| {
+        let mut obj = String::new();
+        for i in 0..8 {
+            let c = |b: usize| if i >> b & 1 == 1 { s } else { -s };
+            obj += &format!("v {} {} {}\n", c(0), c(1), c(2));
+        }
+        for f in ["1 3 4 2", "5 6 8 7", "1 2 6 5", "3 7 8 4", "1 5 7 3", "2 4 8 6"] {
+            obj += &format!("f {f}\n");
+        }
+        obj.into_bytes()
+    };
+    let mut png = Vec::new();
+    let image = image::RgbImage::from_fn(4, 4, |x, y| image::Rgb([(x * 60) as u8, (y * 60) as u8, 90]));
+    image
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .expect("a PNG in memory");
+    vec![("crate_a.obj", cube(0.5)), ("crate_b.obj", cube(0.7)), ("grain.png", png)]
+}
+
+const HEADER: usize = 112;
+/// The lines of the group, the OBJ mesh and the image texture.
+const GROUP_LINE: usize = 111;
+const OBJ_LINE: usize = 108;
+const IMAGE_LINE: usize = 109;
 /// The lines of the camera and the render block.
 const CAMERA_LINE: usize = 1;
 const RENDER_LINE: usize = 2;
@@ -190,9 +234,22 @@ enum Kind {
     /// Edits 0, 2, 4, …: material `m5` renamed `m5x` (its 1,000 objects now name an unknown
     /// material: errors, each with a did-you-mean); 1, 3, 5, …: named back.
     Rename,
+    /// The OBJ mesh's file changes (`crate_a.obj`, `crate_b.obj` in turn: the build loads it).
+    ObjMesh,
+    /// The image texture's wrap mode changes.
+    ImageTexture,
+    /// The light is renamed (another name each time).
+    LightRename,
+    /// The camera is renamed (another name each time).
+    CameraRename,
+    /// Edits 0, 2, 4, …: a group line inserted after the other; 1, 3, 5, …: deleted.
+    GroupAdded,
+    /// Edits 0, 2, 4, …: material `m0` renamed `m0x` (the group and 1,000 objects name it:
+    /// errors); 1, 3, 5, …: named back.
+    GroupedRename,
 }
 
-const KINDS: [Kind; 21] = [
+const KINDS: [Kind; 27] = [
     Kind::Object,
     Kind::Material,
     Kind::Let,
@@ -206,6 +263,11 @@ const KINDS: [Kind; 21] = [
     Kind::Render,
     Kind::SettingLet,
     Kind::Group,
+    Kind::ObjMesh,
+    Kind::ImageTexture,
+    Kind::LightRename,
+    Kind::CameraRename,
+    Kind::GroupAdded,
     // Last: each error is taken out again (an even number of edits).
     Kind::BadValue,
     Kind::LetError,
@@ -215,6 +277,7 @@ const KINDS: [Kind; 21] = [
     Kind::Cut,
     Kind::LetLost,
     Kind::MaterialLost,
+    Kind::GroupedRename,
 ];
 
 /// Kinds whose even edits make an error (`scnc watch` builds nothing then: its figure is save →
@@ -230,6 +293,7 @@ fn errs(kind: Kind) -> bool {
             | Kind::LetLost
             | Kind::MaterialLost
             | Kind::Rename
+            | Kind::GroupedRename
     )
 }
 
@@ -333,6 +397,31 @@ fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String
             };
         }
         Kind::Group => lines[GROUP_LINE] = group_line(1 + k % 9),
+        Kind::ObjMesh => lines[OBJ_LINE] = obj_line(k + 1),
+        Kind::ImageTexture => lines[IMAGE_LINE] = image_line(k + 1),
+        Kind::LightRename => {
+            let last = lines.len() - 1;
+            let name = lines[last].split(' ').nth(1).unwrap_or("sun").to_string();
+            lines[last] = lines[last].replacen(&name, &format!("sun{k}"), 1);
+        }
+        Kind::CameraRename => {
+            let name = lines[CAMERA_LINE].split(' ').nth(1).unwrap_or("main").to_string();
+            lines[CAMERA_LINE] = lines[CAMERA_LINE].replacen(&name, &format!("main{k}"), 1);
+        }
+        Kind::GroupAdded if k.is_multiple_of(2) => lines.insert(GROUP_LINE + 1, added_group_line(k)),
+        Kind::GroupAdded => {
+            lines.remove(GROUP_LINE + 1);
+        }
+        Kind::GroupedRename => {
+            let (name, renamed) = ("material m0 =", "material m0x =");
+            let (from, to) = if k.is_multiple_of(2) {
+                (name, renamed)
+            } else {
+                (renamed, name)
+            };
+            let line = &mut lines[FIRST_MATERIAL];
+            *line = line.replacen(from, to, 1);
+        }
         Kind::Rename => {
             let (name, renamed) = ("material m5 =", "material m5x =");
             let (from, to) = if k.is_multiple_of(2) {
@@ -355,7 +444,7 @@ fn checked(kind: Kind, k: usize) -> usize {
     match kind {
         Kind::Let => 101,
         Kind::SettingLet => 2,
-        Kind::UnusedLet | Kind::NewMaterial => 1 - k % 2,
+        Kind::UnusedLet | Kind::NewMaterial | Kind::GroupAdded => 1 - k % 2,
         Kind::Delete => 0,
         _ => 1,
     }
@@ -367,6 +456,16 @@ fn only(kind: Kind) -> bool {
     let at = args.iter().position(|a| a == "--only");
     let names = at.and_then(|i| args.get(i + 1));
     names.is_none_or(|n| n.split(',').any(|n| n == format!("{kind:?}")))
+}
+
+/// A loader serving the scene `text` at `path` and the scene's assets.
+fn loader_with(path: &Path, text: &str, assets: &[(&str, Vec<u8>)]) -> MemLoader {
+    let mut loader = MemLoader::new();
+    loader.insert(path, text);
+    for (name, bytes) in assets {
+        loader.insert(*name, bytes.clone());
+    }
+    loader
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -383,17 +482,16 @@ fn front_end(objects: usize, edits: usize) {
     let original = lines.join("\n") + "\n";
     let path = Path::new("big.scn");
     let overrides = Overrides::default();
+    let assets = assets();
     let mut full = Vec::new();
     for _ in 0..3 {
-        let mut loader = MemLoader::new();
-        loader.insert(path, original.as_str());
+        let loader = loader_with(path, &original, &assets);
         let t = Instant::now();
         let r = compile_with(path, &loader, &mut SourceMap::new(), &overrides);
         full.push(t.elapsed().as_secs_f64() * 1e3);
         assert!(r.value.is_some(), "the scene compiles");
     }
-    let mut loader = MemLoader::new();
-    loader.insert(path, original.as_str());
+    let loader = loader_with(path, &original, &assets);
     // The memo's own heap: what the incremental front end keeps between compiles (the text,
     // statement spans, constants, name tables, per-statement records, diagnostics and the IR),
     // measured with the compile's result dropped; and the peak while it compiles the first time.
@@ -429,13 +527,12 @@ fn front_end(objects: usize, edits: usize) {
         let mut build: [Vec<f64>; 3] = Default::default();
         // Pairs of edits for the errors, so that each is taken out before the next kind (and
         // for an inserted material, which would move the material lines of the next kinds).
-        let paired = errs(kind) || kind == Kind::NewMaterial;
+        let paired = errs(kind) || matches!(kind, Kind::NewMaterial | Kind::GroupAdded);
         let count = if paired { edits + edits % 2 } else { edits };
         // A full compile of the first error, for comparison.
         let mut full_error = None;
         for k in 0..count {
-            let mut loader = MemLoader::new();
-            loader.insert(path, edit(&mut lines, objects, kind, k));
+            let loader = loader_with(path, &edit(&mut lines, objects, kind, k), &assets);
             if errs(kind) && k == 0 {
                 let t = Instant::now();
                 let r = compile_with(path, &loader, &mut SourceMap::new(), &overrides);
@@ -450,12 +547,14 @@ fn front_end(objects: usize, edits: usize) {
                 // checked); taking it out gives that text again (`Unchanged`) or another value.
                 let checks = matches!(
                     kind,
-                    Kind::Typo | Kind::BadValue | Kind::LetError | Kind::Rename
+                    Kind::Typo | Kind::BadValue | Kind::LetError | Kind::Rename | Kind::GroupedRename
                 );
                 let checked = match kind {
                     Kind::LetError => checked(Kind::Let, k),
                     // The material and the objects that name `m5` (or `m5x`).
                     Kind::Rename => 1 + objects / 100 + usize::from(objects % 100 > 5),
+                    // The material, the objects that name `m0` and the group.
+                    Kind::GroupedRename => 2 + objects.div_ceil(100),
                     _ => usize::from(checks || k % 2 == 1),
                 };
                 let unchanged = !checks && inc.reuse == Reuse::Unchanged;
@@ -530,6 +629,9 @@ fn watch(objects: usize, edits: usize) {
     std::fs::create_dir_all(&dir).expect("temp dir");
     let scn = dir.join("big.scn");
     std::fs::write(&scn, &original).expect("write scene");
+    for (name, bytes) in assets() {
+        std::fs::write(dir.join(name), bytes).expect("write an asset");
+    }
     let watch = WatchProcess::start(&dir, "big.scn", Duration::from_secs(120));
     let wait = |name: &str, final_only: bool| watch.wait(name, final_only);
     let (_, first) = wait("compiled", false);

@@ -24,6 +24,7 @@ use std::ops::Range;
 use std::sync::Arc;
 
 mod added;
+mod area_light;
 mod compact;
 mod decls;
 mod groups;
@@ -172,6 +173,17 @@ impl CheckMemo {
         }
         // A mesh or material now used or unused: the IR's indices change.
         !used_changed || self.recompact(sources, Relowered::default()).is_some()
+    }
+
+    /// Moves every span by `shift`, for an edit whose statements nothing checks (the version
+    /// header); `false` when one reaches into the edited bytes.
+    pub fn shift_spans(&mut self, shift: &Shift) -> bool {
+        let nothing = Rechecked {
+            diags: Vec::new(),
+            objects: Vec::new(),
+            records: Vec::new(),
+        };
+        self.splice(0..0, 0..0, 0..0, nothing, shift)
     }
 
     /// Cuts the old statements' results out, moves every other span, puts the new ones in.

@@ -182,6 +182,14 @@ impl Driver<'_> {
     }
 }
 
+/// Whether `s` is a version header the driver reports nothing for (`scnc 1`).
+fn supported_header(s: &Stmt) -> bool {
+    let Stmt::Version { value, .. } = s else {
+        return false;
+    };
+    matches!(value.kind, crate::syntax::ExprKind::Number { value, suffix: None } if value == super::VERSION)
+}
+
 /// The byte range of every top-level statement, those `placed` included, in order.
 fn statement_spans(statements: &[Stmt], placed: &Placed) -> Vec<(u32, u32)> {
     let mut spans = Vec::with_capacity(statements.len() + placed.len());
@@ -230,8 +238,10 @@ impl Memo {
         };
         let parsed_count = parsed.len();
         let (old_range, new) = edit::changed(&region, &self.spans, parsed);
-        // The version header stays the first statement (the driver's check of it is not redone).
-        if old_range.start == 0 && (!new.is_empty() || !old_range.is_empty()) {
+        // The version header stays the first statement (the driver's check of it is not redone),
+        // or is edited alone and stays one the driver takes: nothing else reads it.
+        let header = old_range == (0..1) && matches!(&new[..], [s] if supported_header(s));
+        if old_range.start == 0 && (!new.is_empty() || !old_range.is_empty()) && !header {
             return None;
         }
         let sources = self.new_sources(text);
@@ -243,7 +253,10 @@ impl Memo {
             };
             self.chunks_whole = new.iter().all(whole).then_some(true);
         }
-        let checked = if self.check.only_objects(old_range.clone(), &new) {
+        let checked = if header {
+            self.move_spans(&region, old_range, &new)?;
+            self.check.shift_spans(&region.shift).then_some(0)?
+        } else if self.check.only_objects(old_range.clone(), &new) {
             if !(self.check).recheck(&sources, old_range.clone(), &new, &region.shift) {
                 return None;
             }
@@ -262,7 +275,7 @@ impl Memo {
             };
             let groups = (old_stmts.iter().chain(&new)).any(|s| matches!(s, Stmt::Group(_)));
             if let Some((old, new)) = setting {
-                self.check.recheck_setting(&sources, old, new, shift)?
+                (self.check).recheck_setting(&sources, old, new, shift, &mut naming)?
             } else if groups {
                 let old_sources = &self.sources;
                 let check = &mut self.check;

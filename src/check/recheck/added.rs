@@ -1,13 +1,17 @@
-//! Stage 2, check, incrementally: one `material`, `mesh` or `texture` declaration added or
-//! removed that nothing else names (`material spare = phong { diffuse #888 }` typed on a new
-//! line, or the line of an unused one deleted), checked alone and spliced into the
-//! [`CheckMemo`].
+//! Stage 2, check, incrementally: one `material`, `mesh` or `texture` declaration added
+//! (`material spare = phong { diffuse #888 }` typed on a new line; what names it checked
+//! again) or removed (the line of one nothing names deleted), checked alone and spliced into
+//! the [`CheckMemo`].
 //!
-//! Why the result is the full check's: nothing names the declaration (the whole-word search of
-//! the new text through [`Dependents`] finds only its own statement when added, none when
-//! removed), so no other statement checks differently; and no diagnostic lists the names of
-//! its namespace (an unknown name's did-you-mean of its kind: the edit declines while there is
-//! one; one of another kind lists other names). What
+//! Why the result is the full check's: nothing names a removed declaration (the whole-word
+//! search of the new text through [`Dependents`] finds none), so no other statement checks
+//! differently. What names an added one (it named an unknown one until now: an object whose
+//! material is typed before the material is) is checked again once it is in, and so is every
+//! statement with an unknown-name diagnostic of its namespace, whose did-you-mean lists the
+//! namespace's names ([`CheckMemo::recheck_unknown_names`], 2026-11-26 fifth session; one of
+//! another kind lists other names); a `group` naming an added one declines (its uses under
+//! the name it did not resolve are not known one by one), and so does an area light (a
+//! setting) among them. What
 //! changes is its table: a declaration's table index is its place among those of its kind in
 //! statement order, so the added one is put at its place and every table index after it (in
 //! statement records, use counts, index maps, texture lists, dropped declarations) moves up by
@@ -16,13 +20,14 @@
 //! compacted again ([`super::compact`]): the new one is unused, so it is left out with a
 //! warning, and a removed one's warning goes.
 
+use std::collections::BTreeMap;
 use std::ops::Range;
 
 use super::super::names::Namespace;
 use super::super::StmtRecord;
 use super::compact::Relowered;
+use super::redo::redo;
 use super::{CheckMemo, Dependents, Rechecked};
-use crate::diag::Diagnostic;
 use crate::source::{Shift, SourceMap};
 use crate::syntax::{Decl, DeclKind, Stmt};
 
@@ -57,16 +62,18 @@ impl CheckMemo {
             _ => return None,
         };
         let ns = namespace(d)?;
-        // An unknown name's did-you-mean lists the names of its own namespace only.
-        let unknown = |d: &Diagnostic| d.code == ns.unknown_code();
-        if old.len() != old_stmts.len() || self.diagnostics.iter().any(unknown) {
+        if old.len() != old_stmts.len() {
             return None;
         }
         let named = dependents(&d.name.name)?;
         let table = &mut self.tables[ns as usize];
+        // What names an added one (it had an unknown name): checked again once it is in.
+        let mut naming = BTreeMap::new();
         if added {
-            let alone = matches!(named.as_slice(), [(i, _)] if *i == old.start);
-            if !alone || table.get(&d.name.name).is_some() {
+            naming.extend(named.into_iter().filter(|(i, _)| *i != old.start));
+            // A group's uses under the name it did not resolve are not known one by one.
+            let group = naming.values().any(|s| matches!(s, Stmt::Group(_)));
+            if group || table.get(&d.name.name).is_some() {
                 return None;
             }
         } else {
@@ -99,6 +106,7 @@ impl CheckMemo {
             objects: Vec::new(),
             records,
         };
+        let own = added.then_some(old.start);
         if !self.splice(0..0, 0..0, old, nothing, shift) {
             return None;
         }
@@ -112,7 +120,50 @@ impl CheckMemo {
             self.lower_added(sources, ns, at, d, &mut relowered)?;
         }
         self.recompact(sources, relowered)?;
-        Some(new.len())
+        let rechecked = self.recheck_unknown_names(sources, ns, naming, own, dependents)?;
+        Some(new.len() + rechecked)
+    }
+
+    /// After a declaration of `ns` was added or removed (every span already the new text's):
+    /// the statements `naming` (they name an added one) and those with an unknown-name
+    /// diagnostic of `ns` (its did-you-mean lists `ns`'s names, which changed; found as a
+    /// rename finds them, [`CheckMemo::rename_dependents`]), but the statement `own`, checked
+    /// again in place ([`super::redo`], [`CheckMemo::splice_decls`]). How many, or `None`
+    /// when one of them is a setting (an area light naming an unknown mesh) or the re-check
+    /// declines.
+    fn recheck_unknown_names(
+        &mut self,
+        sources: &SourceMap,
+        ns: Namespace,
+        mut naming: BTreeMap<usize, Stmt>,
+        own: Option<usize>,
+        dependents: &mut Dependents,
+    ) -> Option<usize> {
+        let unmoved = Shift {
+            file: crate::source::FileId(0),
+            start: u32::MAX,
+            old_end: u32::MAX,
+            new_end: u32::MAX,
+        };
+        naming.extend(self.rename_dependents(sources, ns, &[], &unmoved, dependents)?);
+        if let Some(own) = own {
+            naming.remove(&own);
+        }
+        if naming.is_empty() {
+            return Some(0);
+        }
+        let was_used = (self.used_meshes(), self.used_materials());
+        let mut cx = self.lend(sources);
+        let (records, textures) = (&self.records, &self.material_textures);
+        let redone = redo(&mut cx, naming, records, textures, false, dependents, None);
+        self.take_back(&mut cx);
+        let redone = redone?;
+        if !redone.settings.is_empty() {
+            return None;
+        }
+        self.normal_maps_unchanged(&redone.relowered.textures, dependents)?;
+        let used_changed = was_used != (self.used_meshes(), self.used_materials());
+        self.splice_decls(sources, redone, &unmoved, used_changed)
     }
 
     /// Lowers the added declaration `d` (table index `at` of `ns`): its IR into `relowered`, its

@@ -9,10 +9,22 @@
 //! and its value names no unknown constant; its diagnostics lie in its own text and replace
 //! its old ones, as a declaration's do.
 //!
+//! An `obj` mesh and an `image` texture are declarations like the others here (2026-11-26,
+//! fifth session): the check reads no file (the path is resolved against the scene's
+//! directory; the build loads and caches the file by path and content hash), so their IR is a
+//! function of their text. Two things read more than the declaration's own IR, and decline:
+//! an `obj` mesh's `material` overrides (they name materials and make them used; the
+//! re-compaction does not invert their indices), and a normal map's sRGB warning, which reads
+//! whether the texture it names is an image decoded as sRGB: a texture whose answer changes
+//! is declined when a material that names it has a `normal_map`
+//! ([`CheckMemo::normal_maps_unchanged`]). Their IR holds a span in the declaration's value
+//! (the file name): the old entries' spans are cleared before the others move
+//! ([`CheckMemo::splice_decls`]), since they are replaced.
+//!
 //! Why the result is the full check's: a re-checked `let` with an unknown name, or that fails
 //! (or failed) while another error stands, a renamed
-//! statement, a redeclaration (not the first of its name), an `obj` mesh, an `image` texture,
-//! a material with a normal map (its warning reads the texture's IR), a `let` that a
+//! statement, a redeclaration (not the first of its name), an `obj` mesh with material
+//! overrides, a material with a normal map (its warning reads the texture's IR), a `let` that a
 //! `--define` overrides or that names a constant declared after it, and a constant named by
 //! any other kind of statement (a camera, a light, the render block) make it decline. A `group`
 //! that names a changed constant is checked again as an edited group is ([`super::groups`]:
@@ -40,7 +52,7 @@ use std::ops::Range;
 use super::super::names::Namespace;
 use super::super::StmtRecord;
 use super::compact::Relowered;
-use super::redo::redo;
+use super::redo::{names_a_normal_map, redo};
 use super::renamed::renamed;
 use super::CheckMemo;
 use crate::diag::Diagnostic;
@@ -96,6 +108,9 @@ impl CheckMemo {
         if !same || self.records.len() < old.end {
             return None;
         }
+        if super::lets::renamed_let(old_stmts, &new) {
+            return self.add_or_remove_lets(sources, old, old_stmts, &new, shift, dependents);
+        }
         let rename = match (old_stmts, &new[..]) {
             ([o], [n]) => renamed(o, n),
             _ => None,
@@ -108,11 +123,13 @@ impl CheckMemo {
         // name is checked again.
         let mut changed = BTreeMap::new();
         let mut renamed_at = None;
+        let mut renaming = None;
         if let Some((ns, was, now)) = rename {
             let at = self.rename_entry(ns, was, now)?;
             let names = [was.name.as_str(), now.name.as_str()];
-            changed = self.rename_dependents(sources, ns, names, shift, dependents)?;
+            changed = self.rename_dependents(sources, ns, &names, shift, dependents)?;
             renamed_at = Some((ns, at, now.span));
+            renaming = Some((ns, at, was.name.clone()));
         }
         // The old statements' own diagnostics go (their spans lie in the old text), then the
         // names and constants move to the new text: the re-check reports against them.
@@ -132,12 +149,12 @@ impl CheckMemo {
         // (an unknown name's did-you-mean lists the constants, which such an edit changes).
         let clean = !self.diagnostics.iter().any(Diagnostic::is_error);
         let records = &self.records;
-        let renaming = renamed_at.is_some();
         let redone = redo(
             &mut cx, changed, records, textures, clean, dependents, renaming,
         );
         self.take_back(&mut cx);
         let mut redone = redone?;
+        self.normal_maps_unchanged(&redone.relowered.textures, dependents)?;
         redone.renamed = renamed_at.map(|(ns, at, _)| (ns, at));
         let used_changed = was_used != (self.used_meshes(), self.used_materials());
         let settings = std::mem::take(&mut redone.settings);
@@ -147,8 +164,56 @@ impl CheckMemo {
     }
 }
 
+impl CheckMemo {
+    /// `Some` when no material's normal-map warning changes with the textures `relowered`
+    /// (table index, new IR): the warning reads only whether a texture is an image decoded as
+    /// sRGB, so a texture whose answer stays needs nothing; one whose answer changes is taken
+    /// only when no material that names it (whole-word search) has a `normal_map`.
+    pub(super) fn normal_maps_unchanged(
+        &self,
+        relowered: &[(usize, Option<ir::Texture>)],
+        dependents: &mut Dependents,
+    ) -> Option<()> {
+        let scene = self.scene.as_ref()?;
+        for (at, new) in relowered {
+            let old = match self.texture_map.get(*at).copied().flatten() {
+                Some(k) => scene.textures.get(k as usize),
+                None => (self.dropped.textures.iter())
+                    .find(|(i, _)| *i as usize == *at)
+                    .map(|(_, t)| t),
+            };
+            if srgb_image(old) == srgb_image(new.as_ref()) {
+                continue;
+            }
+            let name = self.tables[Namespace::Texture as usize].name(*at);
+            let normal_map = |(_, s): &(usize, Stmt)| {
+                matches!(s, Stmt::Decl(d) if d.kind == DeclKind::Material && names_a_normal_map(d))
+            };
+            if dependents(name)?.iter().any(normal_map) {
+                return None;
+            }
+        }
+        Some(())
+    }
+}
+
+/// Whether `t` is an image texture decoded as sRGB (what a normal map's warning reads).
+fn srgb_image(t: Option<&ir::Texture>) -> bool {
+    matches!(
+        t,
+        Some(ir::Texture {
+            source: ir::TextureSource::Image {
+                encoding: ir::TextureEncoding::Srgb,
+                ..
+            },
+            ..
+        })
+    )
+}
+
 /// Whether `new` may stand in for `old` in [`CheckMemo::recheck_decls`]: the same `let`,
-/// `material`, (not `obj`) `mesh` or (not `image`) `texture` by name, or two `object`s.
+/// `material`, `mesh` (an `obj` one without material overrides) or `texture` by name, or two
+/// `object`s.
 fn same_declaration(old: &Stmt, new: &Stmt) -> bool {
     match (old, new) {
         (Stmt::Let { name: a, .. }, Stmt::Let { name: b, .. }) => a.name == b.name,
@@ -157,10 +222,22 @@ fn same_declaration(old: &Stmt, new: &Stmt) -> bool {
                 a.kind,
                 DeclKind::Material | DeclKind::Mesh | DeclKind::Texture
             );
-            let not_obj = a.ctor.args.is_none() && b.ctor.args.is_none();
-            kind && a.kind == b.kind && a.name.name == b.name.name && not_obj
+            let plain = !overrides_materials(a) && !overrides_materials(b);
+            kind && a.kind == b.kind && a.name.name == b.name.name && plain
         }
         (Stmt::Object(_), Stmt::Object(_)) => true,
         _ => false,
     }
+}
+
+/// Whether `d` is a mesh whose body has a `material` key (an `obj` mesh's material override,
+/// or the word anywhere in another mesh's body: over-cautious, never wrong). Overrides name
+/// materials and make them used; the re-check does not follow them (the re-compaction
+/// declines them too), so such an edit is a full compile.
+pub(super) fn overrides_materials(d: &crate::syntax::Decl) -> bool {
+    let items = d.body.iter().flat_map(|b| &b.items);
+    d.kind == DeclKind::Mesh
+        && items
+            .into_iter()
+            .any(|i| matches!(i, crate::syntax::Item::Value(e) if e.as_name() == Some("material")))
 }

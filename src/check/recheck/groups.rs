@@ -9,11 +9,13 @@
 //! per statement) and the uses of the meshes and materials its objects name; beside those it
 //! declares its name and its nested groups' names in the group table (for the duplicate
 //! check only: nothing names a group). So:
-//! - the old and the new statements must declare as many group names, each old one the first
-//!   of its name (the table's entry): the table keeps its entries, their spans become the new
-//!   statements' (a group added or removed, or one declared twice, declines). A renamed one
-//!   takes the new name at the same place when no group has it (and no name anywhere is
-//!   declared twice: a rename could change which declaration is the first). The new statements
+//! - each old group name must be the first of its name (the table's entry). When the old and
+//!   the new statements declare as many, the table keeps its entries and their spans become
+//!   the new statements'; a renamed one takes the new name at the same place when no group has
+//!   it (and no name anywhere is declared twice: a rename could change which declaration is
+//!   the first). When they declare more or fewer (a group added or removed, 2026-11-26 fifth
+//!   session), the old names leave the table and the new ones enter it, each one no group has,
+//!   while no name anywhere is declared twice ([`replace_groups`]). The new statements
 //!   are checked against an empty group table, which then reports nothing (their names are
 //!   distinct, being the firsts of theirs), as the full check reports nothing for them;
 //! - the old statements' uses of meshes and materials come out: the old statements are
@@ -119,10 +121,14 @@ impl CheckMemo {
             (groups.spans.get(at) == Some(&span)).then_some(at)
         };
         let places: Vec<usize> = was.iter().map(first).collect::<Option<_>>()?;
-        if was.len() != now.len() {
-            return None;
-        }
         let twice = |d: &crate::diag::Diagnostic| d.code == crate::diag::Code::CheckDuplicateName;
+        if was.len() != now.len() {
+            // Groups added or removed: the old names go, the new ones come.
+            if self.diagnostics.iter().any(twice) {
+                return None;
+            }
+            return replace_groups(groups, places, &now);
+        }
         let renames = was.iter().zip(&now).any(|(a, b)| a.0 != b.0);
         if renames && self.diagnostics.iter().any(twice) {
             return None;
@@ -177,4 +183,30 @@ impl CheckMemo {
         }
         out
     }
+}
+
+/// The group table with the names at `places` (the old statements', each the first of its
+/// name, while no name anywhere is declared twice) taken out and the names `now` (the new
+/// statements') declared, each one no group has (else it would be a duplicate, or make a
+/// later one the first: a diagnostic added or removed). The table's order is not the full
+/// check's (the new names come last), but nothing reads it: a group is found by its name (the
+/// duplicate check, [`CheckMemo::rename_groups`]) and no message lists group names. Each new
+/// name's place and span.
+fn replace_groups(
+    groups: &mut super::super::names::Table,
+    mut places: Vec<usize>,
+    now: &[(&str, Span)],
+) -> Option<Vec<(usize, Span)>> {
+    places.sort_unstable();
+    for &at in places.iter().rev() {
+        groups.remove_at(at);
+    }
+    let mut out = Vec::with_capacity(now.len());
+    for &(name, span) in now {
+        if groups.declare(name, span).is_some() {
+            return None;
+        }
+        out.push((groups.len() - 1, span));
+    }
+    Some(out)
 }

@@ -1,6 +1,7 @@
 //! Stage 2, check, incrementally: `let` statements added or removed that nothing else names
-//! (`let q = 3` typed on a new line, or a line of an unused constant deleted), checked in place
-//! and spliced into the [`CheckMemo`] without a full check.
+//! (`let q = 3` typed on a new line, or a line of an unused constant deleted), or one such
+//! `let` renamed (removed and added: nothing names the old name or the new one), checked in
+//! place and spliced into the [`CheckMemo`] without a full check.
 //!
 //! Why the result is the full check's: the memo is of a check without an error (its warnings
 //! move with the edit), so no message lists the constants (only errors do: an unknown name's
@@ -40,7 +41,11 @@ impl CheckMemo {
     ) -> Option<usize> {
         let lets = |s: &[Stmt]| s.iter().all(|s| matches!(s, Stmt::Let { .. }));
         let one_side = old_stmts.is_empty() != new.is_empty();
-        if !one_side || !lets(old_stmts) || !lets(new) || old.len() != old_stmts.len() {
+        if !(one_side || renamed_let(old_stmts, new))
+            || !lets(old_stmts)
+            || !lets(new)
+            || old.len() != old_stmts.len()
+        {
             return None;
         }
         if self.diagnostics.iter().any(Diagnostic::is_error) || !self.poisoned.is_empty() {
@@ -105,4 +110,11 @@ impl CheckMemo {
         self.take_back(&mut cx);
         added.then_some(new.len())
     }
+}
+
+/// Whether `old` → `new` is one `let` renamed (`let k = 2` → `let kk = 2`): the old constant
+/// removed and the new one added, each as [`CheckMemo::add_or_remove_lets`] removes and adds
+/// one that nothing names.
+pub(super) fn renamed_let(old: &[Stmt], new: &[Stmt]) -> bool {
+    matches!((old, new), ([Stmt::Let { name: a, .. }], [Stmt::Let { name: b, .. }]) if a.name != b.name)
 }

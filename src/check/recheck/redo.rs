@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 
 use super::super::names::Namespace;
 use super::super::{Checker, StmtRecord};
-use super::decls::{Dependents, Redone};
+use super::decls::{overrides_materials, Dependents, Redone};
 use super::groups::declared_groups;
 use super::reevaluate::reevaluate;
 use crate::diag::Diagnostic;
@@ -25,7 +25,7 @@ pub(super) fn redo(
     material_textures: &[(u32, Vec<usize>)],
     clean: bool,
     dependents: &mut Dependents,
-    renaming: bool,
+    renaming: Option<(Namespace, usize, String)>,
 ) -> Option<Redone> {
     let (mut lets, mut others): (BTreeMap<_, _>, BTreeMap<_, _>) = changed
         .into_iter()
@@ -97,21 +97,23 @@ pub(super) fn redo(
                 }
                 redone.relowered.materials.push((at, material));
             }
-            Stmt::Decl(d) if d.kind == DeclKind::Mesh && d.ctor.args.is_none() => {
+            // An `obj` mesh too (its file is read by the build, not here), when it overrides
+            // no material (an override makes a material used).
+            Stmt::Decl(d) if d.kind == DeclKind::Mesh && !overrides_materials(d) => {
                 let at = declared_at(cx, Namespace::Mesh, d)?;
                 let mesh = cx.mesh(d);
                 redone.relowered.meshes.push((at, mesh));
             }
-            // Not an image: a normal map's warning reads only an image's encoding.
-            Stmt::Decl(d) if d.kind == DeclKind::Texture && d.ctor.args.is_none() => {
+            // An `image` too: a normal map's warning reads only whether it is one decoded as
+            // sRGB, which `CheckMemo::recheck_decls` compares before and after.
+            Stmt::Decl(d) if d.kind == DeclKind::Texture => {
                 let at = declared_at(cx, Namespace::Texture, d)?;
                 let texture = cx.texture(d);
                 redone.relowered.textures.push((at, texture));
             }
-            // A group's uses, counted under the old names, are not known one by one.
-            Stmt::Group(_) if renaming => return None,
             Stmt::Group(_) => {
-                let (record, diags, objects) = group_again(cx, &stmt, *records.get(i)?)?;
+                let old = *records.get(i)?;
+                let (record, diags, objects) = group_again(cx, &stmt, old, renaming.as_ref())?;
                 redone.objects.insert(i, (record, diags, objects));
                 redone.group_spans.push(stmt.span());
             }
@@ -172,15 +174,20 @@ fn forget_use(uses: &mut [u32], at: Option<u32>) -> Option<()> {
     Some(())
 }
 
-/// A `group` that names a changed constant (its text unchanged, moved: its names are the
-/// table's at their spans already) checked again, as [`super::groups`] checks an edited one:
-/// against an empty group table (its names must each be the first of theirs), its uses of
-/// meshes and materials the same as before (the same names resolve the same way), so put back
-/// as they were. Its record, diagnostics and objects (table indices).
+/// A `group` that names a changed constant or a renamed declaration (its text unchanged,
+/// moved: its names are the table's at their spans already) checked again, as
+/// [`super::groups`] checks an edited one: against an empty group table (its names must each
+/// be the first of theirs). Its uses of meshes and materials: with no rename, the same as
+/// before (the same names resolve the same way), so put back as they were; with `renaming`
+/// (the namespace, table index and old name of a declaration the table now holds under its
+/// new name), those it counted under the old name (the group checked once more with the
+/// table's entry named back, its output thrown away) are taken out and those under the new
+/// name kept. Its record, diagnostics and objects (table indices).
 fn group_again(
     cx: &mut Checker,
     stmt: &Stmt,
     old: StmtRecord,
+    renaming: Option<&(Namespace, usize, String)>,
 ) -> Option<(StmtRecord, Vec<Diagnostic>, Vec<crate::ir::Object>)> {
     let groups = &cx.tables[Namespace::Group as usize];
     let first = |(name, span): (&str, Span)| {
@@ -197,9 +204,27 @@ fn group_again(
     }
     let uses = (cx.mesh_uses.clone(), cx.material_uses.clone());
     let groups = std::mem::take(&mut cx.tables[Namespace::Group as usize]);
-    let _ = cx.placement(stmt);
+    match renaming {
+        None => {
+            let _ = cx.placement(stmt);
+            (cx.mesh_uses, cx.material_uses) = uses;
+        }
+        Some((ns, at, was)) => {
+            let (diags, objects) = (cx.diags.len(), cx.objects.len());
+            let now = rename_at(cx, *ns, *at, was)?;
+            let _ = cx.placement(stmt);
+            rename_at(cx, *ns, *at, &now)?;
+            // The names it declared go with its output (checked again below).
+            cx.tables[Namespace::Group as usize] = Default::default();
+            cx.diags.truncate(diags);
+            cx.objects.truncate(objects);
+            // Its uses under the old name out of the counts (they hold them), the new in.
+            forget_counted(&mut cx.mesh_uses, &uses.0)?;
+            forget_counted(&mut cx.material_uses, &uses.1)?;
+            let _ = cx.placement(stmt);
+        }
+    }
     cx.tables[Namespace::Group as usize] = groups;
-    (cx.mesh_uses, cx.material_uses) = uses;
     let objects = std::mem::take(&mut cx.objects);
     let diags = std::mem::take(&mut cx.diags);
     let record = StmtRecord {
@@ -210,4 +235,25 @@ fn group_again(
         material: None,
     };
     Some((record, diags, objects))
+}
+
+/// Names entry `at` of `ns`'s table `name` (its span kept): the name it had.
+fn rename_at(cx: &mut Checker, ns: Namespace, at: usize, name: &str) -> Option<String> {
+    let table = &mut cx.tables[ns as usize];
+    let span = *table.spans.get(at)?;
+    let had = table.name(at).to_string();
+    table.remove_at(at);
+    table.insert_at(at, name, span);
+    Some(had)
+}
+
+/// `uses` (counts `before` and what a check counted since) with what was counted taken out
+/// twice: the counts before, less the counted ones (which they hold already).
+fn forget_counted(uses: &mut [u32], before: &[u32]) -> Option<()> {
+    (uses.len() == before.len()).then_some(())?;
+    for (u, &b) in uses.iter_mut().zip(before) {
+        let counted = u.checked_sub(b)?;
+        *u = b.checked_sub(counted)?;
+    }
+    Some(())
 }

@@ -10,9 +10,11 @@
 //! (an object now gets an unknown name) or the new one (an unknown name now resolves), found
 //! by the whole-word search, and every statement with an unknown-name diagnostic of the
 //! namespace, whose did-you-mean lists its names (found by the unknown name, read at the
-//! diagnostic's label). A `group` among them is declined (its objects' uses, counted under the
-//! old names, are not known one by one), and so is an area light or an `obj` mesh (the
-//! re-check declines statements of those kinds). The IR is compacted again whatever the
+//! diagnostic's label). A `group` among them is checked twice (`redo::group_again`): once with
+//! the table's entry named back, to count the uses its objects made under the old name (taken
+//! out of the counts), once under the new name (kept). An area light or an `obj` mesh with
+//! material overrides among them is declined (the re-check declines statements of those
+//! kinds). The IR is compacted again whatever the
 //! edit changed, so that an unused declaration's warning carries the new name; the renamed
 //! one's old IR entry (its spans in the edited bytes, which cannot move) is set aside while
 //! every other span moves ([`SetAside`]), and the re-compaction puts the one lowered again in
@@ -21,6 +23,7 @@
 use std::collections::BTreeMap;
 
 use super::super::names::Namespace;
+use super::decls::overrides_materials;
 use super::{CheckMemo, Dependents};
 use crate::diag::Code;
 use crate::ir;
@@ -28,7 +31,7 @@ use crate::source::{Shift, SourceMap, Span};
 use crate::syntax::{DeclKind, Ident, Stmt};
 
 /// The namespace, old and new name of a renamed declaration: `old` → `new` is a `material`,
-/// (not `obj`) `mesh` or (not `image`) `texture` given another name.
+/// `mesh` (an `obj` one without material overrides) or `texture` given another name.
 pub(super) fn renamed<'a>(
     old: &'a Stmt,
     new: &'a Stmt,
@@ -42,8 +45,8 @@ pub(super) fn renamed<'a>(
         DeclKind::Texture => Namespace::Texture,
         DeclKind::Light => return None,
     };
-    let not_obj = a.ctor.args.is_none() && b.ctor.args.is_none();
-    (a.kind == b.kind && a.name.name != b.name.name && not_obj).then_some((ns, &a.name, &b.name))
+    let plain = !overrides_materials(a) && !overrides_materials(b);
+    (a.kind == b.kind && a.name.name != b.name.name && plain).then_some((ns, &a.name, &b.name))
 }
 
 impl CheckMemo {
@@ -80,7 +83,7 @@ impl CheckMemo {
         &self,
         sources: &SourceMap,
         ns: Namespace,
-        names: [&str; 2],
+        names: &[&str],
         shift: &Shift,
         dependents: &mut Dependents,
     ) -> Option<BTreeMap<usize, Stmt>> {

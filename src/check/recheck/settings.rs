@@ -1,6 +1,6 @@
-//! Stage 2, check, incrementally: a value edit of one scene setting — a `camera`, a `point`
-//! or `environment` `light`, or the `render` block (`fov 40deg` → `fov 45deg`) — checked
-//! again alone, its IR entry replaced in place in the [`CheckMemo`].
+//! Stage 2, check, incrementally: a value edit (or a rename) of one scene setting — a
+//! `camera`, a `point` or `environment` `light`, or the `render` block (`fov 40deg` → `fov
+//! 45deg`) — checked again alone, its IR entry replaced in place in the [`CheckMemo`].
 //!
 //! Why the result is the full check's: these statements are checked after every constant and
 //! declaration, reading constants, the `frame` and (the render block's `camera NAME`) the
@@ -8,10 +8,13 @@
 //! It declines unless the scene has no error (so every camera and light lowered, and no
 //! duplicate `render`), the old statement had no diagnostic in its text, and the new one
 //! gives none: then no diagnostic is added or removed, and every other one only moves by the
-//! edit. The statement keeps its kind and name (the first of its name), so the tables stay. An
+//! edit. The statement keeps its kind and its table place (the first of its name). An
 //! `area` light is declined (it names a mesh, or lowers its `quad` to one: the meshes' use and
 //! the IR's indices could change), and so is any `--define` (its unused warning depends on
-//! what names it). A `let` a setting names, edited ([`super::decls`]), checks the setting again
+//! what names it). A camera or light renamed (`light sun` → `light key`) keeps its table place
+//! under the new name (declined when the name is taken, any name is declared twice, or, for a
+//! camera, the render block names either name: nothing else names a camera or a light). A
+//! `let` a setting names, edited ([`super::decls`]), checks the setting again
 //! here once the rest of the edit is in place ([`CheckMemo::recheck_named_settings`]), under
 //! the same conditions: the statement is unchanged but its value is not.
 
@@ -19,31 +22,58 @@ use std::sync::Arc;
 
 use super::super::names::Namespace;
 use super::super::vocabulary::{LightKind, Word};
-use super::CheckMemo;
+use super::area_light::lower_area;
+use super::{CheckMemo, Dependents};
 use crate::diag::Diagnostic;
 use crate::ir;
 use crate::source::{Shift, SourceMap, Span};
-use crate::syntax::{Decl, DeclKind, Stmt};
+use crate::syntax::{Decl, DeclKind, Ident, Stmt};
 
 /// A scene setting checked again: its new IR entry.
 enum Setting {
     Camera(ir::Camera),
-    Light(ir::Light),
+    /// A light, and an area light's own quad (its IR index and mesh).
+    Light(ir::Light, Option<(u32, ir::Mesh)>),
     Render(ir::RenderSettings, usize),
 }
 
 impl CheckMemo {
-    /// Whether `old` → `new` is the edit [`CheckMemo::recheck_setting`] takes: the same camera,
-    /// (not `area`) light (by name) or the render block.
+    /// Whether `old` → `new` is the edit [`CheckMemo::recheck_setting`] takes: a camera, a
+    /// (not `area`) light (renamed or not) or the render block.
     pub fn same_setting(old: &Stmt, new: &Stmt) -> bool {
         match (old, new) {
-            (Stmt::Camera { name: a, .. }, Stmt::Camera { name: b, .. }) => a.name == b.name,
+            (Stmt::Camera { .. }, Stmt::Camera { .. }) => true,
             (Stmt::Decl(a), Stmt::Decl(b)) => {
-                a.name.name == b.name.name && not_area_light(a) && not_area_light(b)
+                let (x, y) = (light_kind(a), light_kind(b));
+                x.is_some() && x == y
             }
             (Stmt::Render { .. }, Stmt::Render { .. }) => true,
             _ => false,
         }
+    }
+
+    /// A camera or light renamed from `old` to `new` (their idents): its table entry takes the
+    /// new name at its place (as a renamed declaration's does: [`CheckMemo::rename_entry`];
+    /// declined when the new name is taken or any name is declared twice), with the new span
+    /// once every other span has moved. Only the render block names a camera (`camera NAME`;
+    /// nothing names a light): declined when one names either name (the whole-word search of
+    /// the new text). No diagnostic lists camera or light names but an unknown camera's, an
+    /// error, which the caller declines.
+    fn rename_setting(
+        &mut self,
+        ns: Namespace,
+        (old, new): (&Ident, &Ident),
+        dependents: &mut Dependents,
+    ) -> Option<usize> {
+        if ns == Namespace::Camera {
+            let render = |found: Vec<(usize, Stmt)>| {
+                (found.iter()).any(|(_, s)| matches!(s, Stmt::Render { .. }))
+            };
+            if render(dependents(&old.name)?) || render(dependents(&new.name)?) {
+                return None;
+            }
+        }
+        self.rename_entry(ns, old, new)
     }
 
     /// Replaces the check of the setting `old` (as parsed from the old text) by that of `new`
@@ -56,6 +86,7 @@ impl CheckMemo {
         old: &Stmt,
         new: &Stmt,
         shift: &Shift,
+        dependents: &mut Dependents,
     ) -> Option<usize> {
         let old_span = old.span();
         let in_old = |d: &Diagnostic| {
@@ -68,9 +99,30 @@ impl CheckMemo {
         if !Self::same_setting(old, new) || !clean || !self.defines.is_empty() {
             return None;
         }
+        let renamed = match (old, new) {
+            (Stmt::Camera { name: a, .. }, Stmt::Camera { name: b, .. }) => {
+                Some((Namespace::Camera, a, b))
+            }
+            (Stmt::Decl(a), Stmt::Decl(b)) => Some((Namespace::Light, &a.name, &b.name)),
+            _ => None,
+        }
+        .filter(|(_, a, b)| a.name != b.name);
+        let at = match renamed {
+            Some((ns, a, b)) => Some((ns, self.rename_setting(ns, (a, b), dependents)?, b.span)),
+            None => None,
+        };
+        let area = match old {
+            Stmt::Decl(d) if light_kind(d) == Some(LightKind::Area) => {
+                Some(self.area_mesh(old_span)?)
+            }
+            _ => None,
+        };
         let cameras = self.scene.as_ref()?.cameras.clone();
         if !self.shift_names(shift) {
             return None;
+        }
+        if let Some((ns, at, span)) = at {
+            *self.tables[ns as usize].spans.get_mut(at)? = span;
         }
         let mut cx = self.lend(sources);
         let setting = match new {
@@ -84,9 +136,15 @@ impl CheckMemo {
                 let first = cx.tables[Namespace::Light as usize].get(&d.name.name);
                 let spans = &cx.tables[Namespace::Light as usize].spans;
                 let first = first.is_some_and(|at| spans.get(at) == Some(&d.name.span));
-                first.then(|| {
-                    cx.light(d);
-                    cx.lights.pop().map(Setting::Light)
+                first.then(|| match &area {
+                    Some(area) => {
+                        let (light, mesh) = lower_area(&mut cx, d, area)?;
+                        Some(Setting::Light(light, mesh.map(|m| (area.ir, m))))
+                    }
+                    None => {
+                        cx.light(d);
+                        cx.lights.pop().map(|l| Setting::Light(l, None))
+                    }
                 })
             }
             Stmt::Render { body, span } => {
@@ -120,7 +178,7 @@ impl CheckMemo {
                 old_end: u32::MAX,
                 new_end: u32::MAX,
             };
-            self.recheck_setting(sources, s, s, &unmoved)?;
+            self.recheck_setting(sources, s, s, &unmoved, &mut |_| Some(Vec::new()))?;
         }
         Some(())
     }
@@ -139,7 +197,7 @@ impl CheckMemo {
                 let at = scene.cameras.iter().position(|c| inside(c.span));
                 at.inspect(|&at| drop(scene.cameras.remove(at)))
             }
-            Setting::Light(_) => {
+            Setting::Light(..) => {
                 let at = scene.lights.iter().position(|l| inside(light_span(l)));
                 at.inspect(|&at| drop(scene.lights.remove(at)))
             }
@@ -151,10 +209,28 @@ impl CheckMemo {
         let Some(at) = place else {
             return false;
         };
+        // An area light's own quad: its old mesh (a span in the edited text) replaced before
+        // the spans move, the new one's span (the new text's) set after.
+        let quad = match &setting {
+            Setting::Light(_, Some((k, mesh))) => {
+                let Some(slot) = scene.meshes.get_mut(*k as usize) else {
+                    return false;
+                };
+                *slot = ir::Mesh {
+                    span: Span::new(old.file, 0, 0),
+                    ..mesh.clone()
+                };
+                Some((*k as usize, mesh.span))
+            }
+            _ => None,
+        };
         let mut ok = scene.shift_spans(shift);
+        if let Some((k, span)) = quad {
+            scene.meshes[k].span = span;
+        }
         match setting {
             Setting::Camera(c) => scene.cameras.insert(at, c),
-            Setting::Light(l) => scene.lights.insert(at, l),
+            Setting::Light(l, _) => scene.lights.insert(at, l),
             Setting::Render(r, active_camera) => {
                 scene.render = r;
                 scene.active_camera = active_camera;
@@ -176,8 +252,9 @@ fn light_span(l: &ir::Light) -> Span {
     }
 }
 
-/// Whether `d` is a light declaration of a kind other than `area`.
-fn not_area_light(d: &Decl) -> bool {
-    let kind = LightKind::from_word(&d.ctor.name.name);
-    d.kind == DeclKind::Light && kind != Some(LightKind::Area)
+/// The kind of the light declaration `d` (`None`: not a light, or an unknown kind).
+fn light_kind(d: &Decl) -> Option<LightKind> {
+    (d.kind == DeclKind::Light)
+        .then(|| LightKind::from_word(&d.ctor.name.name))
+        .flatten()
 }

@@ -5,11 +5,15 @@
 //! re-lowered declarations in the IR (or the IR compacted again, [`super::compact`]) — every
 //! other span moving by the edit.
 
+use std::sync::Arc;
+
 use super::super::StmtRecord;
+use super::compact::Relowered;
 use super::decls::Redone;
 use super::CheckMemo;
 use crate::diag::Diagnostic;
-use crate::source::{Shift, SourceMap, Span};
+use crate::ir;
+use crate::source::{FileId, Shift, SourceMap, Span};
 
 impl CheckMemo {
     /// of `spans` (a statement's diagnostics lie in its own text).
@@ -115,6 +119,8 @@ impl CheckMemo {
         }
         // The renamed declaration's entries keep their old spans (in the edited bytes): the
         // re-compaction puts the one lowered again in their place.
+        // (Before it is set aside: the IR's indices are the maps' until then.)
+        self.blank_replaced(&relowered, shift.file);
         let aside = renamed.and_then(|(ns, at)| self.set_aside(ns, at));
         if let Some(scene) = &mut self.scene {
             let scene = std::sync::Arc::make_mut(scene);
@@ -168,6 +174,62 @@ impl CheckMemo {
             self.recompact(sources, relowered)?;
         }
         ok.then_some(checked)
+    }
+}
+
+impl CheckMemo {
+    /// The old IR entries (in the IR or among the dropped ones) of the declarations
+    /// `relowered` replaces, their spans set to the file's start (`file`): an `obj` mesh's or
+    /// an `image` texture's file name lies in the edited bytes, which no shift can move, and
+    /// every one of them is replaced once the others have moved (`put_in_place`, or the
+    /// re-compaction from `relowered`).
+    fn blank_replaced(&mut self, r: &Relowered, file: FileId) {
+        let blank = Span::new(file, 0, 0);
+        let Some(scene) = self.scene.as_mut().map(Arc::make_mut) else {
+            return;
+        };
+        let dropped = &mut self.dropped;
+        for (i, _) in &r.textures {
+            if let Some(t) = entry(&mut scene.textures, &self.texture_map, &mut dropped.textures, *i) {
+                t.span = blank;
+                if let ir::TextureSource::Image { file, .. } = &mut t.source {
+                    file.span = blank;
+                }
+            }
+        }
+        for (i, _) in &r.meshes {
+            if let Some(m) = entry(&mut scene.meshes, &self.mesh_map, &mut dropped.meshes, *i) {
+                m.span = blank;
+                if let ir::MeshSource::Obj(path) = &mut m.source {
+                    path.span = blank;
+                }
+                for o in m.obj.iter_mut().flat_map(|o| &mut o.materials) {
+                    o.span = blank;
+                }
+            }
+        }
+        for (i, _) in &r.materials {
+            let list = &mut scene.materials;
+            if let Some(m) = entry(list, &self.material_map, &mut dropped.materials, *i) {
+                m.span = blank;
+            }
+        }
+    }
+}
+
+/// Table entry `i`: in the IR's `list` (through `map`) or among the `dropped` ones.
+fn entry<'a, T>(
+    list: &'a mut [T],
+    map: &[Option<u32>],
+    dropped: &'a mut [(u32, T)],
+    i: usize,
+) -> Option<&'a mut T> {
+    match map.get(i).copied().flatten() {
+        Some(k) => list.get_mut(k as usize),
+        None => dropped
+            .iter_mut()
+            .find(|(k, _)| *k as usize == i)
+            .map(|(_, t)| t),
     }
 }
 
