@@ -132,17 +132,25 @@ fn assets() -> Vec<(&'static str, Vec<u8>)> {
             let c = |b: usize| if i >> b & 1 == 1 { s } else { -s };
             obj += &format!("v {} {} {}\n", c(0), c(1), c(2));
         }
-        for f in ["1 3 4 2", "5 6 8 7", "1 2 6 5", "3 7 8 4", "1 5 7 3", "2 4 8 6"] {
+        for f in [
+            "1 3 4 2", "5 6 8 7", "1 2 6 5", "3 7 8 4", "1 5 7 3", "2 4 8 6",
+        ] {
             obj += &format!("f {f}\n");
         }
         obj.into_bytes()
     };
     let mut png = Vec::new();
-    let image = image::RgbImage::from_fn(4, 4, |x, y| image::Rgb([(x * 60) as u8, (y * 60) as u8, 90]));
+    let image = image::RgbImage::from_fn(4, 4, |x, y| {
+        image::Rgb([(x * 60) as u8, (y * 60) as u8, 90])
+    });
     image
         .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
         .expect("a PNG in memory");
-    vec![("crate_a.obj", cube(0.5)), ("crate_b.obj", cube(0.7)), ("grain.png", png)]
+    vec![
+        ("crate_a.obj", cube(0.5)),
+        ("crate_b.obj", cube(0.7)),
+        ("grain.png", png),
+    ]
 }
 
 const HEADER: usize = 112;
@@ -405,10 +413,16 @@ fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String
             lines[last] = lines[last].replacen(&name, &format!("sun{k}"), 1);
         }
         Kind::CameraRename => {
-            let name = lines[CAMERA_LINE].split(' ').nth(1).unwrap_or("main").to_string();
+            let name = lines[CAMERA_LINE]
+                .split(' ')
+                .nth(1)
+                .unwrap_or("main")
+                .to_string();
             lines[CAMERA_LINE] = lines[CAMERA_LINE].replacen(&name, &format!("main{k}"), 1);
         }
-        Kind::GroupAdded if k.is_multiple_of(2) => lines.insert(GROUP_LINE + 1, added_group_line(k)),
+        Kind::GroupAdded if k.is_multiple_of(2) => {
+            lines.insert(GROUP_LINE + 1, added_group_line(k))
+        }
         Kind::GroupAdded => {
             lines.remove(GROUP_LINE + 1);
         }
@@ -547,7 +561,11 @@ fn front_end(objects: usize, edits: usize) {
                 // checked); taking it out gives that text again (`Unchanged`) or another value.
                 let checks = matches!(
                     kind,
-                    Kind::Typo | Kind::BadValue | Kind::LetError | Kind::Rename | Kind::GroupedRename
+                    Kind::Typo
+                        | Kind::BadValue
+                        | Kind::LetError
+                        | Kind::Rename
+                        | Kind::GroupedRename
                 );
                 let checked = match kind {
                     Kind::LetError => checked(Kind::Let, k),

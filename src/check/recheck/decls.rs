@@ -186,9 +186,7 @@ impl CheckMemo {
                 continue;
             }
             let name = self.tables[Namespace::Texture as usize].name(*at);
-            let normal_map = |(_, s): &(usize, Stmt)| {
-                matches!(s, Stmt::Decl(d) if d.kind == DeclKind::Material && names_a_normal_map(d))
-            };
+            let normal_map = |(_, s): &(usize, Stmt)| matches!(s, Stmt::Decl(d) if d.kind == DeclKind::Material && names_a_normal_map(d));
             if dependents(name)?.iter().any(normal_map) {
                 return None;
             }

@@ -87,9 +87,12 @@ impl CheckMemo {
         shift: &Shift,
         dependents: &mut Dependents,
     ) -> Option<BTreeMap<usize, Stmt>> {
-        let code = ns.unknown_code();
         let mut words: Vec<String> = names.iter().map(|n| n.to_string()).collect();
-        for d in self.diagnostics.iter().filter(|d| d.code == code) {
+        for d in self
+            .diagnostics
+            .iter()
+            .filter(|d| lists_names_of(ns, d.code))
+        {
             let mut span = d.primary.as_ref()?.span;
             if !shift.apply(&mut span) {
                 return None;
@@ -104,6 +107,14 @@ impl CheckMemo {
         }
         Some(found)
     }
+}
+
+/// Whether a diagnostic of code `code` may list the names of `ns` in its did-you-mean: an
+/// unknown name of `ns`, and for textures also an unknown name in a material's colour, which
+/// lists the textures and the constants (`unknown texture or constant`, an unknown-name
+/// code that an unknown constant shares: such a statement is checked again for nothing).
+fn lists_names_of(ns: Namespace, code: Code) -> bool {
+    code == ns.unknown_code() || (ns == Namespace::Texture && code == Code::CheckUnknownName)
 }
 
 /// The renamed declaration's entry, taken out of the IR's list (its IR index and entry) or of

@@ -190,7 +190,12 @@ impl CheckMemo {
         };
         let dropped = &mut self.dropped;
         for (i, _) in &r.textures {
-            if let Some(t) = entry(&mut scene.textures, &self.texture_map, &mut dropped.textures, *i) {
+            if let Some(t) = entry(
+                &mut scene.textures,
+                &self.texture_map,
+                &mut dropped.textures,
+                *i,
+            ) {
                 t.span = blank;
                 if let ir::TextureSource::Image { file, .. } = &mut t.source {
                     file.span = blank;
