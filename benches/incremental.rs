@@ -2,8 +2,8 @@
 //! [-- --edits N] [-- --objects N] [-- --no-watch] [-- --only Uses,BadValue]`.
 //!
 //! The scene of issue 22: 100,000 `object` statements, each with a rotate and a translate, over
-//! three meshes and 100 materials that name one constant, `gloss`, and one `group` (about 9 MB).
-//! Twenty-one kinds
+//! three meshes, an OBJ mesh and an image texture (placed by the group) and 100 materials that
+//! name one constant, `gloss`, and one `group` (about 9 MB). Twenty-seven kinds
 //! of edit, one line each: one object's translate in the middle of the file (a person nudging one
 //! object), one material's colour, the value of `gloss` (its 100 materials re-checked), an
 //! `object` line inserted, one deleted, an object's material misspelt then put back (every
@@ -17,7 +17,10 @@
 //! warning) and deleted; `gloss` given an error (its materials fail quietly) and put back; the camera's eye, the light's intensity and the render block's sample
 //! count changed (one number each); the constant the camera's `fov` names changed; a group of two objects (one in a nested group) lifted; material `m5`
 //! renamed (its 1,000 objects then name an unknown material) and named back; a stray `=` typed into `let gloss` and into one material's
-//! line (syntax errors that lose a constant and a declaration others name), each taken out.
+//! line (syntax errors that lose a constant and a declaration others name), each taken out;
+//! (2026-11-26, fifth session) the OBJ mesh's file changed, the image texture's wrap mode
+//! changed, the light and the camera renamed, a group added and removed, and material `m0`
+//! (named by the group and 1,000 objects) renamed and named back.
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
 //!    each edit (the text served from memory; diagnostics are ready when it returns).
