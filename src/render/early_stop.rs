@@ -22,7 +22,9 @@
 //! block adds to the scatter: such pixels sample on.
 //!
 //! **After 4 samples** (the whole first round, a 4-point net), it stops if the upper confidence
-//! bound of half that spread is within the target (assumed: a 4-point net's mean has at most
+//! bound of half that spread is within the target and its own per-sample estimate within twice
+//! the target ([`OWN_OVER_TARGET_SQ`]: a penumbra block whose first batches all fell the same way
+//! has a luckily small spread; since 2026-11-26, fifth session) (assumed: a 4-point net's mean has at most
 //! half the variance of its first two points' mean, as independent samples' has;
 //! stratification usually does better, and cornell at 5% reported 0.82× its measured error with
 //! it, so this stop keeps the bound; where a 2-sample stop was possible, an interior pixel that

@@ -16,7 +16,9 @@
 //! The spread of four means has three degrees of freedom: noisy, and stopping on a luckily
 //! small estimate biases the pixel. So it is combined with the per-sample estimate (an upper
 //! bound in expectation) as a prior worth [`PRIOR_DOF`] degrees of freedom (less beyond
-//! [`PRIOR_FULL_SAMPLES`] samples, [`prior_dof`]). Relative error is
+//! [`PRIOR_FULL_SAMPLES`] samples, [`prior_dof`]); when a pixel that has taken `1/target`
+//! samples decides to stop, that prior is at most [`PRIOR_CAP`] times the replicates' estimate
+//! ([`Accumulator::stopping_error`]; it reports the uncapped one). Relative error is
 //! that of the luminance, divided by the mean luminance floored at [`REL_FLOOR`]; a term
 //! `REL_FLOOR / n` keeps pixels whose samples all agree so far sampling until `n ≥ 1/target`,
 //! a pixel whose samples are all black takes at least `3/target` ([`black_min_samples`]), and
