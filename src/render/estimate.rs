@@ -16,7 +16,9 @@
 //! The spread of four means has three degrees of freedom: noisy, and stopping on a luckily
 //! small estimate biases the pixel. So it is combined with the per-sample estimate (an upper
 //! bound in expectation) as a prior worth [`PRIOR_DOF`] degrees of freedom (less beyond
-//! [`PRIOR_FULL_SAMPLES`] samples, [`prior_dof`]). Relative error is
+//! [`PRIOR_FULL_SAMPLES`] samples, [`prior_dof`]); when a pixel that has taken `1/target`
+//! samples decides to stop, that prior is at most [`PRIOR_CAP`] times the replicates' estimate
+//! ([`Accumulator::stopping_error`]; it reports the uncapped one). Relative error is
 //! that of the luminance, divided by the mean luminance floored at [`REL_FLOOR`]; a term
 //! `REL_FLOOR / n` keeps pixels whose samples all agree so far sampling until `n ≥ 1/target`,
 //! a pixel whose samples are all black takes at least `3/target` ([`black_min_samples`]), and
@@ -62,6 +64,17 @@ pub const PRIOR_FULL_SAMPLES: f64 = 64.0;
 pub fn prior_dof(n: f64) -> f64 {
     PRIOR_DOF * (PRIOR_FULL_SAMPLES / n.max(1.0)).sqrt().min(1.0)
 }
+/// The most the per-sample prior may say, as a multiple of the replicates' own estimate of the
+/// variance of the mean, when a pixel decides to stop ([`Accumulator::stopping_error`]). The
+/// replicates' three degrees of freedom put their estimate under 1/1600 of the truth with
+/// probability about 2·10⁻⁵ (χ²₃'s lower tail, `(3/1600)^1.5 / (2^1.5 Γ(2.5))`), so a per-sample
+/// estimate above it is known to over-state the pixel's error: its samples are stratified far
+/// better than independent ones (cornell's ~90 pixels a render that stopped after 260 samples
+/// measuring 0.38× the target at 2%, docs/quality.md). Tighter caps (40× or 180×, the 99% and
+/// 99.94% points) let pixels stop on luckily small spreads (cornell at 5%: reports 0.49–0.67× the
+/// measured).
+pub const PRIOR_CAP: f64 = 1600.0;
+
 /// A pixel that may see an area light takes at least this many samples over the target
 /// ([`emitter_min_samples`]).
 pub const EMITTER_MIN_PER_TARGET: f64 = 8.0;
@@ -222,8 +235,24 @@ impl Accumulator {
         Some((var / mean.abs().max(REL_FLOOR).powi(2), n - 1.0))
     }
 
-    /// Relative standard error of the mean luminance (0 with fewer than two samples).
+    /// Relative standard error of the mean luminance (0 with fewer than two samples): the
+    /// estimate a pixel reports, the per-sample prior at its full weight.
     pub fn relative_error(&self) -> f64 {
+        self.relative_error_with_prior_cap(f64::INFINITY)
+    }
+
+    /// The estimate a pixel that has taken `1/target` samples itself decides to stop on:
+    /// [`Accumulator::relative_error`] with the per-sample prior at most [`PRIOR_CAP`] times the
+    /// replicates' estimate. It only lowers the estimate of pixels whose per-sample variance
+    /// over-states their error by more than the replicates' spread could plausibly hide; what
+    /// they report stays [`Accumulator::relative_error`] (reporting the capped figure too put
+    /// cornell's reports at 0.56× the measured at 2%, the stop selecting pixels whose spread came
+    /// out small; docs/quality.md).
+    pub fn stopping_error(&self) -> f64 {
+        self.relative_error_with_prior_cap(PRIOR_CAP)
+    }
+
+    fn relative_error_with_prior_cap(&self, cap: f64) -> f64 {
         if self.n < 2 {
             return 0.0;
         }
@@ -233,6 +262,7 @@ impl Accumulator {
         let var = match self.between_replicates() {
             Some((ss, dof)) => {
                 let between = ss / dof / n;
+                let per_sample = per_sample.min(cap * between);
                 let prior = prior_dof(n);
                 (prior * per_sample + dof * between) / (prior + dof)
             }
@@ -450,6 +480,50 @@ mod tests {
             "{} against {mixed}",
             c.relative_error()
         );
+    }
+
+    #[test]
+    fn the_prior_is_capped_where_the_replicates_rule_it_out() {
+        // Replicates whose means differ by ±1e-3 around 1 while every replicate's samples
+        // swing between 0 and 2: the per-sample variance (about 1) over-states the error of
+        // the mean, 1/n, by far more than PRIOR_CAP times the replicates' spread.
+        let mut a = Accumulator::default();
+        let n = 16 * REPLICATES;
+        for g in 0..n {
+            let r = (g % REPLICATES) as usize;
+            let shift = if r.is_multiple_of(2) { 1e-3 } else { -1e-3 };
+            let swing = if (g / REPLICATES).is_multiple_of(2) {
+                1.0
+            } else {
+                -1.0
+            };
+            a.add_replicate(Vec3::splat((1.0 + shift + swing) as f32), Some(r));
+        }
+        let (ss, dof) = a.between_replicates().expect("every replicate sampled");
+        let nf = n as f64;
+        let between = ss / dof / nf;
+        let per_sample = 1.0 / nf;
+        assert!(
+            per_sample > PRIOR_CAP * between,
+            "{per_sample} against {between}"
+        );
+        // Reported: the prior at its full weight; deciding: the prior at PRIOR_CAP × between.
+        let prior = prior_dof(nf);
+        let mean = a.mean_luminance();
+        let floor = (REL_FLOOR / nf).powi(2);
+        let with = |p: f64| ((prior * p + dof * between) / (prior + dof) + floor).sqrt() / mean;
+        let expected_report = with((a.luma_sum_sq - a.luma_sum * mean) / (nf - 1.0) / nf);
+        assert!((a.relative_error() - expected_report).abs() < 1e-9 * expected_report);
+        let expected_stop = with(PRIOR_CAP * between);
+        assert!((a.stopping_error() - expected_stop).abs() < 1e-9 * expected_stop);
+        assert!(a.stopping_error() < 0.5 * a.relative_error());
+        // Where the replicates disagree as much as the samples, the cap changes nothing.
+        let mut b = Accumulator::default();
+        for g in 0..n {
+            let r = (g % REPLICATES) as usize;
+            b.add_replicate(Vec3::splat(if r < 2 { 0.5 } else { 1.5 }), Some(r));
+        }
+        assert_eq!(b.stopping_error(), b.relative_error());
     }
 
     #[test]

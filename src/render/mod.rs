@@ -512,10 +512,19 @@ impl Job<'_> {
                 if let Some(e) = early_stop::confident_error(&acc, &prior, &spread, a.target) {
                     return acc.finish_with(taken, false, e);
                 }
-            } else if prior.seen(taken) >= a.min && acc.relative_error() <= a.target {
+            } else if prior.seen(taken) >= a.min {
                 // `1/target` samples counted over the pixel and its neighbours' first batches
-                // (the rule of three, as for the early stop).
-                return acc.finish(taken, false);
+                // (the rule of three, as for the early stop). The per-sample prior is capped
+                // only once the pixel alone has taken them: before, it leans on its
+                // neighbours' count, and the prior at full weight keeps soft_shadows' bright
+                // walls at 2% sampling on (docs/quality.md).
+                let error = match taken >= a.min {
+                    true => acc.stopping_error(),
+                    false => acc.relative_error(),
+                };
+                if error <= a.target {
+                    return acc.finish(taken, false);
+                }
             }
         }
         acc.finish(taken, true)
