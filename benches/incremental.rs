@@ -1,5 +1,5 @@
 //! Incremental re-checking benchmark (a program, not a test): `cargo bench --bench incremental
-//! [-- --edits N] [-- --objects N] [-- --no-watch] [-- --only Uses,BadValue]`.
+//! [-- --edits N] [-- --objects N] [-- --no-watch] [-- --in-place] [-- --only Uses,BadValue]`.
 //!
 //! The scene of issue 22: 100,000 `object` statements, each with a rotate and a translate, over
 //! three meshes, an OBJ mesh and an image texture (placed by the group) and 100 materials that
@@ -24,7 +24,8 @@
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
 //!    each edit (the text served from memory; diagnostics are ready when it returns).
-//! 2. `scnc watch --events json --no-serve` (the release binary, a real process) on the file:
+//! 2. `scnc watch --events json --no-serve` (the release binary, a real process) on the file,
+//!    saved by a rename into place (or with `--in-place` by a plain `fs::write`):
 //!    save → `checked` event (the front end's diagnostics, before the build), save →
 //!    `compiled` event (after the build) and save → first `pass` event (the preview
 //!    image is written before that event), with the compile, build and pass times it reports;
@@ -633,16 +634,31 @@ fn front_end(objects: usize, edits: usize) {
     }
 }
 
-/// Saves `text` to `scn` as most editors do: written beside it, then renamed into place, so
-/// that the watcher never reads it half-written (a plain `fs::write` of the 8.8 MB file was
-/// read half-written at load 12–16: a false syntax error that stops the bench).
-fn save(scn: &Path, text: &str) {
-    let tmp = scn.with_extension("scn.saving");
-    std::fs::write(&tmp, text).expect("save");
-    std::fs::rename(&tmp, scn).expect("save: rename into place");
+/// How the bench saves the scene file in `scnc watch`'s part.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Save {
+    /// Written beside it, then renamed into place (as vim and many IDEs save): the watcher
+    /// sees the file whole, at once.
+    Rename,
+    /// `fs::write` in place (`--in-place`: truncated, then written, as many other editors and
+    /// scripts save): the watcher sees it modified while it is written, and must wait for the
+    /// writer to finish (on Linux, its close) not to read it half-written (docs/watch.md).
+    InPlace,
 }
 
-fn watch(objects: usize, edits: usize) {
+/// Saves `text` to `scn` the `how` way.
+fn save(scn: &Path, text: &str, how: Save) {
+    match how {
+        Save::Rename => {
+            let tmp = scn.with_extension("scn.saving");
+            std::fs::write(&tmp, text).expect("save");
+            std::fs::rename(&tmp, scn).expect("save: rename into place");
+        }
+        Save::InPlace => std::fs::write(scn, text).expect("save in place"),
+    }
+}
+
+fn watch(objects: usize, edits: usize, how: Save) {
     let mut lines = scene(objects);
     let original = lines.join("\n") + "\n";
     let dir = std::env::temp_dir().join(format!("scnc-incr-bench-{}", std::process::id()));
@@ -658,7 +674,7 @@ fn watch(objects: usize, edits: usize) {
     let (_, first) = wait("compiled", false);
     wait("pass", true);
     println!(
-        "scnc watch, first compile {:.0} ms + build {:.0} ms",
+        "scnc watch (saves: {how:?}), first compile {:.0} ms + build {:.0} ms",
         first["compile_ms"].as_f64().unwrap_or(0.0),
         first["build_ms"].as_f64().unwrap_or(0.0),
     );
@@ -670,7 +686,7 @@ fn watch(objects: usize, edits: usize) {
         for k in 0..edits {
             let text = edit(&mut lines, objects, kind, 1000 + k);
             let t0 = Instant::now();
-            save(&scn, &text);
+            save(&scn, &text, how);
             let (t1, _) = wait("checked", false);
             let (t3, c) = wait("compiled", false);
             let (t2, p) = wait("pass", false);
@@ -714,7 +730,7 @@ fn watch(objects: usize, edits: usize) {
         for k in 0..edits + edits % 2 {
             let text = edit(&mut lines, objects, kind, 1000 + k);
             let t0 = Instant::now();
-            save(&scn, &text);
+            save(&scn, &text, how);
             if k.is_multiple_of(2) {
                 let (t1, _) = wait("error", false);
                 figures[0].push((t1 - t0).as_secs_f64() * 1e3);
@@ -756,7 +772,12 @@ fn main() {
     let edits = arg("--edits", 15);
     let objects = arg("--objects", 100_000);
     front_end(objects, edits);
+    let how = if args.iter().any(|a| a == "--in-place") {
+        Save::InPlace
+    } else {
+        Save::Rename
+    };
     if !args.iter().any(|a| a == "--no-watch") {
-        watch(objects, edits);
+        watch(objects, edits, how);
     }
 }

@@ -77,6 +77,44 @@ fn a_broken_edit_keeps_the_last_image_and_the_fix_recovers() {
     assert_ne!(dir.read("out.png"), good);
 }
 
+/// Saves `text` in place as `fs::write` and many editors do (truncate, write), in two pieces
+/// with `pause` between them: a writer slowed down by a loaded machine. The first piece ends
+/// inside a statement's braces, so a compile of the half-written file is an error.
+fn save_in_place_slowly(path: &std::path::Path, text: &str, pause: std::time::Duration) {
+    use std::io::Write;
+    let half = text.len() / 2;
+    let cut = half + text[half..].find('{').map_or(0, |i| i + 1);
+    let mut f = std::fs::File::create(path).expect("open for writing");
+    f.write_all(&text.as_bytes()[..cut]).expect("write");
+    f.flush().expect("flush");
+    std::thread::sleep(pause);
+    f.write_all(&text.as_bytes()[cut..]).expect("write");
+}
+
+#[test]
+fn a_slow_in_place_save_is_compiled_once_when_written_not_half_written() {
+    let dir = scene_dir("slowsave");
+    let mut w = Watch::start(&dir, "scene.scn", &["--no-serve"]);
+    w.ready();
+    // Longer than the batching's quiet time (40 ms) many times over, shorter than the wait
+    // for the writer to close the file (2 s).
+    let pause = std::time::Duration::from_millis(400);
+    let text = scene(2.0).replace("translate (0, 0, 1)", "translate (0, 0, 1.5)");
+    save_in_place_slowly(&dir.path("scene.scn"), &text, pause);
+    let c = w.expect("compiled");
+    assert_eq!(c["warnings"], 0, "{c}");
+    w.expect_none("compiled", QUIET);
+    let errors: Vec<_> = w.seen.iter().filter(|e| e["event"] == "error").collect();
+    assert!(
+        errors.is_empty(),
+        "a half-written file was compiled: {errors:#?}"
+    );
+    assert!(w
+        .seen
+        .iter()
+        .any(|e| e["event"] == "pass" && e["final"] == true));
+}
+
 #[test]
 fn an_obj_content_change_rerenders_but_a_touch_does_not() {
     let dir = scene_dir("obj");

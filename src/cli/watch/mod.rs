@@ -13,6 +13,7 @@ mod batch;
 mod passes;
 mod server;
 mod session;
+mod settled;
 mod status;
 mod watcher;
 
@@ -150,10 +151,9 @@ pub fn run(args: &WatchArgs) -> ExitCode {
 /// Blocks until a watched file's content changed (returns those files) or Ctrl-C (`None`).
 fn wait_for_change(rx: &Receiver<Msg>, watcher: &mut FileWatcher) -> Option<Vec<PathBuf>> {
     loop {
-        let (paths, written) = match rx.recv_timeout(POLL) {
+        let (change, paths) = match rx.recv_timeout(POLL) {
             Ok(Msg::Quit) | Err(RecvTimeoutError::Disconnected) => return None,
-            Ok(Msg::Paths(paths)) => (paths, false),
-            Ok(Msg::Written(paths)) => (paths, true),
+            Ok(Msg::Paths(change, paths)) => (change, paths),
             Err(RecvTimeoutError::Timeout) => {
                 let changed = watcher.poll();
                 if !changed.is_empty() {
@@ -169,7 +169,7 @@ fn wait_for_change(rx: &Receiver<Msg>, watcher: &mut FileWatcher) -> Option<Vec<
         if first.is_empty() {
             continue;
         }
-        let batch = batch::gather(rx, first, written, batch::QUIET, batch::CAP, |p| {
+        let batch = batch::gather(rx, (change, first), batch::Timing::WATCH, |p| {
             watcher.is_watched(p)
         });
         if batch.quit {

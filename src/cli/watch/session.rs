@@ -10,6 +10,7 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
+use super::settled;
 use super::status::CompileFigures;
 use super::watcher::{absolute, FileSet};
 use crate::assets::Loader;
@@ -23,7 +24,8 @@ use crate::scene::cache::content_hash;
 use crate::scene::{build_cached, BuildCache, BuildOptions, Scene};
 use crate::source::{SourceMap, Span};
 
-/// Reads from disk and records path → content hash (`None`: could not be read).
+/// Reads from disk (again while a writer is seen writing: [`settled::read`]) and records path
+/// → content hash (`None`: could not be read).
 #[derive(Debug, Default)]
 pub struct RecordingLoader {
     read: Mutex<HashMap<PathBuf, Option<u64>>>,
@@ -31,7 +33,7 @@ pub struct RecordingLoader {
 
 impl Loader for RecordingLoader {
     fn read(&self, path: &Path) -> std::io::Result<Arc<[u8]>> {
-        let result = std::fs::read(path).map(Arc::<[u8]>::from);
+        let result = settled::read(path).map(Arc::<[u8]>::from);
         if let Ok(mut read) = self.read.lock() {
             read.insert(
                 path.to_path_buf(),

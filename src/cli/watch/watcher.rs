@@ -11,7 +11,8 @@ use std::sync::mpsc::Sender;
 
 use notify::{RecommendedWatcher, RecursiveMode, Watcher};
 
-use super::batch::Msg;
+use super::batch::{Change, Msg};
+use super::settled;
 use crate::scene::cache::content_hash;
 
 /// The watched set: absolute path → content hash of what was read (`None`: did not exist).
@@ -30,20 +31,8 @@ impl FileWatcher {
     pub fn new(tx: Sender<Msg>) -> notify::Result<FileWatcher> {
         let notify = notify::recommended_watcher(move |event: notify::Result<notify::Event>| {
             if let Ok(event) = event {
-                use notify::event::{AccessKind, AccessMode, ModifyKind, RenameMode};
-                use notify::EventKind;
-                let written = matches!(
-                    event.kind,
-                    EventKind::Access(AccessKind::Close(AccessMode::Write))
-                        | EventKind::Modify(ModifyKind::Name(RenameMode::To | RenameMode::Both))
-                );
-                let msg = if written {
-                    Msg::Written(event.paths)
-                } else {
-                    Msg::Paths(event.paths)
-                };
                 // The loop may have ended; then nobody needs the event.
-                let _ = tx.send(msg);
+                let _ = tx.send(Msg::Paths(change_of(&event.kind), event.paths));
             }
         })?;
         Ok(FileWatcher {
@@ -99,7 +88,7 @@ impl FileWatcher {
             let Some(old) = self.files.get_mut(path) else {
                 continue;
             };
-            let now = std::fs::read(path).ok().map(|b| content_hash(&b));
+            let now = settled::read(path).ok().map(|b| content_hash(&b));
             if now != *old {
                 *old = now;
                 changed.push(path.clone());
@@ -121,6 +110,19 @@ impl FileWatcher {
             .filter(|p| p.exists())
             .collect();
         self.confirm(&missing)
+    }
+}
+
+/// What an event says of its paths: a modification of content (its writer may still be
+/// writing), the end of a write (closed after writing, or renamed into place), or neither.
+fn change_of(kind: &notify::EventKind) -> Change {
+    use notify::event::{AccessKind, AccessMode, ModifyKind, RenameMode};
+    use notify::EventKind;
+    match kind {
+        EventKind::Access(AccessKind::Close(AccessMode::Write))
+        | EventKind::Modify(ModifyKind::Name(RenameMode::To | RenameMode::Both)) => Change::Written,
+        EventKind::Modify(ModifyKind::Data(_) | ModifyKind::Any) => Change::Writing,
+        _ => Change::Named,
     }
 }
 
