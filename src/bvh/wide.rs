@@ -285,6 +285,45 @@ mod tests {
         n
     }
 
+    /// A ray through a corner of a box, computed exactly (dyadic origin and direction, so
+    /// `origin + dir` is the corner itself): the box is touched at `t = 1`, so the slab test
+    /// must enter it, with `t_max = 1` as well, whatever the rounding of the exit distances
+    /// (the slack carried by the far reciprocal must keep the test conservative).
+    #[test]
+    fn slab_test_enters_every_box_a_ray_touches_at_a_corner() {
+        let mut rng = crate::testing::SplitMix64(16);
+        let mut dyadic = |scale: f32| (rng.next_u64() % 513) as f32 / 64.0 * scale - 4.0 * scale;
+        for case in 0..20_000 {
+            let o = Vec3::new(dyadic(1.0), dyadic(1.0), dyadic(1.0));
+            let d = Vec3::new(dyadic(0.5), dyadic(0.5), dyadic(0.5));
+            // A ray lying in a face's plane (a zero component) is the `0 · ∞` case, tested
+            // above; here every component is nonzero.
+            if d.cmpeq(Vec3::ZERO).any() {
+                continue;
+            }
+            let corner = o + d;
+            let size = Vec3::new(dyadic(0.25).abs(), dyadic(0.25).abs(), dyadic(0.25).abs());
+            let (mut min, mut max) = (corner, corner);
+            for axis in 0..3 {
+                // The corner is a min or a max on each axis, at random.
+                if (case >> axis) & 1 == 0 {
+                    max[axis] += size[axis];
+                } else {
+                    min[axis] -= size[axis];
+                }
+            }
+            let n = node_with(&[Aabb { min, max }]);
+            let ray = WideRay::new(&Ray::new(o, d));
+            for t_max in [1.0, f32::INFINITY] {
+                let (_, mask) = ray.hit(&n, t_max);
+                assert_eq!(
+                    mask, 1,
+                    "case {case}: o {o} d {d} box {min}..{max} t_max {t_max}"
+                );
+            }
+        }
+    }
+
     #[test]
     fn wide_node_is_four_cache_lines() {
         assert_eq!(std::mem::size_of::<WideNode>(), 256);
