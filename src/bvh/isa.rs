@@ -81,27 +81,29 @@ fn slab8(avx: Avx2, ray: &WideRay, n: &WideNode, t_max: f32) -> (F8, F8) {
     // No closures here: their bodies might not be inlined into the AVX2 kernel.
     let (near, far) = (&ray.near_row, &ray.far_row);
     let (nx, ny, nz) = (
-        plane(avx, ray, n, 0, near[0]),
-        plane(avx, ray, n, 1, near[1]),
-        plane(avx, ray, n, 2, near[2]),
+        plane(avx, n, near[0], ray.origin(0), ray.inv_dir(0)),
+        plane(avx, n, near[1], ray.origin(1), ray.inv_dir(1)),
+        plane(avx, n, near[2], ray.origin(2), ray.inv_dir(2)),
     );
     let (fx, fy, fz) = (
-        plane(avx, ray, n, 0, far[0]),
-        plane(avx, ray, n, 1, far[1]),
-        plane(avx, ray, n, 2, far[2]),
+        plane(avx, n, far[0], ray.origin(0), ray.inv_dir_far(0)),
+        plane(avx, n, far[1], ray.origin(1), ray.inv_dir_far(1)),
+        plane(avx, n, far[2], ray.origin(2), ray.inv_dir_far(2)),
     );
-    // The tree grouping of `WideRay::hit`.
+    // The tree grouping of `WideRay::hit`; the slack is in the far reciprocals and here.
     let t_near = avx.max(avx.max(avx.splat(0.0), nx), avx.max(ny, nz));
-    let t_far = avx.min(avx.min(avx.splat(t_max), fx), avx.min(fy, fz));
-    (t_near, avx.mul(t_far, avx.splat(EXIT_SLACK)))
+    let t_exit = avx.min(avx.min(avx.splat(t_max * EXIT_SLACK), fx), avx.min(fy, fz));
+    (t_near, t_exit)
 }
 
-/// The distances to the planes of bounds row `row` (on `axis`) of the eight children.
+/// The distances to the planes of bounds row `row` of the eight children, from the origin's
+/// coordinate `org` with reciprocal `inv`.
 #[inline(always)]
-fn plane(avx: Avx2, ray: &WideRay, n: &WideNode, axis: usize, row: usize) -> F8 {
-    let org = avx.splat(ray.origin(axis));
-    let inv = avx.splat(ray.inv_dir(axis));
-    avx.mul(avx.sub(avx.load(&n.bounds[row]), org), inv)
+fn plane(avx: Avx2, n: &WideNode, row: usize, org: f32, inv: f32) -> F8 {
+    avx.mul(
+        avx.sub(avx.load(&n.bounds[row]), avx.splat(org)),
+        avx.splat(inv),
+    )
 }
 
 impl Isa for Avx2 {

@@ -204,7 +204,7 @@ fn walk<I: Isa, F: LeafVisitor>(
 /// children with the visit of the nearer one: +4–13 % on shadow and +5–14 % on incoherent
 /// rays in A/B runs on a loaded machine, 1–3 % slower on a tree that stays in cache
 /// (dense-L5); on the idle machine the gain was inside the run-to-run spread (docs/bvh.md,
-/// 2026-11-26, fourth session).
+/// 2026-11-26, fourth session, Zen 5). On a loaded Zen 4 it measured level (fifth session).
 #[inline(always)]
 fn prefetch<I: Isa, F: LeafVisitor>(isa: I, w: &Wide, leaf: &F, child: u32, count: u32) {
     if count > 0 {

@@ -155,6 +155,9 @@ fn emit(bin: &[Node], i: usize, out: &mut Vec<WideNode>) -> u32 {
 pub struct WideRay {
     org: [Vec4; 3],
     inv: [Vec4; 3],
+    /// `inv` times [`EXIT_SLACK`] (made finite): the far planes' reciprocal, so the exit
+    /// distance needs no multiplication of its own (see [`WideRay::hit`]).
+    inv_far: [Vec4; 3],
     /// Per axis, the bounds row of the near plane.
     pub(super) near_row: [usize; 3],
     /// Per axis, the bounds row of the far plane.
@@ -177,6 +180,16 @@ impl WideRay {
                 f32::MAX.copysign(d)
             }
         };
+        // The far planes' reciprocal carries the exit slack; one that overflows stays the
+        // largest finite value of its sign, as `inv` does.
+        let inv_far = |d: f32| {
+            let i = inv(d) * EXIT_SLACK;
+            if i.is_finite() {
+                i
+            } else {
+                f32::MAX.copysign(d)
+            }
+        };
         let d = ray.dir;
         let o = ray.origin;
         let row = |d: f32, axis: usize| if d.is_sign_negative() { axis + 3 } else { axis };
@@ -186,6 +199,11 @@ impl WideRay {
                 Vec4::splat(inv(d.x)),
                 Vec4::splat(inv(d.y)),
                 Vec4::splat(inv(d.z)),
+            ],
+            inv_far: [
+                Vec4::splat(inv_far(d.x)),
+                Vec4::splat(inv_far(d.y)),
+                Vec4::splat(inv_far(d.z)),
             ],
             near_row: [row(d.x, 0), row(d.y, 1), row(d.z, 2)],
             far_row: [row(-d.x, 0), row(-d.y, 1), row(-d.z, 2)],
@@ -204,8 +222,18 @@ impl WideRay {
         self.inv[axis].x
     }
 
+    /// [`Self::inv_dir`] times [`EXIT_SLACK`] (made finite): the far planes' reciprocal.
+    #[inline(always)]
+    pub(super) fn inv_dir_far(&self, axis: usize) -> f32 {
+        self.inv_far[axis].x
+    }
+
     /// Entry distances of the children and the mask (bit k) of those entered in
-    /// `(0, t_max)`: the slab test four lanes at a time.
+    /// `(0, t_max)`: the slab test four lanes at a time. The exit distances are widened by
+    /// [`EXIT_SLACK`] through the far planes' reciprocal and `t_max · EXIT_SLACK`, not by a
+    /// multiplication after their `min`: the same four roundings per distance, so the same
+    /// conservative bound (Ize 2013), one operation off the node's critical path, and the
+    /// entry distances (which order the children) are unchanged.
     #[inline(always)]
     pub fn hit(&self, n: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
         let mut entry = [0.0f32; WIDTH];
@@ -218,14 +246,16 @@ impl WideRay {
                 let (near, far) = (self.near_row[axis], self.far_row[axis]);
                 let row = |r: usize| Vec4::from_slice(&n.bounds[r][lanes.clone()]);
                 tn[axis] = (row(near) - self.org[axis]) * self.inv[axis];
-                tf[axis] = (row(far) - self.org[axis]) * self.inv[axis];
+                tf[axis] = (row(far) - self.org[axis]) * self.inv_far[axis];
             }
             // Reduced as a tree, not a chain (one max and one min shorter on the critical
             // path); no operand is NaN, so only the sign of a zero distance could depend on
             // the grouping, and no comparison sees it. The AVX2 form groups alike.
             let t_near = Vec4::ZERO.max(tn[0]).max(tn[1].max(tn[2]));
-            let t_far = Vec4::splat(t_max).min(tf[0]).min(tf[1].min(tf[2]));
-            mask |= t_near.cmple(t_far * EXIT_SLACK).bitmask() << (4 * half);
+            let t_exit = Vec4::splat(t_max * EXIT_SLACK)
+                .min(tf[0])
+                .min(tf[1].min(tf[2]));
+            mask |= t_near.cmple(t_exit).bitmask() << (4 * half);
             t_near.write_to_slice(&mut entry[lanes]);
         }
         (entry, mask)
@@ -253,6 +283,45 @@ mod tests {
             n.count[lane] = 1;
         }
         n
+    }
+
+    /// A ray through a corner of a box, computed exactly (dyadic origin and direction, so
+    /// `origin + dir` is the corner itself): the box is touched at `t = 1`, so the slab test
+    /// must enter it, with `t_max = 1` as well, whatever the rounding of the exit distances
+    /// (the slack carried by the far reciprocal must keep the test conservative).
+    #[test]
+    fn slab_test_enters_every_box_a_ray_touches_at_a_corner() {
+        let mut rng = crate::testing::SplitMix64(16);
+        let mut dyadic = |scale: f32| (rng.next_u64() % 513) as f32 / 64.0 * scale - 4.0 * scale;
+        for case in 0..20_000 {
+            let o = Vec3::new(dyadic(1.0), dyadic(1.0), dyadic(1.0));
+            let d = Vec3::new(dyadic(0.5), dyadic(0.5), dyadic(0.5));
+            // A ray lying in a face's plane (a zero component) is the `0 · ∞` case, tested
+            // above; here every component is nonzero.
+            if d.cmpeq(Vec3::ZERO).any() {
+                continue;
+            }
+            let corner = o + d;
+            let size = Vec3::new(dyadic(0.25).abs(), dyadic(0.25).abs(), dyadic(0.25).abs());
+            let (mut min, mut max) = (corner, corner);
+            for axis in 0..3 {
+                // The corner is a min or a max on each axis, at random.
+                if (case >> axis) & 1 == 0 {
+                    max[axis] += size[axis];
+                } else {
+                    min[axis] -= size[axis];
+                }
+            }
+            let n = node_with(&[Aabb { min, max }]);
+            let ray = WideRay::new(&Ray::new(o, d));
+            for t_max in [1.0, f32::INFINITY] {
+                let (_, mask) = ray.hit(&n, t_max);
+                assert_eq!(
+                    mask, 1,
+                    "case {case}: o {o} d {d} box {min}..{max} t_max {t_max}"
+                );
+            }
+        }
     }
 
     #[test]
