@@ -21,6 +21,10 @@
 //! whenever the scene keeps only its own warning), a `let` given an error and put back (fast
 //! whenever no other error stands), and a syntax error that loses a `let`, `material`, `mesh`
 //! or `texture` other statements name, and the line put back (always answered from the memo).
+//! The replay also adds and removes `group`s and renames declarations groups name. Focused
+//! replays (2026-11-26, fifth session): `obj` mesh and `image` texture edits, a camera or
+//! light renamed, a `let` renamed, groups added and removed, declarations added and removed
+//! beside unknown names of their own kind, area lights and the version header edited.
 
 use scnc::assets::MemLoader;
 use scnc::compile::{compile_with, Incremental, Overrides, Reuse};

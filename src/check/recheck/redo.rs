@@ -247,8 +247,8 @@ fn rename_at(cx: &mut Checker, ns: Namespace, at: usize, name: &str) -> Option<S
     Some(had)
 }
 
-/// `uses` (counts `before` and what a check counted since) with what was counted taken out
-/// twice: the counts before, less the counted ones (which they hold already).
+/// The counts `uses` (those `before`, plus what one check of a group counted since) set to
+/// `before` less that group's count: its uses under the old name, which `before` holds.
 fn forget_counted(uses: &mut [u32], before: &[u32]) -> Option<()> {
     (uses.len() == before.len()).then_some(())?;
     for (u, &b) in uses.iter_mut().zip(before) {
