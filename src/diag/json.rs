@@ -57,13 +57,8 @@ fn label<'a>(l: &'a Label, primary: bool, sources: &'a SourceMap) -> JsonLabel<'
     }
 }
 
-/// All diagnostics as one pretty-printed JSON document.
-#[allow(
-    clippy::expect_used,
-    reason = "the report is plain strings and numbers, which always serialise"
-)]
-pub fn render_json(diags: &[Diagnostic], sources: &SourceMap) -> String {
-    let report = JsonReport {
+fn report<'a>(diags: &'a [Diagnostic], sources: &'a SourceMap) -> JsonReport<'a> {
+    JsonReport {
         diagnostics: diags
             .iter()
             .map(|d| JsonDiagnostic {
@@ -83,15 +78,47 @@ pub fn render_json(diags: &[Diagnostic], sources: &SourceMap) -> String {
             .collect(),
         errors: diags.iter().filter(|d| d.is_error()).count(),
         warnings: diags.iter().filter(|d| !d.is_error()).count(),
-    };
+    }
+}
+
+/// All diagnostics as one pretty-printed JSON document.
+#[allow(
+    clippy::expect_used,
+    reason = "the report is plain strings and numbers, which always serialise"
+)]
+pub fn render_json(diags: &[Diagnostic], sources: &SourceMap) -> String {
     // ok: the report is plain strings and numbers, which always serialise.
-    serde_json::to_string_pretty(&report).expect("plain data serialises")
+    serde_json::to_string_pretty(&report(diags, sources)).expect("plain data serialises")
+}
+
+/// The `diagnostics` array of [`render_json`]'s document, as a JSON value (for an event that
+/// carries it: `scnc watch`'s, the preview's), made without printing and parsing the document.
+pub fn json_diagnostics(diags: &[Diagnostic], sources: &SourceMap) -> serde_json::Value {
+    // Plain strings and numbers always convert; an empty array would be the fallback.
+    serde_json::to_value(report(diags, sources).diagnostics)
+        .unwrap_or_else(|_| serde_json::Value::Array(Vec::new()))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::diag::Code;
+
+    #[test]
+    fn the_diagnostics_value_is_the_documents_array() {
+        let mut sources = SourceMap::new();
+        let text = "scnc 1\nobject ball { material rd }\n";
+        let file = sources.add("a.scn", "a.scn", std::sync::Arc::<str>::from(text));
+        let d = Diagnostic::warning(Code::CheckUnused, "material `red` is never used");
+        let e = Diagnostic::error(Code::CheckUnknownMaterial, "unknown material `rd`")
+            .at(crate::source::Span::new(file, 30, 32), "not declared")
+            .help("did you mean `red`?");
+        let diags = [d, e];
+        let json: serde_json::Value = serde_json::from_str(&render_json(&diags, &sources)).unwrap();
+        let value = json_diagnostics(&diags, &sources);
+        assert_eq!(value, json["diagnostics"]);
+        assert_eq!(value[1]["labels"][0]["line"], 2);
+    }
 
     #[test]
     fn codes_are_their_strings_and_say_how_to_explain_them() {

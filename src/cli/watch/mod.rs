@@ -117,7 +117,7 @@ pub fn run(args: &WatchArgs) -> ExitCode {
         }
         session.cache.retain_current(|p| watcher.hash_of(p));
         status.begin(&changed);
-        let outcome = session.compile(&|figures, diagnostics, sources| {
+        let outcome = session.compile(watcher.take_read(), &|figures, diagnostics, sources| {
             status.checked(figures, diagnostics, sources);
         });
         watcher.set(outcome.files);

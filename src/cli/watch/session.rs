@@ -12,7 +12,7 @@ use std::time::Instant;
 
 use super::settled;
 use super::status::CompileFigures;
-use super::watcher::{absolute, FileSet};
+use super::watcher::{absolute, FileSet, Fresh};
 use crate::assets::Loader;
 use crate::bvh::AccelKind;
 use crate::cli::targets::{camera_index, output_targets};
@@ -25,14 +25,40 @@ use crate::scene::{build_cached, BuildCache, BuildOptions, Scene};
 use crate::source::{SourceMap, Span};
 
 /// Reads from disk (again while a writer is seen writing: [`settled::read`]) and records path
-/// → content hash (`None`: could not be read).
+/// → content hash (`None`: could not be read). A file the watcher has just read to confirm
+/// its change is taken from those bytes, once, not read again.
 #[derive(Debug, Default)]
 pub struct RecordingLoader {
     read: Mutex<HashMap<PathBuf, Option<u64>>>,
+    fresh: Mutex<Fresh>,
+}
+
+impl RecordingLoader {
+    /// A loader that serves `fresh` (absolute paths) once each before reading from disk.
+    pub fn with_fresh(fresh: Fresh) -> RecordingLoader {
+        RecordingLoader {
+            read: Mutex::default(),
+            fresh: Mutex::new(fresh),
+        }
+    }
+
+    fn take_fresh(&self, path: &Path) -> Option<(Arc<[u8]>, u64)> {
+        let mut fresh = self.fresh.lock().ok()?;
+        if fresh.is_empty() {
+            return None;
+        }
+        fresh.remove(&absolute(path))
+    }
 }
 
 impl Loader for RecordingLoader {
     fn read(&self, path: &Path) -> std::io::Result<Arc<[u8]>> {
+        if let Some((bytes, hash)) = self.take_fresh(path) {
+            if let Ok(mut read) = self.read.lock() {
+                read.insert(path.to_path_buf(), Some(hash));
+            }
+            return Ok(bytes);
+        }
         let result = settled::read(path).map(Arc::<[u8]>::from);
         if let Ok(mut read) = self.read.lock() {
             read.insert(
@@ -93,14 +119,16 @@ pub struct Session {
 }
 
 impl Session {
-    /// Compiles and builds the scene through one recording loader. `checked` is called as
+    /// Compiles and builds the scene through one recording loader (serving `fresh`, the
+    /// files the watcher just read, without reading them again). `checked` is called as
     /// soon as the front end has succeeded (before the build), with its figures and
     /// diagnostics, so that they reach the user without waiting for the build.
     pub fn compile(
         &mut self,
+        fresh: Fresh,
         checked: &dyn Fn(&CompileFigures, &[Diagnostic], &SourceMap),
     ) -> Outcome {
-        let loader = RecordingLoader::default();
+        let loader = RecordingLoader::with_fresh(fresh);
         let mut sources = SourceMap::new();
         let t = Instant::now();
         let compiled = self.front.compile(&self.file, &loader, &mut sources);

@@ -14,7 +14,7 @@ use serde_json::{json, Value};
 
 use super::server::Preview;
 use crate::cli::report::{print_diagnostic_list, DiagnosticFormat, JsonTo};
-use crate::diag::{render_json, render_plain_all, Diagnostic};
+use crate::diag::{json_diagnostics, render_plain_all, Diagnostic};
 use crate::source::SourceMap;
 
 /// `--events`: how happenings are reported.
@@ -71,19 +71,24 @@ impl Status {
         }
     }
 
-    fn emit(&self, event: Value, human: impl FnOnce()) {
+    /// Sends the event (made only when the preview or `--events json` takes it: an error
+    /// event of 1,000 diagnostics costs milliseconds) or runs `human`.
+    fn emit(&self, event: impl FnOnce() -> Value, human: impl FnOnce()) {
         let _guard = self.lock.lock();
-        if let Some(p) = &self.preview {
-            p.event(&event);
+        let json = self.format == EventsFormat::Json;
+        let event = (json || self.preview.is_some()).then(event);
+        if let (Some(p), Some(event)) = (&self.preview, &event) {
+            p.event(event);
         }
-        match self.format {
-            EventsFormat::Json => {
+        match (self.format, event) {
+            (EventsFormat::Json, Some(event)) => {
                 let mut out = std::io::stdout().lock();
                 // A closed stdout (the reader went away) is no reason to stop watching.
                 let _ = writeln!(out, "{event}");
                 let _ = out.flush();
             }
-            EventsFormat::Human => human(),
+            (EventsFormat::Json, None) => {}
+            (EventsFormat::Human, _) => human(),
         }
     }
 
@@ -102,31 +107,33 @@ impl Status {
     /// The front end succeeded (the build follows): its time and its warnings. The human
     /// status prints nothing here: the `compiled` line follows with every warning.
     pub fn checked(&self, f: &CompileFigures, warnings: &[Diagnostic], sources: &SourceMap) {
-        let doc: Value =
-            serde_json::from_str(&render_json(warnings, sources)).unwrap_or(Value::Null);
-        let event = json!({
-            "event": "checked",
-            "compile_ms": ms(f.compile_ms),
-            "incremental": f.incremental,
-            "warnings": warnings.len(),
-            "diagnostics": doc.get("diagnostics").cloned().unwrap_or(Value::Array(vec![])),
-        });
+        let event = || {
+            json!({
+                "event": "checked",
+                "compile_ms": ms(f.compile_ms),
+                "incremental": f.incremental,
+                "warnings": warnings.len(),
+                "diagnostics": json_diagnostics(warnings, sources),
+            })
+        };
         self.emit(event, || {});
     }
 
     /// A compile and build succeeded, with these warnings.
     pub fn compiled(&self, f: &CompileFigures, warnings: &[Diagnostic], sources: &SourceMap) {
-        let event = json!({
-            "event": "compiled",
-            "ms": ms(f.compile_ms + f.build_ms),
-            "compile_ms": ms(f.compile_ms),
-            "incremental": f.incremental,
-            "build_ms": ms(f.build_ms),
-            "rebuilt": f.rebuilt,
-            "meshes_loaded": f.meshes_loaded,
-            "meshes_reused": f.meshes_reused,
-            "warnings": f.warnings,
-        });
+        let event = || {
+            json!({
+                "event": "compiled",
+                "ms": ms(f.compile_ms + f.build_ms),
+                "compile_ms": ms(f.compile_ms),
+                "incremental": f.incremental,
+                "build_ms": ms(f.build_ms),
+                "rebuilt": f.rebuilt,
+                "meshes_loaded": f.meshes_loaded,
+                "meshes_reused": f.meshes_reused,
+                "warnings": f.warnings,
+            })
+        };
         self.emit(event, || {
             print_diagnostic_list(warnings, sources, DiagnosticFormat::Human, JsonTo::Stderr);
             let rebuilt = if f.rebuilt.is_empty() {
@@ -144,12 +151,13 @@ impl Status {
 
     /// A compile or build failed: the last good image stays.
     pub fn error(&self, diags: &[Diagnostic], sources: &SourceMap) {
-        let doc: Value = serde_json::from_str(&render_json(diags, sources)).unwrap_or(Value::Null);
-        let event = json!({
-            "event": "error",
-            "diagnostics": doc.get("diagnostics").cloned().unwrap_or(Value::Array(vec![])),
-            "text": render_plain_all(diags, sources, 100),
-        });
+        let event = || {
+            json!({
+                "event": "error",
+                "diagnostics": json_diagnostics(diags, sources),
+                "text": render_plain_all(diags, sources, 100),
+            })
+        };
         self.emit(event, || {
             print_diagnostic_list(diags, sources, DiagnosticFormat::Human, JsonTo::Stderr);
             eprintln!("keeping the last good image; waiting for the next edit");
@@ -163,14 +171,17 @@ impl Status {
             "event": "pass", "pass": index, "spp": spp, "ms": ms(wall_ms),
             "width": size.0, "height": size.1, "final": last, "image": image,
         });
-        self.emit(event, || {
-            eprintln!(
-                "pass {index}: {spp} spp, {}x{} in {wall_ms:.1} ms{}",
-                size.0,
-                size.1,
-                if last { " (final)" } else { "" }
-            );
-        });
+        self.emit(
+            || event,
+            || {
+                eprintln!(
+                    "pass {index}: {spp} spp, {}x{} in {wall_ms:.1} ms{}",
+                    size.0,
+                    size.1,
+                    if last { " (final)" } else { "" }
+                );
+            },
+        );
     }
 
     /// An output could not be written.
@@ -180,20 +191,26 @@ impl Status {
 
     /// Waiting for a change of any of `files`.
     pub fn watching(&self, files: usize) {
-        self.emit(json!({"event": "watching", "files": files}), || {
-            eprintln!("watching {files} files (Ctrl-C to stop)");
-        });
+        self.emit(
+            || json!({"event": "watching", "files": files}),
+            || {
+                eprintln!("watching {files} files (Ctrl-C to stop)");
+            },
+        );
     }
 
     /// The preview server listens at `url`.
     pub fn serving(&self, url: &str) {
-        self.emit(json!({"event": "serving", "url": url}), || {
-            eprintln!("preview at {url}");
-        });
+        self.emit(
+            || json!({"event": "serving", "url": url}),
+            || {
+                eprintln!("preview at {url}");
+            },
+        );
     }
 
     /// The loop ended.
     pub fn stopped(&self) {
-        self.emit(json!({"event": "stopped"}), || eprintln!("stopped"));
+        self.emit(|| json!({"event": "stopped"}), || eprintln!("stopped"));
     }
 }

@@ -8,6 +8,7 @@
 use std::collections::{BTreeSet, HashMap};
 use std::path::{Path, PathBuf};
 use std::sync::mpsc::Sender;
+use std::sync::Arc;
 
 use notify::{RecommendedWatcher, RecursiveMode, Watcher};
 
@@ -24,7 +25,14 @@ pub struct FileWatcher {
     notify: RecommendedWatcher,
     files: FileSet,
     dirs: BTreeSet<PathBuf>,
+    /// The bytes (and their hash) of the changed files [`FileWatcher::confirm`] read, for the
+    /// compile that follows ([`FileWatcher::take_read`]): an 8.8 MB scene is then read and
+    /// hashed once per edit, not twice.
+    read: Fresh,
 }
+
+/// Files just read: absolute path → bytes and their content hash.
+pub type Fresh = HashMap<PathBuf, (Arc<[u8]>, u64)>;
 
 impl FileWatcher {
     /// A watcher that sends the paths of every event to `tx`.
@@ -39,6 +47,7 @@ impl FileWatcher {
             notify,
             files: FileSet::new(),
             dirs: BTreeSet::new(),
+            read: Fresh::new(),
         })
     }
 
@@ -78,7 +87,8 @@ impl FileWatcher {
         self.files.len()
     }
 
-    /// Of `candidates`, the watched files whose content changed (stored hashes updated).
+    /// Of `candidates`, the watched files whose content changed (stored hashes updated; their
+    /// bytes kept for [`FileWatcher::take_read`]).
     pub fn confirm<'p>(
         &mut self,
         candidates: impl IntoIterator<Item = &'p PathBuf>,
@@ -88,13 +98,24 @@ impl FileWatcher {
             let Some(old) = self.files.get_mut(path) else {
                 continue;
             };
-            let now = settled::read(path).ok().map(|b| content_hash(&b));
+            let bytes = settled::read(path).ok().map(Arc::<[u8]>::from);
+            let now = bytes.as_ref().map(|b| content_hash(b));
             if now != *old {
                 *old = now;
                 changed.push(path.clone());
+                if let (Some(bytes), Some(hash)) = (bytes, now) {
+                    self.read.insert(path.clone(), (bytes, hash));
+                }
             }
         }
         changed
+    }
+
+    /// The changed files' bytes as [`FileWatcher::confirm`] read them, for the compile that
+    /// follows it. Using them is using what was confirmed: a write after that read sends
+    /// events of its own, and the next confirm compares the file with these bytes' hash.
+    pub fn take_read(&mut self) -> Fresh {
+        std::mem::take(&mut self.read)
     }
 
     /// Checks files that did not exist (and directories that were not there to watch): the
