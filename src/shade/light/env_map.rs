@@ -256,8 +256,7 @@ impl EnvMap {
     /// left out (`env_vertical`).
     pub fn vertical_irradiance(&self) -> [Vec3; 2] {
         let bright = |col, row| self.bright.as_ref().is_some_and(|b| b.contains(col, row));
-        let texel =
-            |col, row| (!bright(col, row)).then(|| self.texels.get(row * self.width + col));
+        let texel = |col, row| (!bright(col, row)).then(|| self.texels.get(row * self.width + col));
         vertical_irradiance(self.width, self.height, texel)
     }
 

@@ -60,7 +60,11 @@ mod tests {
     fn centre(col: usize, row: usize, w: usize, h: usize) -> Vec3 {
         let theta = std::f32::consts::PI * (row as f32 + 0.5) / h as f32;
         let phi = std::f32::consts::TAU * (col as f32 + 0.5) / w as f32;
-        Vec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin())
+        Vec3::new(
+            theta.sin() * phi.cos(),
+            theta.cos(),
+            theta.sin() * phi.sin(),
+        )
     }
 
     #[test]
@@ -69,7 +73,10 @@ mod tests {
             let [up, down] = vertical_irradiance(w, h, |_, _| Some(Vec3::new(0.5, 1.0, 2.0)));
             let expected = std::f32::consts::PI * Vec3::new(0.5, 1.0, 2.0);
             assert!((up - expected).abs().max_element() < 1e-5, "{w}x{h}: {up}");
-            assert!((down - expected).abs().max_element() < 1e-5, "{w}x{h}: {down}");
+            assert!(
+                (down - expected).abs().max_element() < 1e-5,
+                "{w}x{h}: {down}"
+            );
         }
     }
 
@@ -81,7 +88,11 @@ mod tests {
         let texel = |c: usize, r: usize| {
             ((c + 2 * r) % 7 != 3).then(|| {
                 let d = centre(c, r, w, h);
-                Vec3::new(1.0 + d.x, 0.5 + 0.4 * (c as f32 * 0.7).sin(), 0.2 + r as f32 * 0.1)
+                Vec3::new(
+                    1.0 + d.x,
+                    0.5 + 0.4 * (c as f32 * 0.7).sin(),
+                    0.2 + r as f32 * 0.1,
+                )
             })
         };
         let [up, down] = vertical_irradiance(w, h, texel);
