@@ -586,3 +586,45 @@ fn under_a_constant_sky_an_open_diffuse_surface_renders_without_noise() {
         assert!(se_light[c] > 1e-3 * expected, "light sampling {se_light:?}");
     }
 }
+
+#[test]
+fn open_ground_under_a_gradient_sky_subtracts_the_sky_itself_and_is_noise_free() {
+    // A floor (normal exactly +y) under a smooth sky left to cosine rays subtracts the sky
+    // itself, whose cosine integral for ±y is exact (`env_vertical`), not its fit: every
+    // direction it sees adds exactly nothing, so open ground has no noise at all. (The fit of
+    // this sky, a gradient above a step at the horizon, departs from it: with the fit the same
+    // pixel had noise.) Cosine sampling alone (BrdfOnly) must agree with the closed form.
+    let mut loader = MemLoader::new();
+    loader.insert("sky.pfm", gradient_sky());
+    let file = AssetPath {
+        path: "sky.pfm".into(),
+        written: "sky.pfm".into(),
+        span: span(),
+    };
+    let mut desc = ground_and_ball(EnvSource::Image(file));
+    desc.objects.truncate(1);
+    let (mut scene, warnings) = build_with(&desc, &loader).expect("builds");
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let cam = PinholeCamera::new(&desc.cameras[0], 16, 12);
+    for (x, y) in [(0, 11), (8, 8), (15, 10)] {
+        let ray = cam.ray(Vec2::new(x as f32 + 0.5, y as f32 + 0.5));
+        scene.strategy = DirectStrategy::Mis;
+        let (mean, se) = estimate(&scene, &ray, x, y, 256);
+        scene.strategy = DirectStrategy::BrdfOnly;
+        let (cosine, se_cosine) = estimate(&scene, &ray, x, y, 8192);
+        for c in 0..3 {
+            assert_eq!(se[c], 0.0, "pixel ({x},{y}): noise {se:?}");
+            assert!(
+                se_cosine[c] > 0.0,
+                "cosine sampling alone is noisy: {se_cosine:?}"
+            );
+            assert!(
+                (mean[c] - cosine[c]).abs() <= 4.0 * se_cosine[c] + 1e-6,
+                "pixel ({x},{y}) channel {c}: {} exact, {} ± {} by cosine sampling",
+                mean[c],
+                cosine[c],
+                se_cosine[c]
+            );
+        }
+    }
+}

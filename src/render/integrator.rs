@@ -41,7 +41,7 @@ use glam::Vec3;
 
 use std::f32::consts::FRAC_1_PI;
 
-use super::mis::{sky_by_cosine, sky_control, strategy_at};
+use super::mis::{sky_by_cosine, sky_control, strategy_at, vertical_sky, VerticalSky};
 use super::rng::Sampler;
 use crate::geom::Ray;
 use crate::scene::{DirectStrategy, Scene, Surface};
@@ -218,6 +218,7 @@ fn shade(
     }
     let strategy = strategy_at(scene, &phong);
     let sky_fit = sky_control(scene, &phong, strategy);
+    let sky_by_cosine = sky_by_cosine(scene, sky_fit);
     let at = Shading {
         scene,
         hit,
@@ -225,15 +226,17 @@ fn shade(
         ns,
         wo,
         sky_fit,
-        sky_by_cosine: sky_by_cosine(scene, sky_fit),
+        sky_by_cosine,
+        vertical_sky: vertical_sky(scene, ns, sky_by_cosine),
         strategy,
         phong,
     };
     let direct = mat.ambient + at.lights(sampler, counts) + at.brdf_rays(sampler, counts);
-    match at.sky_fit {
-        // The control variate's closed-form part (`mis`): the samples above estimated the rest.
-        Some(fit) => direct + at.phong.diffuse * FRAC_1_PI * fit.irradiance(ns),
-        None => direct,
+    // The control variate's closed-form part (`mis`): the samples above estimated the rest.
+    match (at.vertical_sky, at.sky_fit) {
+        (Some(v), _) => direct + at.phong.diffuse * FRAC_1_PI * v.irradiance,
+        (None, Some(fit)) => direct + at.phong.diffuse * FRAC_1_PI * fit.irradiance(ns),
+        (None, None) => direct,
     }
 }
 
@@ -255,6 +258,9 @@ pub(super) struct Shading<'a> {
     /// per pick, instead of one of them and one sample of the sky's tables
     /// ([`sky_by_cosine`]).
     pub(super) sky_by_cosine: bool,
+    /// When the point faces straight up or down under such a sky, the sky itself is what the
+    /// control variate subtracts, not its fit ([`vertical_sky`]).
+    pub(super) vertical_sky: Option<VerticalSky>,
 }
 
 impl Shading<'_> {

@@ -105,6 +105,38 @@ pub(super) fn sky_by_cosine(scene: &Scene, sky_fit: Option<&SkyHarmonics>) -> bo
         && sky_fit.is_some_and(|fit| fit.relative_residual() <= SMOOTH_SKY_RESIDUAL)
 }
 
+/// What a shading point facing straight up or down subtracts, when it subtracts the sky itself
+/// ([`vertical_sky`]).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct VerticalSky {
+    /// The sky's exact irradiance for the point's normal, its bright set left out.
+    pub(super) irradiance: Vec3,
+    /// The environment's constant part: what is subtracted on the bright set's texels.
+    constant: Vec3,
+}
+
+/// Under the control variate with the sky left to cosine rays ([`sky_by_cosine`]), a point
+/// whose shading normal is exactly `+y` or `−y` (a floor, a ceiling) subtracts the sky itself,
+/// its bright set left out, instead of the sky's smooth fit: the sky's cosine integral for
+/// that normal is exact (`shade::light::env_vertical`). Then a cosine direction that sees the
+/// sky outside the bright set's cone adds exactly nothing and reads no texel; a hidden one
+/// adds `−L` (its texel read) where it added `−L̃`; the bright set's samples subtract only the
+/// constant part. Unbiased as the fit is (the closed form is the integral of exactly what is
+/// subtracted); the variance that is left is the visibility's, as with the fit (whose
+/// departure from the sky left open ground nearly noise-free already), so what this buys is
+/// the texel lookups of the directions that see the sky (docs/speed.md). The choice depends on
+/// the point alone.
+pub(super) fn vertical_sky(scene: &Scene, ns: Vec3, sky_by_cosine: bool) -> Option<VerticalSky> {
+    if !sky_by_cosine || ns.x != 0.0 || ns.z != 0.0 {
+        return None;
+    }
+    let env = scene.lights.environment.as_ref()?;
+    Some(VerticalSky {
+        irradiance: env.vertical_irradiance(ns.y > 0.0)?,
+        constant: env.constant,
+    })
+}
+
 impl Shading<'_> {
     /// BRDF directions per pick: two when the sky is left to them ([`sky_by_cosine`]).
     fn brdf_per_pick(&self) -> u32 {
@@ -121,10 +153,26 @@ impl Shading<'_> {
         self.brdf_per_pick() as f32 * self.phong.pdf(self.ns, self.wo, wi)
     }
 
-    /// The fitted sky radiance from unit direction `wi` subtracted by the control variate
-    /// ([`sky_control`]); zero without it.
-    fn sky_fit_towards(&self, wi: Vec3) -> Vec3 {
-        self.sky_fit.map_or(Vec3::ZERO, |fit| fit.radiance(wi))
+    /// The radiance from unit direction `wi` subtracted by the control variate
+    /// ([`sky_control`]): the sky's fit, or the sky itself without its bright set
+    /// ([`vertical_sky`]); zero without it.
+    fn subtracted(&self, env: &Environment, wi: Vec3) -> Vec3 {
+        match (self.vertical_sky, self.sky_fit) {
+            (Some(_), _) => env.radiance_apart_from_bright(wi),
+            (None, Some(fit)) => fit.radiance(wi),
+            (None, None) => Vec3::ZERO,
+        }
+    }
+
+    /// [`Shading::subtracted`] at an environment light sample `s`: a sample of the bright set
+    /// when the point subtracts the sky itself (the sky is left to cosine rays then), whose
+    /// texel the subtracted sky leaves out but for its constant part.
+    fn subtracted_at_sample(&self, s: &EnvSample) -> Vec3 {
+        match (self.vertical_sky, self.sky_fit) {
+            (Some(v), _) => v.constant,
+            (None, Some(fit)) => fit.radiance(s.wi),
+            (None, None) => Vec3::ZERO,
+        }
     }
 
     /// The MIS weight of a light sample in direction `wi` whose effective density is
@@ -191,8 +239,8 @@ impl Shading<'_> {
             s.wi.dot(self.ng) > 0.0 && s.radiance != Vec3::ZERO && !self.blocked(s.wi, counts);
         let radiance = match (seen, self.sky_fit.is_some()) {
             (true, false) => s.radiance,
-            (true, true) => s.radiance - self.sky_fit_towards(s.wi),
-            (false, true) => -self.sky_fit_towards(s.wi),
+            (true, true) => s.radiance - self.subtracted_at_sample(s),
+            (false, true) => -self.subtracted_at_sample(s),
             (false, false) => return Vec3::ZERO,
         };
         let f = self.phong.eval(self.ns, s.wi, self.wo);
@@ -285,8 +333,8 @@ impl Shading<'_> {
             if wi.dot(self.ng) <= 0.0 {
                 // Below the geometric horizon nothing is seen; the control variate still
                 // subtracts its fit there.
-                if let (Some(e), Some(fit)) = (env, self.sky_fit) {
-                    sum += self.brdf_residual(e, wi, -fit.radiance(wi));
+                if let (Some(e), Some(_)) = (env, self.sky_fit) {
+                    sum += self.brdf_residual(e, wi, -self.subtracted(e, wi));
                 }
                 continue;
             }
@@ -309,14 +357,18 @@ impl Shading<'_> {
                     continue;
                 };
                 if self.blocked_ray(&ray) {
-                    if let Some(fit) = self.sky_fit {
-                        sum += self.brdf_residual(e, wi, -fit.radiance(wi));
+                    if self.sky_fit.is_some() {
+                        sum += self.brdf_residual(e, wi, -self.subtracted(e, wi));
                     }
                     continue;
                 }
                 counts.environment += 1;
+                if self.vertical_sky.is_some() && !e.may_be_bright(wi) {
+                    // It sees exactly what is subtracted: it adds nothing.
+                    continue;
+                }
                 let (radiance, density) = self.sky_seen(e, wi);
-                (radiance - self.sky_fit_towards(wi), density)
+                (radiance - self.subtracted(e, wi), density)
             } else {
                 match self.scene.accel.as_ref().and_then(|a| a.closest_hit(&ray)) {
                     None => match env {

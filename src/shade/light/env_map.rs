@@ -33,6 +33,7 @@ use super::env_bright::BrightTexels;
 use super::env_harmonics::SkyHarmonics;
 use super::env_sampler::{EnvSampler, TexelSample};
 use super::env_texels::Texels;
+use super::env_vertical::vertical_irradiance;
 use crate::shade::color::luminance;
 
 /// Texels per side of the blocks [`EnvMap::sky_harmonics`] projects.
@@ -251,6 +252,26 @@ impl EnvMap {
         SkyHarmonics::project(&points.collect::<Vec<_>>())
     }
 
+    /// The sky's exact cosine-weighted integral for the normals `+y` and `−y`, the bright set
+    /// left out (`env_vertical`).
+    pub fn vertical_irradiance(&self) -> [Vec3; 2] {
+        let bright = |col, row| self.bright.as_ref().is_some_and(|b| b.contains(col, row));
+        let texel = |col, row| (!bright(col, row)).then(|| self.texels.get(row * self.width + col));
+        vertical_irradiance(self.width, self.height, texel)
+    }
+
+    /// The radiance from direction `d` (unit) with the bright set left out: the nearest
+    /// texel's, or zero if that texel is in the set.
+    pub fn radiance_apart_from_bright(&self, d: Vec3) -> Vec3 {
+        let (col, row, _) = self.texel_of(d);
+        let in_set = || self.bright.as_ref().is_some_and(|b| b.contains(col, row));
+        if self.may_be_bright(d) && in_set() {
+            Vec3::ZERO
+        } else {
+            self.texels.get(row * self.width + col)
+        }
+    }
+
     /// Whether the sampling table was built.
     pub fn has_distribution(&self) -> bool {
         self.distribution.is_some() || self.bright.is_some()
@@ -462,7 +483,7 @@ impl EnvMap {
 
     /// Whether unit direction `d` may read a texel of the bright set: `false` only when it
     /// lies outside the set's cone (which holds every direction of the set's box).
-    fn may_be_bright(&self, d: Vec3) -> bool {
+    pub fn may_be_bright(&self, d: Vec3) -> bool {
         self.bright_cone.is_none_or(|c| c.may_hold(d))
     }
 

@@ -35,6 +35,9 @@ pub struct Environment {
     /// The sky without the map's bright set, as spherical harmonics (set by
     /// [`Environment::prepare_sampling`]; `env_harmonics`).
     harmonics: Option<SkyHarmonics>,
+    /// The sky's exact irradiance for the normals `+y` and `−y`, the bright set left out (set
+    /// by [`Environment::prepare_sampling`]; `env_vertical`).
+    vertical: Option<[Vec3; 2]>,
 }
 
 impl Environment {
@@ -48,6 +51,7 @@ impl Environment {
             map_fraction: 0.0,
             sampled: false,
             harmonics: None,
+            vertical: None,
         }
     }
 
@@ -77,6 +81,12 @@ impl Environment {
             Some(map) => map.sky_harmonics().map(|h| h.with_constant(self.constant)),
             None => Some(SkyHarmonics::constant(self.constant)),
         };
+        let constant = PI * self.constant;
+        let [up, down] = self
+            .map
+            .as_ref()
+            .map_or([Vec3::ZERO; 2], EnvMap::vertical_irradiance);
+        self.vertical = Some([up + constant, down + constant]);
         self.sampled = true;
         !black_map
     }
@@ -85,6 +95,31 @@ impl Environment {
     /// render's control variate; `None` before [`Environment::prepare_sampling`].
     pub fn harmonics(&self) -> Option<&SkyHarmonics> {
         self.harmonics.as_ref()
+    }
+
+    /// The exact `∫ L(ω) max(0, n·ω) dω` of the environment without the map's bright set, for
+    /// `n = +y` (`up`) or `−y` (`env_vertical`); `None` before
+    /// [`Environment::prepare_sampling`].
+    pub fn vertical_irradiance(&self, up: bool) -> Option<Vec3> {
+        self.vertical.map(|[u, d]| if up { u } else { d })
+    }
+
+    /// The radiance from direction `d` (unit) with the map's bright set left out: the function
+    /// [`Environment::vertical_irradiance`] integrates.
+    pub fn radiance_apart_from_bright(&self, d: Vec3) -> Vec3 {
+        self.constant
+            + self
+                .map
+                .as_ref()
+                .map_or(Vec3::ZERO, |m| m.radiance_apart_from_bright(d))
+    }
+
+    /// Whether unit direction `d` may read a texel of the map's bright set (`false`: surely
+    /// not, or there is no set).
+    pub fn may_be_bright(&self, d: Vec3) -> bool {
+        self.map
+            .as_ref()
+            .is_some_and(|m| m.has_bright() && m.may_be_bright(d))
     }
 
     /// Solid-angle-weighted mean radiance (for picking lights by power).

@@ -25,6 +25,7 @@ pub mod env_harmonics;
 pub mod env_map;
 pub mod env_sampler;
 pub mod env_texels;
+pub mod env_vertical;
 pub mod environment;
 pub mod point;
 pub mod shadow_end;
