@@ -47,6 +47,7 @@ impl SurfaceHit {
     /// Where a ray leaving in direction `w` starts: the hit point moved onto the smooth surface
     /// the vertex normals describe (on `w`'s side), then offset by the rounding bound along
     /// `n` (the geometric normal, possibly flipped to face the viewer).
+    #[inline]
     pub fn ray_origin(&self, n: Vec3, w: Vec3) -> Vec3 {
         let bulge = if w.dot(self.ng) >= 0.0 {
             self.bulge[0]
@@ -245,6 +246,7 @@ pub fn face_normal(world: [Vec3; 3]) -> Vec3 {
 
 /// A point off the surface at `p` (error bound `p_error`, unit normal `n`), on the side that
 /// direction `w` points to, safe to start a ray from.
+#[inline]
 pub fn offset_origin(p: Vec3, p_error: Vec3, n: Vec3, w: Vec3) -> Vec3 {
     // Twice the bound, since the accel's own intersection test rounds too; and never less than
     // a few ulps of the point, for surfaces whose error bound is zero along the normal (an
