@@ -246,7 +246,7 @@ pub fn face_normal(world: [Vec3; 3]) -> Vec3 {
 
 /// A point off the surface at `p` (error bound `p_error`, unit normal `n`), on the side that
 /// direction `w` points to, safe to start a ray from.
-#[inline]
+#[inline(always)] // reason: on every shadow ray's chain; as a call (the hint alone was declined) it cost 2.6% of cornell's CPU (docs/speed.md, fifth session)
 pub fn offset_origin(p: Vec3, p_error: Vec3, n: Vec3, w: Vec3) -> Vec3 {
     // Twice the bound, since the accel's own intersection test rounds too; and never less than
     // a few ulps of the point, for surfaces whose error bound is zero along the normal (an
