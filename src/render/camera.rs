@@ -20,6 +20,9 @@ pub struct PinholeCamera {
     /// `up · tan(fov_y / 2)`.
     half_height: Vec3,
     size_px: Vec2,
+    /// `1 / size_px` when both sides are powers of two (then exact, and a multiplication by
+    /// it is the division's bits without its latency on every camera ray); `None` otherwise.
+    exact_inv_size_px: Option<Vec2>,
 }
 
 impl PinholeCamera {
@@ -35,6 +38,8 @@ impl PinholeCamera {
             half_width: camera.right * tan_half * aspect,
             half_height: camera.up * tan_half,
             size_px,
+            exact_inv_size_px: (width.max(1).is_power_of_two() && height.max(1).is_power_of_two())
+                .then(|| size_px.recip()),
         }
     }
 
@@ -46,8 +51,11 @@ impl PinholeCamera {
     /// The ray through film position `film_px` (pixels, from the top-left corner); its
     /// direction is unit length so that `t` is a distance.
     pub fn ray(&self, film_px: Vec2) -> Ray {
-        let x = 2.0 * film_px.x / self.size_px.x - 1.0;
-        let y = 1.0 - 2.0 * film_px.y / self.size_px.y;
+        let film = match self.exact_inv_size_px {
+            Some(inv) => 2.0 * film_px * inv,
+            None => 2.0 * film_px / self.size_px,
+        };
+        let (x, y) = (film.x - 1.0, 1.0 - film.y);
         let dir = self.forward + x * self.half_width + y * self.half_height;
         Ray::new(self.eye, dir.normalize())
     }
@@ -101,6 +109,27 @@ mod tests {
             assert!((back - p).length() < 1e-3, "{p} -> {back}");
         }
         assert_eq!(c.project(Vec3::new(1.0, 2.0, 3.0) - Vec3::Z), None);
+    }
+
+    #[test]
+    fn power_of_two_films_make_the_same_rays_as_the_division() {
+        for (w, h) in [(512, 512), (64, 32), (1, 1), (160, 120), (64, 48)] {
+            let c = PinholeCamera::new(&camera(39.3), w, h);
+            assert_eq!(
+                c.exact_inv_size_px.is_some(),
+                w.is_power_of_two() && h.is_power_of_two()
+            );
+            for p in [
+                Vec2::new(0.37, 0.91),
+                Vec2::new(w as f32 * 0.5 + 0.123, h as f32 - 0.01),
+                Vec2::new(w as f32 - 1e-3, 1e-3),
+            ] {
+                let x = 2.0 * p.x / w as f32 - 1.0;
+                let y = 1.0 - 2.0 * p.y / h as f32;
+                let dir = c.forward + x * c.half_width + y * c.half_height;
+                assert_eq!(c.ray(p).dir, dir.normalize(), "{w}x{h} at {p}");
+            }
+        }
     }
 
     #[test]

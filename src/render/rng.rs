@@ -26,17 +26,51 @@ pub struct PixelBatch {
     pixel_key: u64,
     batch: u32,
     count: u32,
+    /// The first streams' keys, derived once for all the batch's samples.
+    streams: [StreamKey; CACHED_STREAMS],
 }
+
+/// What [`Sampler::stratified_2d`] derives from the pixel's key for one stream (the same for
+/// every sample of the pixel): the stream's random bits (shift and scramble) and the key of
+/// the order in which the samples visit its points.
+#[derive(Debug, Clone, Copy, Default)]
+struct StreamKey {
+    bits: u64,
+    order: u32,
+}
+
+impl StreamKey {
+    #[inline]
+    fn of(pixel_key: u64, stream: u64) -> StreamKey {
+        let bits = mix64(pixel_key ^ stream.wrapping_mul(0x9e37_79b9_7f4a_7c15));
+        StreamKey {
+            bits,
+            order: mix64(bits ^ 0x7f4a_7c15_9e37_79b9) as u32,
+        }
+    }
+
+    /// The keys of streams `0..CACHED_STREAMS`.
+    fn first(pixel_key: u64) -> [StreamKey; CACHED_STREAMS] {
+        std::array::from_fn(|s| StreamKey::of(pixel_key, s as u64))
+    }
+}
+
+/// Streams `0..CACHED_STREAMS` (the integrator's light pick, environment, BRDF directions and
+/// first light: `render::integrator`'s `STREAM_*`) have their keys derived once per pixel
+/// rather than once per sample: two 64-bit hashes off every sample's light sample.
+const CACHED_STREAMS: usize = 4;
 
 impl PixelBatch {
     /// Batch `batch` of `count` samples of pixel (`px`, `py`).
     pub fn new(seed: u64, px: u32, py: u32, batch: u32, count: u32) -> PixelBatch {
         let pixel_hash = pixel_hash(seed, px, py);
+        let pixel_key = mix64(key_of(pixel_hash, u32::MAX - batch) ^ 0x5851_f42d_4c95_7f2d);
         PixelBatch {
             pixel_hash,
-            pixel_key: mix64(key_of(pixel_hash, u32::MAX - batch) ^ 0x5851_f42d_4c95_7f2d),
+            pixel_key,
             batch,
             count: count.max(1),
+            streams: StreamKey::first(pixel_key),
         }
     }
 
@@ -51,6 +85,7 @@ impl PixelBatch {
             index: index.min(self.count - 1),
             count: self.count,
             progressive: false,
+            streams: self.streams,
         }
     }
 }
@@ -109,6 +144,8 @@ impl PixelSequences {
             index,
             count: 0,
             progressive: true,
+            // Progressive points (`point_2d`) do not read them.
+            streams: [StreamKey::default(); CACHED_STREAMS],
         }
     }
 
@@ -142,19 +179,23 @@ pub struct Sampler {
     count: u32,
     /// Points come from the replicate's progressive sequences ([`PixelSequences`]).
     progressive: bool,
+    /// The first streams' keys (fixed-count samplers; unused by progressive ones).
+    streams: [StreamKey; CACHED_STREAMS],
 }
 
 impl Sampler {
     /// A stand-alone stream: sample 0 of 1, so calls with different `sample` are independent.
     pub fn new(seed: u64, px: u32, py: u32, sample: u32) -> Sampler {
         let key = sample_key(seed, px, py, sample);
+        let pixel_key = mix64(key ^ 0x5851_f42d_4c95_7f2d);
         Sampler {
             key,
             dim: 0,
-            pixel_key: mix64(key ^ 0x5851_f42d_4c95_7f2d),
+            pixel_key,
             index: 0,
             count: 1,
             progressive: false,
+            streams: StreamKey::first(pixel_key),
         }
     }
 
@@ -209,15 +250,18 @@ impl Sampler {
         if self.progressive {
             return self.point_2d(stream, j);
         }
-        let bits = self.pixel_bits(stream);
+        let StreamKey { bits, order } = match self.streams.get(stream as usize) {
+            Some(&key) if stream < CACHED_STREAMS as u64 => key,
+            _ => StreamKey::of(self.pixel_key, stream),
+        };
         // Each stream visits the set in its own order: without it, sample `s` would take
         // point `s` of every stream, so its light point would be a fixed function of its
         // sub-pixel position (and of its light pick), and a penumbra pixel would converge to a
         // seed-dependent value instead of the pixel's integral (pbrt-v4's padded sampler
         // permutes each dimension's index the same way).
-        let j = permute_index(j, n, mix64(bits ^ 0x7f4a_7c15_9e37_79b9) as u32);
+        let j = permute_index(j, n, order);
         let shift = to_unit(bits);
-        let x = wrap_unit((j as f32 + 0.5) / n as f32 + shift);
+        let x = wrap_unit(stratum_centre(j, n) + shift);
         // The shift uses the top 24 bits, the scramble the low 32: independent.
         let y = ((j.reverse_bits() ^ bits as u32) >> 8) as f32 * (1.0 / (1u32 << 24) as f32);
         Vec2::new(x, y)
@@ -232,6 +276,20 @@ impl Sampler {
         let x = owen_scramble(i.reverse_bits(), seeds as u32);
         let y = owen_scramble(sobol_dim1(i), (seeds >> 32) as u32);
         Vec2::new(bits_to_unit(x), bits_to_unit(y))
+    }
+}
+
+/// `(j + 0.5) / n`. A power-of-two `n` (every square pattern's sample count at 4, 16, 64 or 256
+/// samples per pixel) is a multiplication by its exact reciprocal, the same bits as the
+/// division without its latency on the sample's chain.
+#[inline]
+fn stratum_centre(j: u32, n: u32) -> f32 {
+    let centre = j as f32 + 0.5;
+    if n.is_power_of_two() {
+        // 2^-k: an exponent field of 127 − k, k ≤ 31.
+        centre * f32::from_bits((127 - n.trailing_zeros()) << 23)
+    } else {
+        centre / n as f32
     }
 }
 
@@ -384,6 +442,49 @@ fn bits_to_unit(v: u32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn stratum_centres_are_the_division_bit_for_bit() {
+        for k in 0..32 {
+            let n = 1u32 << k;
+            for j in [0, 1, 7, n / 2, n.saturating_sub(1), n.wrapping_mul(3) / 4] {
+                let by_division = (j as f32 + 0.5) / n as f32;
+                assert_eq!(
+                    stratum_centre(j, n).to_bits(),
+                    by_division.to_bits(),
+                    "{j}/{n}"
+                );
+            }
+        }
+        for (j, n) in [(0, 3), (5, 9), (11, 12), (0, 0), (4, 1000)] {
+            let by_division = (j as f32 + 0.5) / n as f32;
+            assert_eq!(
+                stratum_centre(j, n).to_bits(),
+                by_division.to_bits(),
+                "{j}/{n}"
+            );
+        }
+    }
+
+    #[test]
+    fn cached_stream_keys_are_the_ones_derived_per_sample() {
+        let batch = PixelBatch::new(5, 3, 9, 0, 16);
+        for s in 0..16 {
+            let sampler = batch.sampler(s);
+            for stream in 0..(CACHED_STREAMS as u64 + 3) {
+                let key = StreamKey::of(sampler.pixel_key, stream);
+                assert_eq!(key.bits, sampler.pixel_bits(stream));
+                if let Some(cached) = sampler.streams.get(stream as usize) {
+                    assert_eq!((cached.bits, cached.order), (key.bits, key.order));
+                }
+            }
+        }
+        let lone = Sampler::new(1, 2, 3, 4);
+        for (stream, cached) in lone.streams.iter().enumerate() {
+            let key = StreamKey::of(lone.pixel_key, stream as u64);
+            assert_eq!((cached.bits, cached.order), (key.bits, key.order));
+        }
+    }
 
     #[test]
     fn sobol_dim1_by_bytes_is_the_bitwise_product() {

@@ -19,6 +19,7 @@ use glam::{Affine3A, DVec3, Mat3, Vec3, Vec4};
 
 use super::cache::BuildCache;
 use super::env_load::load_env_map;
+use super::face_normals::unmoved_face_normals;
 use super::facing::{faces_away, world_boxes};
 use super::load::load_mesh;
 use super::mesh::TriMesh;
@@ -92,6 +93,7 @@ fn build_with(
         Default::default()
     };
 
+    let face_normals = unmoved_face_normals(&b.meshes, &a.instances);
     let scene = Scene {
         world_origin: b.origin,
         camera: a.camera,
@@ -103,6 +105,7 @@ fn build_with(
         part_surfaces: a.parts.surfaces,
         textures: a.textures,
         tangents: a.tangents,
+        face_normals,
         lights: a.lights,
         light_sampling: Default::default(),
         strategy: Default::default(),

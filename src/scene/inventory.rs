@@ -91,6 +91,8 @@ impl Scene {
                 + m.uvs.len() * size_of::<Vec2>()
                 + m.triangles.len() * size_of::<[u32; 3]>();
         }
+        // The face normals computed at the build for unmoved placements (`face_normals`).
+        bytes += self.face_normals.iter().map(Vec::len).sum::<usize>() * size_of::<Vec3>();
         Some(Built {
             what: "meshes",
             detail: format!(

@@ -12,6 +12,7 @@ mod build;
 pub mod cache;
 mod env_load;
 mod error;
+pub mod face_normals;
 mod facing;
 mod inventory;
 mod load;
@@ -166,6 +167,9 @@ pub struct Scene {
     /// Per mesh: per-vertex tangents (xyz, and the bitangent's sign in w), derived from UVs
     /// only for meshes that normal-mapped objects use; empty otherwise.
     pub tangents: Vec<Vec<Vec4>>,
+    /// Per mesh: its triangles' unit face normals for an unmoved placement, for the meshes
+    /// some unmoved placement uses; empty otherwise (`face_normals`).
+    pub face_normals: Vec<Vec<Vec3>>,
     /// The lights and their sampling tables.
     pub lights: Lights,
     /// How area lights are sampled (tests switch it).

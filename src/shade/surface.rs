@@ -47,6 +47,7 @@ impl SurfaceHit {
     /// Where a ray leaving in direction `w` starts: the hit point moved onto the smooth surface
     /// the vertex normals describe (on `w`'s side), then offset by the rounding bound along
     /// `n` (the geometric normal, possibly flipped to face the viewer).
+    #[inline]
     pub fn ray_origin(&self, n: Vec3, w: Vec3) -> Vec3 {
         let bulge = if w.dot(self.ng) >= 0.0 {
             self.bulge[0]
@@ -110,7 +111,8 @@ pub fn surface_hit(scene: &Scene, hit: &Hit) -> Option<SurfaceHit> {
     let mesh = scene.meshes.get(inst.mesh as usize)?;
     let tri = *mesh.triangles.get(hit.prim as usize)?;
     let surface = scene.surface_of(inst, mesh, hit.prim);
-    Some(rebuild(inst, mesh, tri, surface, hit))
+    let unmoved = unmoved_normals(scene, inst);
+    Some(rebuild(inst, mesh, unmoved, tri, surface, hit))
 }
 
 /// [`surface_hit`], except that a hit on an emitter reconstructs only its face normal (a tenth
@@ -121,8 +123,12 @@ pub fn seen_hit(scene: &Scene, hit: &Hit) -> Option<SeenHit> {
     let mesh = scene.meshes.get(inst.mesh as usize)?;
     let tri = *mesh.triangles.get(hit.prim as usize)?;
     let surface = scene.surface_of(inst, mesh, hit.prim);
+    let unmoved = unmoved_normals(scene, inst);
     if let Surface::Emitter(light) = surface {
         let m = inst.world_from_object;
+        if let Some(&ng) = unmoved.get(hit.prim as usize) {
+            return Some(SeenHit::Emitter { light, ng });
+        }
         let world = tri.map(|i| {
             let q = mesh.positions[i as usize];
             // `rebuild`'s corners, the same bits.
@@ -135,14 +141,33 @@ pub fn seen_hit(scene: &Scene, hit: &Hit) -> Option<SeenHit> {
         let ng = face_normal(world);
         return Some(SeenHit::Emitter { light, ng });
     }
-    Some(SeenHit::Surface(rebuild(inst, mesh, tri, surface, hit)))
+    Some(SeenHit::Surface(rebuild(
+        inst, mesh, unmoved, tri, surface, hit,
+    )))
 }
 
-/// The [`SurfaceHit`] of triangle `tri` (vertex indices) of `mesh` placed by `inst`.
+/// The face normals the build computed for `inst`'s mesh (`scene::face_normals`) when `inst`
+/// places it unmoved; empty otherwise (the caller then computes the normal).
+#[inline]
+fn unmoved_normals<'a>(scene: &'a Scene, inst: &SceneInstance) -> &'a [Vec3] {
+    if inst.world_from_object == Affine3A::IDENTITY {
+        scene
+            .face_normals
+            .get(inst.mesh as usize)
+            .map_or(&[], Vec::as_slice)
+    } else {
+        &[]
+    }
+}
+
+/// The [`SurfaceHit`] of triangle `tri` (vertex indices) of `mesh` placed by `inst`;
+/// `unmoved` holds the mesh's face normals if the build computed them for this placement
+/// (the same bits as computing them here), else it is empty.
 #[inline(always)] // reason: one body for `surface_hit` and `seen_hit`, each as fast as when it was its own
 fn rebuild(
     inst: &SceneInstance,
     mesh: &TriMesh,
+    unmoved: &[Vec3],
     tri: [u32; 3],
     surface: Surface,
     hit: &Hit,
@@ -174,7 +199,10 @@ fn rebuild(
     let p = b[0] * world[0] + b[1] * world[1] + b[2] * world[2];
     let abs_sum = (b[0] * world[0]).abs() + (b[1] * world[1]).abs() + (b[2] * world[2]).abs();
     let p_error = gamma(7) * abs_sum + gamma(3) * transform_error;
-    let ng = face_normal(world);
+    let ng = match unmoved.get(hit.prim as usize) {
+        Some(&n) => n,
+        None => face_normal(world),
+    };
     let mut bulge = [Vec3::ZERO; 2];
     let ns = if mesh.normals.is_empty() {
         ng
@@ -210,7 +238,7 @@ fn rebuild(
 
 /// The unit face normal `(p1 − p0) × (p2 − p0)` of a world-space triangle (zero if degenerate).
 #[inline]
-fn face_normal(world: [Vec3; 3]) -> Vec3 {
+pub fn face_normal(world: [Vec3; 3]) -> Vec3 {
     (world[1] - world[0])
         .cross(world[2] - world[0])
         .normalize_or_zero()
@@ -218,6 +246,7 @@ fn face_normal(world: [Vec3; 3]) -> Vec3 {
 
 /// A point off the surface at `p` (error bound `p_error`, unit normal `n`), on the side that
 /// direction `w` points to, safe to start a ray from.
+#[inline(always)] // reason: on every shadow ray's chain; as a call (the hint alone was declined) it cost 2.6% of cornell's CPU (docs/speed.md, fifth session)
 pub fn offset_origin(p: Vec3, p_error: Vec3, n: Vec3, w: Vec3) -> Vec3 {
     // Twice the bound, since the accel's own intersection test rounds too; and never less than
     // a few ulps of the point, for surfaces whose error bound is zero along the normal (an

@@ -113,6 +113,7 @@ impl SphericalRect {
     }
 
     /// [`SphericalRect::new`] of a rectangle whose frame is already known.
+    #[inline]
     pub fn seen_from(p: Vec3, frame: &RectFrame) -> Option<SphericalRect> {
         let RectFrame {
             corner,
@@ -201,6 +202,7 @@ impl SphericalRect {
 
     /// The point of the rectangle for `u` ∈ [0, 1)²; its direction from the shading point is
     /// uniform over the spherical rectangle.
+    #[inline]
     pub fn sample(&self, u: Vec2) -> RectSample {
         // The column: the sub-rectangle [x0, xu] subtends u.x · Ω; au = u.x · Ω + k.
         let (sin_u, cos_u) = (u.x * self.solid_angle).sin_cos();
