@@ -585,6 +585,23 @@ fn compile_as_a_full_compile_does(
     (got, label)
 }
 
+/// One edit of a replay: the first `from` in `text` replaced by `to` (it must be there), the
+/// result compiled incrementally and compared with the full compile; returns the result, its
+/// label and whether it took the fast path (`Reuse::Statements`).
+fn edit_as_a_full_compile_does(
+    inc: &mut Incremental,
+    text: &mut String,
+    from: &str,
+    to: &str,
+) -> (scnc::diag::Staged<Arc<scnc::ir::SceneDesc>>, String, bool) {
+    let edited = text.replacen(from, to, 1);
+    assert_ne!(&edited, text, "{from}");
+    *text = edited;
+    let (got, label) = compile_as_a_full_compile_does(inc, text, to);
+    let took = matches!(inc.reuse, Reuse::Statements { .. });
+    (got, label, took)
+}
+
 /// How a replay's edits went through the incremental front end.
 #[derive(Default)]
 struct Replayed {
@@ -1489,14 +1506,8 @@ fn a_group_edit_is_checked_with_its_names_kept() {
         ("group outer {", "group inner {"),
     ];
     for (from, to) in edits {
-        let edited = text.replacen(from, to, 1);
-        assert_ne!(edited, text, "{from}");
-        text = edited;
-        let (_, label) = compile_as_a_full_compile_does(&mut inc, &text, to);
-        assert!(
-            matches!(inc.reuse, Reuse::Statements { .. }),
-            "{label}: a group edit took the full path"
-        );
+        let (_, label, took) = edit_as_a_full_compile_does(&mut inc, &mut text, from, to);
+        assert!(took, "{label}: a group edit took the full path");
     }
 }
 
@@ -1523,11 +1534,7 @@ fn a_renamed_declaration_is_checked_with_what_names_either_name() {
         ("material m1x =", "material m1 =", true),
     ];
     for (from, to, fast) in edits {
-        let edited = text.replacen(from, to, 1);
-        assert_ne!(edited, text, "{from}");
-        text = edited;
-        let (_, label) = compile_as_a_full_compile_does(&mut inc, &text, to);
-        let took = matches!(inc.reuse, Reuse::Statements { .. });
+        let (_, label, took) = edit_as_a_full_compile_does(&mut inc, &mut text, from, to);
         assert_eq!(took, fast, "{label}");
     }
 }
@@ -1564,12 +1571,8 @@ fn a_declaration_added_beside_an_unknown_name_of_another_kind_is_checked_alone()
     ];
     let mut text = text;
     for (from, to, fast) in edits {
-        let edited = text.replacen(from, to, 1);
-        assert_ne!(edited, text, "{from}");
-        text = edited;
-        let (got, label) = compile_as_a_full_compile_does(&mut inc, &text, to);
+        let (got, label, took) = edit_as_a_full_compile_does(&mut inc, &mut text, from, to);
         assert!(got.has_errors(), "{label}: the unknown material stands");
-        let took = matches!(inc.reuse, Reuse::Statements { .. });
         assert_eq!(took, fast, "{label}");
     }
 }
@@ -1932,11 +1935,7 @@ fn a_group_added_removed_or_named_by_a_rename_is_checked_in_place() {
         ("mesh orb =", "mesh ball =", true),
     ];
     for (from, to, fast) in edits {
-        let edited = text.replacen(from, to, 1);
-        assert_ne!(edited, text, "{from}");
-        text = edited;
-        let (_, label) = compile_as_a_full_compile_does(&mut inc, &text, to);
-        let took = matches!(inc.reuse, Reuse::Statements { .. });
+        let (_, label, took) = edit_as_a_full_compile_does(&mut inc, &mut text, from, to);
         assert_eq!(took, fast, "{label}");
     }
 }
@@ -1971,11 +1970,7 @@ fn a_let_nothing_names_renamed_is_checked_alone() {
         ("let loose =", "let turn =", true),
     ];
     for (from, to, fast) in edits {
-        let edited = text.replacen(from, to, 1);
-        assert_ne!(edited, text, "{from}");
-        text = edited;
-        let (_, label) = compile_as_a_full_compile_does(&mut inc, &text, to);
-        let took = matches!(inc.reuse, Reuse::Statements { .. });
+        let (_, label, took) = edit_as_a_full_compile_does(&mut inc, &mut text, from, to);
         assert_eq!(took, fast, "{label}");
     }
 }
