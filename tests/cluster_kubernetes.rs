@@ -1,7 +1,8 @@
 //! The Kubernetes manifests in `examples/cluster/kubernetes/` against the official `batch/v1`
 //! Job schema, with `kubernetes-validate` (PyPI; it ships the schemas of each Kubernetes
-//! release, so no cluster and no network are needed; `.ci/run` installs it into a venv and sets
-//! `KUBERNETES_VALIDATE`). Strict mode rejects unknown fields, and a deliberately broken copy
+//! release, so no cluster and no network are needed; `.ci/run` installs it into the virtual
+//! environment `target/ci-venv`, looked for here as in `tests/cluster_slurm.rs`; a
+//! `KUBERNETES_VALIDATE` path or the `PATH` serve elsewhere). Strict mode rejects unknown fields, and a deliberately broken copy
 //! must be rejected, so the check is known to bite. Where the tool is not installed the test
 //! prints a loud `SKIPPED` to stderr and passes.
 
@@ -14,7 +15,9 @@ const KUBERNETES: &str = "1.33.0";
 
 fn validator() -> Option<PathBuf> {
     let named = std::env::var_os("KUBERNETES_VALIDATE").map(PathBuf::from);
-    let candidates = named.into_iter().chain(
+    let ci_venv =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("target/ci-venv/bin/kubernetes-validate");
+    let candidates = named.into_iter().chain([ci_venv]).chain(
         std::env::var_os("PATH")
             .map(|p| {
                 std::env::split_paths(&p)
@@ -60,7 +63,8 @@ fn the_job_manifests_match_the_batch_v1_schema_and_a_broken_one_does_not() {
         String::from_utf8_lossy(&out.stdout),
         String::from_utf8_lossy(&out.stderr)
     );
-    let tiles = std::fs::read_to_string(dir.join("tiles-job.yaml")).expect("tiles-job.yaml");
+    let tiles =
+        std::fs::read_to_string(dir.join("render-tiles-job.yaml")).expect("render-tiles-job.yaml");
     assert!(tiles.contains("completionMode: Indexed") && tiles.contains("JOB_COMPLETION_INDEX"));
     let tmp = std::env::temp_dir().join(format!("scnc-k8s-{}", std::process::id()));
     std::fs::create_dir_all(&tmp).expect("temp dir");
@@ -73,7 +77,7 @@ fn the_job_manifests_match_the_batch_v1_schema_and_a_broken_one_does_not() {
         ("mistyped.yaml", "completions: 16", "completions: sixteen"),
     ] {
         let broken = tiles.replace(from, to);
-        assert_ne!(broken, tiles, "{from} is in tiles-job.yaml");
+        assert_ne!(broken, tiles, "{from} is in render-tiles-job.yaml");
         let path = tmp.join(name);
         std::fs::write(&path, broken).expect("write the broken copy");
         let out = validate(&tool, &[path]);
