@@ -602,6 +602,19 @@ fn edit_as_a_full_compile_does(
     (got, label, took)
 }
 
+/// A replay from `text`: compiled once (a full compile), then each edit applied in turn,
+/// compared with the full compile, and asserted to take the fast path exactly where it says.
+fn replay_edits(text: String, edits: &[(&str, &str, bool)]) {
+    let mut inc = Incremental::new(Overrides::default());
+    let mut text = text;
+    let (_, label) = compile_as_a_full_compile_does(&mut inc, &text, "first");
+    assert_eq!(inc.reuse, Reuse::Full, "{label}");
+    for &(from, to, fast) in edits {
+        let (_, label, took) = edit_as_a_full_compile_does(&mut inc, &mut text, from, to);
+        assert_eq!(took, fast, "{label}");
+    }
+}
+
 /// How a replay's edits went through the incremental front end.
 #[derive(Default)]
 struct Replayed {
@@ -1517,9 +1530,6 @@ fn a_group_edit_is_checked_with_its_names_kept() {
 /// full compile. Every result is the full compile's.
 #[test]
 fn a_renamed_declaration_is_checked_with_what_names_either_name() {
-    let mut inc = Incremental::new(Overrides::default());
-    let mut text = base_scene();
-    let _ = compile_as_a_full_compile_does(&mut inc, &text, "first");
     let edits = [
         ("material m3 =", "material m3x =", true),
         ("material m0 =", "material mo =", true),
@@ -1533,10 +1543,7 @@ fn a_renamed_declaration_is_checked_with_what_names_either_name() {
         ("material m1 =", "material m1x =", true),
         ("material m1x =", "material m1 =", true),
     ];
-    for (from, to, fast) in edits {
-        let (_, label, took) = edit_as_a_full_compile_does(&mut inc, &mut text, from, to);
-        assert_eq!(took, fast, "{label}");
-    }
+    replay_edits(base_scene(), &edits);
 }
 
 /// A declaration nothing names added and removed while an unknown-name diagnostic of another
@@ -1889,10 +1896,6 @@ fn a_group_added_removed_or_named_by_a_rename_is_checked_in_place() {
          group deck { transform { translate (0, 1, 0) }  object ball { material m0 }\n  \
          group inner { object box1 { material lone } } }\n",
     );
-    let mut inc = Incremental::new(Overrides::default());
-    let mut text = scene.clone();
-    let (_, label) = compile_as_a_full_compile_does(&mut inc, &text, "first");
-    assert_eq!(inc.reuse, Reuse::Full, "{label}");
     let added = "group extra { object box1 { material m2 }  group extra2 { object ball { material m1 } } }\n";
     let edits = [
         // Added, and removed (its objects' uses go: `m2` keeps others').
@@ -1934,10 +1937,7 @@ fn a_group_added_removed_or_named_by_a_rename_is_checked_in_place() {
         ("mesh ball =", "mesh orb =", true),
         ("mesh orb =", "mesh ball =", true),
     ];
-    for (from, to, fast) in edits {
-        let (_, label, took) = edit_as_a_full_compile_does(&mut inc, &mut text, from, to);
-        assert_eq!(took, fast, "{label}");
-    }
+    replay_edits(scene, &edits);
 }
 
 /// A `let` renamed: checked alone when nothing names the old name or the new one (a constant
@@ -1949,9 +1949,6 @@ fn a_let_nothing_names_renamed_is_checked_alone() {
         "let spin = 15deg\n",
         "let spin = 15deg\nlet loose = k * 2\n",
     );
-    let mut inc = Incremental::new(Overrides::default());
-    let mut text = scene;
-    let _ = compile_as_a_full_compile_does(&mut inc, &text, "first");
     let edits = [
         ("let loose =", "let free =", true),
         ("let free =", "let loose =", true),
@@ -1969,10 +1966,7 @@ fn a_let_nothing_names_renamed_is_checked_alone() {
         ("let loose = k * 2", "let loose = spin * 2", true),
         ("let loose =", "let turn =", true),
     ];
-    for (from, to, fast) in edits {
-        let (_, label, took) = edit_as_a_full_compile_does(&mut inc, &mut text, from, to);
-        assert_eq!(took, fast, "{label}");
-    }
+    replay_edits(scene, &edits);
 }
 
 /// An `area` light edited (a digit of its quad, transform or radiance; its mesh swapped for
