@@ -155,8 +155,10 @@ fn walk<I: Isa, F: LeafVisitor>(
                 }
                 // More: sorted far to near, the nearest visited next, the others pushed so
                 // that they pop in order of distance (on a tie the later lane goes first).
-                let mut hits = [(0.0f32, 0usize); WIDTH];
-                hits[0] = (t[first], first);
+                // (distance, lane) pairs of 8 bytes: the array's initialisation is two
+                // vector stores (with a `usize` lane it was fourteen scalar ones).
+                let mut hits = [(0.0f32, 0u32); WIDTH];
+                hits[0] = (t[first], first as u32);
                 let mut n = 1;
                 let mut bits = rest;
                 while bits != 0 {
@@ -168,16 +170,17 @@ fn walk<I: Isa, F: LeafVisitor>(
                         hits[j] = hits[j - 1];
                         j -= 1;
                     }
-                    hits[j] = (tk, k);
+                    hits[j] = (tk, k as u32);
                     n += 1;
                 }
                 for &(tk, k) in &hits[..n - 1] {
+                    let k = k as usize % WIDTH;
                     // `stack` holds `stack_need` entries, the most any path pushes.
                     stack[sp] = (node.child[k], node.count[k], tk);
                     sp += 1;
                     prefetch(isa, w, &leaf, node.child[k], node.count[k]);
                 }
-                let k = hits[n - 1].1;
+                let k = hits[n - 1].1 as usize % WIDTH;
                 child = node.child[k];
                 count = node.count[k];
                 continue;

@@ -307,6 +307,18 @@ impl Avx2 {
         F8(unsafe { _mm256_or_ps(a.0, b.0) })
     }
 
+    /// Bitwise `b & !a` (`andnps a, b`): the lanes of mask `b` that mask `a` leaves clear.
+    #[inline(always)]
+    pub fn and_not(self, a: F8, b: F8) -> F8 {
+        F8(unsafe { _mm256_andnot_ps(a.0, b.0) })
+    }
+
+    /// Bitwise exclusive or (with a sign-bit mask: an exact negation where the bit is set).
+    #[inline(always)]
+    pub fn xor(self, a: F8, b: F8) -> F8 {
+        F8(unsafe { _mm256_xor_ps(a.0, b.0) })
+    }
+
     /// `if_true` where `mask` is set, else `if_false`.
     #[inline(always)]
     pub fn select(self, mask: F8, if_true: F8, if_false: F8) -> F8 {
@@ -393,6 +405,8 @@ unreachable_ops!(
     ne(a, b),
     and(a, b),
     or(a, b),
+    and_not(a, b),
+    xor(a, b),
     select(m, a, b)
 );
 #[cfg(not(target_arch = "x86_64"))]
@@ -498,6 +512,16 @@ mod tests {
         for (name, got, want) in masks {
             assert_eq!(avx.bitmask(got), want, "{name}");
         }
+        let (lt, ne) = (avx.lt(a, b), avx.ne(a, b));
+        let ne_not_lt = avx.bitmask(ne) & !avx.bitmask(lt);
+        assert_ne!(ne_not_lt, 0, "some lanes to keep");
+        assert_eq!(avx.bitmask(avx.and_not(lt, ne)), ne_not_lt, "and_not");
+        let flipped = avx.store(avx.xor(a, avx.splat(-0.0)));
+        assert_eq!(
+            bits(flipped),
+            bits(sse(&|x, _| -x)),
+            "xor with the sign bit"
+        );
         let picked = avx.store(avx.select(avx.lt(a, b), a, b));
         let want = sse(&|x, y| Vec4::select(x.cmplt(y), x, y));
         assert_eq!(bits(picked), bits(want), "select");

@@ -64,9 +64,10 @@ pub struct WatertightRay {
     pub origin: Vec3A,
     /// The ray's `t_max`, in multiples of its `dir`.
     pub t_max: f32,
-    /// `origin` as an array: indexed by a run-time axis without a branch (indexing a `Vec3A`
-    /// by a variable is a `match`).
-    pub(crate) origin_xyz: [f32; 3],
+    /// The origin's coordinates on the axes `kx`, `ky`, `kz` (in that order): the eight-lane
+    /// test reads them at fixed places, once per ray, instead of indexing by axis at every
+    /// leaf (where the AVX2 kernel broadcast and spilled them anew each time).
+    pub(crate) origin_k: [f32; 3],
     /// `kx`, `ky`, `kz`: which axes become the sheared x, y and z (for the four-wide test,
     /// which permutes rows instead of multiplying by `shear`).
     pub(crate) axes: [usize; 3],
@@ -111,7 +112,10 @@ impl WatertightRay {
         WatertightRay {
             origin: ray.origin.into(),
             t_max: ray.t_max,
-            origin_xyz: ray.origin.to_array(),
+            origin_k: {
+                let o = ray.origin.to_array();
+                [o[kx], o[ky], o[kz]]
+            },
             axes: [kx, ky, kz],
             shear_factors: [sx, sy, sz],
             dir_length,

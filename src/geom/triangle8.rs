@@ -46,9 +46,9 @@ impl Hits8 {
 fn sheared(avx: Avx2, r: &WatertightRay, lo: &Tri4, hi: &Tri4, j: usize) -> [F8; 3] {
     let [kx, ky, kz] = r.axes;
     let (x, y, z) = (
-        relative(avx, r, lo, hi, 3 * j, kx),
-        relative(avx, r, lo, hi, 3 * j, ky),
-        relative(avx, r, lo, hi, 3 * j, kz),
+        relative(avx, r, lo, hi, 3 * j + kx, 0),
+        relative(avx, r, lo, hi, 3 * j + ky, 1),
+        relative(avx, r, lo, hi, 3 * j + kz, 2),
     );
     let [sx, sy, sz] = r.shear_factors;
     [
@@ -58,11 +58,12 @@ fn sheared(avx: Avx2, r: &WatertightRay, lo: &Tri4, hi: &Tri4, j: usize) -> [F8;
     ]
 }
 
-/// Axis `a` of the vertex whose rows start at `row`, minus the origin's.
+/// Row `row` of the two packets (a vertex's coordinate on axis `r.axes[k]`), minus the
+/// origin's coordinate on that axis.
 #[inline(always)]
-fn relative(avx: Avx2, r: &WatertightRay, lo: &Tri4, hi: &Tri4, row: usize, a: usize) -> F8 {
-    let p = avx.load2(&lo.rows[row + a], &hi.rows[row + a]);
-    avx.sub(p, avx.splat(r.origin_xyz[a]))
+fn relative(avx: Avx2, r: &WatertightRay, lo: &Tri4, hi: &Tri4, row: usize, k: usize) -> F8 {
+    let p = avx.load2(&lo.rows[row], &hi.rows[row]);
+    avx.sub(p, avx.splat(r.origin_k[k]))
 }
 
 /// `p·q − s·t`.
@@ -119,21 +120,28 @@ fn watertight8<const FULL: bool>(
         );
         (u, v, w) = (avx.load(&u2), avx.load(&v2), avx.load(&w2));
     }
-    let any_neg = avx.or(avx.or(avx.lt(u, zero), avx.lt(v, zero)), avx.lt(w, zero));
-    let any_pos = avx.or(avx.or(avx.gt(u, zero), avx.gt(v, zero)), avx.gt(w, zero));
-    let outside = avx.bitmask(avx.and(any_neg, any_pos));
     let det = avx.add(avx.add(u, v), w);
-    let usable = avx.and(
-        avx.lt(avx.abs(det), avx.splat(f32::INFINITY)),
-        avx.ne(det, zero),
-    );
+    // The four-lane test's `sign = det < 0 ? −1 : 1`, `ts = t_scaled · sign`, `ad = det · sign`,
+    // as a flip of the sign bit (multiplying by ±1 is exact, so the bits are the same), in one
+    // operation of latency 1 instead of a compare, a blend and two multiplications. The lanes
+    // where the two differ are `det = −0` (here `ad = +0`, `ts` flipped), never usable, and NaN
+    // (any sign), never usable either.
+    let sign_bit = avx.and(det, avx.splat(-0.0));
     let t_scaled = dot3(avx, [u, az, v, bz, w, cz]);
-    let sign = avx.select(avx.lt(det, zero), avx.splat(-1.0), avx.splat(1.0));
-    let ts = avx.mul(t_scaled, sign);
-    let ad = avx.mul(det, sign);
+    let (ts, ad) = (avx.xor(t_scaled, sign_bit), avx.xor(det, sign_bit));
+    // `ad` is `|det|`: usable where `0 < |det| < ∞` (the four-lane `det ≠ 0 && |det| < ∞`; a
+    // NaN fails both forms).
+    let usable = avx.and(avx.gt(ad, zero), avx.lt(ad, avx.splat(f32::INFINITY)));
+    // Some edge function below 0 and some above: in a usable lane u, v and w are finite
+    // (`det` would be NaN or infinite otherwise), so that is `min < 0 && max > 0` (the
+    // four-lane form compares each: six compares and four ors here become four min/max and
+    // two compares).
+    let lowest = avx.min(avx.min(u, v), w);
+    let highest = avx.max(avx.max(u, v), w);
+    let outside = avx.and(avx.lt(lowest, zero), avx.gt(highest, zero));
     let t_max8 = avx.splat(t_max);
     let in_front = avx.and(avx.gt(ts, zero), avx.lt(ts, avx.mul(t_max8, ad)));
-    let candidate = avx.bitmask(avx.and(usable, in_front)) & !outside;
+    let candidate = avx.bitmask(avx.and_not(outside, avx.and(usable, in_front)));
     if candidate == 0 {
         return None;
     }
@@ -324,5 +332,65 @@ mod tests {
             hits += usize::from(four.is_some());
         }
         assert!(hits > 5_000, "too few hits to test anything: {hits}");
+    }
+
+    /// The lanes where the eight-lane test's sign flip and min/max form differ from the
+    /// four-lane test's multiplications and compares are those with `det` = ±0, infinite or
+    /// NaN: degenerate triangles (repeated or collinear vertices, where `det` rounds to a
+    /// signed zero) and coordinates near `f32::MAX` (edge functions that overflow to ±∞, and
+    /// `∞ − ∞` = NaN). Both tests must still give the same answers there.
+    #[test]
+    fn eight_lanes_agree_with_four_on_degenerate_and_overflowing_triangles() {
+        let Some(avx) = Avx2::detect_cpu() else {
+            eprintln!("no AVX2 on this CPU: nothing to compare");
+            return;
+        };
+        let mut rng = Rng(16);
+        let (mut hits, mut non_finite) = (0, 0);
+        for case in 0..20_000 {
+            let scale = [1.0, 1.0e19, 3.0e38][case % 3];
+            let n: usize = 1 + case % 8;
+            let tris: Vec<[Vec3A; 3]> = (0..n)
+                .map(|k| {
+                    let a = point(&mut rng, 2.0) * scale;
+                    let b = point(&mut rng, 2.0) * scale;
+                    match (case + k) % 4 {
+                        // Repeated vertex, collinear, and a thin sliver.
+                        0 => [a, a, b],
+                        1 => [a, b, (a + b) * 0.5],
+                        2 => [a, b, b + Vec3A::splat(f32::EPSILON) * scale],
+                        _ => [a, b, point(&mut rng, 2.0) * scale],
+                    }
+                })
+                .collect();
+            non_finite += tris
+                .iter()
+                .filter(|t| !(t[1] - t[0]).cross(t[2] - t[0]).is_finite())
+                .count();
+            let origin = point(&mut rng, 8.0) * scale.min(1.0e19);
+            let aim = tris[case % n][case % 3];
+            let dir = Vec3::from(aim - origin).normalize_or_zero();
+            let r = WatertightRay::new(&Ray::new(origin.into(), dir));
+            let mut packets = vec![Tri4::EMPTY; n.div_ceil(LANES)];
+            for (k, t) in tris.iter().enumerate() {
+                packets[k / LANES].set(k % LANES, *t);
+            }
+            let (mut t4, mut t8) = (f32::INFINITY, f32::INFINITY);
+            let four = closest4(&r, &mut t4, &packets);
+            let eight = closest8(avx, &r, &mut t8, &packets);
+            assert_eq!(key(eight), key(four), "case {case}");
+            assert_eq!(t8.to_bits(), t4.to_bits(), "case {case}");
+            assert_eq!(
+                any8(avx, &r, f32::INFINITY, &packets),
+                any4(&r, f32::INFINITY, &packets),
+                "case {case}"
+            );
+            hits += usize::from(four.is_some());
+        }
+        assert!(hits > 400, "too few hits to test anything: {hits}");
+        assert!(
+            non_finite > 1_000,
+            "too few overflowing triangles: {non_finite}"
+        );
     }
 }
