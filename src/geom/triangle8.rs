@@ -4,8 +4,11 @@
 //! Stage: geometry, below the BVH; used by its AVX2 path (`bvh::isa`). Lanes 0–3 hold the first
 //! packet and lanes 4–7 the second (or the first again when a leaf has an odd number of
 //! packets: a lane repeated later is never strictly nearer, so it never wins). The arithmetic
-//! is the four-lane test's (no fused multiply-adds, the same operand order and predicates), so
-//! hits, distances and barycentrics are the same bits; `tests` checks that.
+//! is the four-lane test's (no fused multiply-adds, the same operand order and predicates),
+//! except two steps written for fewer instructions that give the same values in every lane
+//! that can hit (the determinant's sign as a sign-bit flip, "outside" as `min < 0 < max`; see
+//! `watertight8`), so hits, distances and barycentrics are the same bits; `tests` checks that,
+//! degenerate and overflowing triangles included.
 
 use super::avx2::{Avx2, F8};
 use super::triangle::{gamma, TriangleHit, WatertightRay};
