@@ -86,33 +86,6 @@ const SAH_MAX_DEPTH: usize = MAX_DEPTH - 34;
 /// Cost of one traversal step relative to one primitive test.
 const TRAVERSAL_COST: f32 = 1.0;
 
-/// Splits a primitive's box at a plane: the bounds of the part of primitive `id` within
-/// `bounds` below and above `pos` on `axis` (either may come out empty). Triangles have one
-/// (spatial splits, as in Stich et al. 2009 and Embree's high-quality build); instances none.
-pub trait Clip: Sync {
-    /// The two sides' bounds.
-    fn split(&self, id: u32, bounds: &PrimBox, axis: usize, pos: f32) -> (PrimBox, PrimBox);
-}
-
-/// What the recursion carries besides its slices.
-#[derive(Clone, Copy)]
-struct Ctx<'a> {
-    block: u32,
-    clip: Option<&'a dyn Clip>,
-    /// Half the surface area of the root's box: spatial splits are tried where the best object
-    /// split's children overlap by more than [`SPATIAL_ALPHA`] of it.
-    root_area: f32,
-    alpha: f32,
-    min_n: usize,
-}
-
-fn env_f64(name: &str, default: f64) -> f64 {
-    std::env::var(name)
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(default)
-}
-
 /// Builds a BVH over `refs`; the leaf order names their ids. `block` is how many primitives a
 /// leaf test handles at once (its cost counts in blocks: 4 triangles cost what 1 does).
 ///
@@ -123,61 +96,18 @@ fn env_f64(name: &str, default: f64) -> f64 {
 /// layout whatever the number of threads. Unused slots (gaps after parallel subtrees that came
 /// out smaller than their bound) are never linked to and, being whole untouched pages mostly,
 /// cost address space rather than memory.
-pub fn build(refs: Vec<PrimRef>, block: u32) -> Built {
-    build_with(refs, block, None)
-}
-
-/// [`build`] with spatial splits where `clip` is given: a primitive may then be referenced by
-/// several leaves (up to [`SPATIAL_BUDGET`] more references than primitives in all), each
-/// reference bounded by the part of the primitive on its side of the splits above it. The
-/// reference array has room for the extra references from the start, and each subtree owns a
-/// fixed range of it (its references, then its share of the unused room), so the slot ranges
-/// of parallel subtrees stay fixed as before; the order's unused entries hold `u32::MAX` and
-/// no leaf names them.
-pub fn build_with(mut refs: Vec<PrimRef>, block: u32, clip: Option<&dyn Clip>) -> Built {
+pub fn build(mut refs: Vec<PrimRef>, block: u32) -> Built {
     if refs.is_empty() {
         return Built::default();
     }
-    let n = refs.len();
-    let room = match clip {
-        Some(_) => (n as f64 * env_f64("SCNC_SBVH_BUDGET", SPATIAL_BUDGET)) as usize,
-        None => 0,
-    };
-    refs.resize(
-        n + room,
-        PrimRef::new(
-            PrimBox {
-                min: Vec3A::ZERO,
-                max: Vec3A::ZERO,
-            },
-            u32::MAX,
-        ),
-    );
-    let (lo, hi, _, _) = bounds_of(&refs[..n]);
-    let ctx = Ctx {
-        block,
-        clip,
-        root_area: half_area(lo, hi),
-        alpha: env_f64("SCNC_SBVH_ALPHA", SPATIAL_ALPHA as f64) as f32,
-        min_n: env_f64("SCNC_SBVH_MIN", 0.0) as usize,
-    };
     let mut nodes: Vec<Node> = bytemuck::zeroed_vec(slots_for(refs.len()));
-    let used = build_node(&mut refs, n, 0, 0, &mut nodes, 0, ctx);
+    let used = build_node(&mut refs, 0, 0, &mut nodes, 0, block);
     nodes.truncate(used);
     Built {
         nodes,
         order: refs.iter().map(|r| r.id).collect(),
     }
 }
-
-/// Extra references spatial splits may add, as a fraction of the primitives (Embree's default
-/// `max_spatial_split_replications` is 1.2, i.e. 0.2 more).
-pub const SPATIAL_BUDGET: f64 = 0.2;
-/// Spatial splits are tried where the object split's children overlap by more than this
-/// fraction of the root's area (Stich et al.'s α).
-const SPATIAL_ALPHA: f32 = 1e-5;
-/// Bins of a spatial split, per axis.
-const SPATIAL_BINS: usize = 16;
 
 /// Most nodes a tree over `n ≥ 1` primitives can have: one primitive per leaf, `2n − 1`.
 fn slots_for(n: usize) -> usize {
@@ -216,9 +146,6 @@ struct Split {
     /// Primitives whose bin is below this go left.
     bin: usize,
     cost: f32,
-    /// The two children's bounds (for the overlap that decides whether spatial splits are tried).
-    left: (Vec3A, Vec3A),
-    right: (Vec3A, Vec3A),
 }
 
 #[derive(Clone, Copy)]
@@ -270,13 +197,11 @@ fn find_sah_split(refs: &[PrimRef], clo: Vec3A, chi: Vec3A, block: u32) -> Optio
         }
         // right_cost[i]: cost of bins i.. on the right.
         let mut right_cost = [0.0f32; MAX_BINS];
-        let mut right_box = [(EMPTY_BIN.min, EMPTY_BIN.max); MAX_BINS];
         let (mut lo, mut hi, mut n) = (EMPTY_BIN.min, EMPTY_BIN.max, 0u32);
         for i in (1..bins).rev() {
             lo = lo.min(row[i].min);
             hi = hi.max(row[i].max);
             n += row[i].count;
-            right_box[i] = (lo, hi);
             right_cost[i] = if n == 0 {
                 f32::INFINITY
             } else {
@@ -293,13 +218,7 @@ fn find_sah_split(refs: &[PrimRef], clo: Vec3A, chi: Vec3A, block: u32) -> Optio
             }
             let cost = half_area(lo, hi) * blocks(n, block) + right_cost[i];
             if cost < best.as_ref().map_or(f32::INFINITY, |s| s.cost) {
-                best = Some(Split {
-                    axis,
-                    bin: i,
-                    cost,
-                    left: (lo, hi),
-                    right: right_box[i],
-                });
+                best = Some(Split { axis, bin: i, cost });
             }
         }
     }
@@ -333,55 +252,33 @@ fn partition(refs: &mut [PrimRef], mut goes_left: impl FnMut(&PrimRef) -> bool) 
     mid
 }
 
-/// Builds the subtree over `refs[..n]` (which sit at `base` in the final order; `refs[n..]` is
-/// room for references spatial splits add) into `out`, whose first slot is node `at` of the
-/// whole array and which has room for `slots_for(refs.len())` nodes. Returns how many slots
-/// from the start of `out` the subtree spans.
+/// Builds the subtree over `refs` (which sit at `base` in the final order) into `out`, whose
+/// first slot is node `at` of the whole array and which has room for `slots_for(refs.len())`
+/// nodes. Returns how many slots from the start of `out` the subtree spans.
 fn build_node(
     refs: &mut [PrimRef],
-    n: usize,
     base: u32,
     depth: usize,
     out: &mut [Node],
     at: u32,
-    ctx: Ctx<'_>,
+    block: u32,
 ) -> usize {
-    let block = ctx.block;
-    let (lo, hi, clo, chi) = bounds_of(&refs[..n]);
+    let n = refs.len();
+    let (lo, hi, clo, chi) = bounds_of(refs);
     let bounds = to_aabb(lo, hi);
     if n == 1 {
         out[0] = Node::leaf(&bounds, base, 1);
         return 1;
     }
     let sah = if depth < SAH_MAX_DEPTH {
-        find_sah_split(&refs[..n], clo, chi, block)
+        find_sah_split(refs, clo, chi, block)
     } else {
         None
     };
-    let room = refs.len() - n;
-    let spatial = match (ctx.clip, &sah) {
-        (Some(clip), Some(s)) if room > 0 => {
-            let (a, b) = (s.left.0.max(s.right.0), s.left.1.min(s.right.1));
-            let overlap = if a.cmple(b).all() {
-                half_area(a, b)
-            } else {
-                0.0
-            };
-            if overlap > ctx.alpha * ctx.root_area && n >= ctx.min_n {
-                find_spatial_split(&refs[..n], lo, hi, block, clip).filter(|sp| sp.cost < s.cost)
-            } else {
-                None
-            }
-        }
-        _ => None,
-    };
     let leaf_cost = blocks(n as u32, block);
-    let best_cost = match (&spatial, &sah) {
-        (Some(sp), _) => Some(sp.cost),
-        (None, Some(s)) => Some(s.cost),
-        (None, None) => None,
-    };
-    let split_cost = best_cost.map(|c| TRAVERSAL_COST + c / half_area(lo, hi));
+    let split_cost = sah
+        .as_ref()
+        .map(|s| TRAVERSAL_COST + s.cost / half_area(lo, hi));
     let sah_says_leaf = match split_cost {
         Some(c) => c.is_finite() && leaf_cost <= c,
         None => true,
@@ -390,213 +287,56 @@ fn build_node(
         out[0] = Node::leaf(&bounds, base, n as u32);
         return 1;
     }
-    // (left count, left room, right count, split axis); the left references at the start, the
-    // right ones after the left's room.
-    let spatial_done = match (spatial, ctx.clip) {
-        (Some(sp), Some(clip)) => apply_spatial_split(refs, n, lo, hi, &sp, clip),
-        _ => None,
-    };
-    let (nl, room_l, nr, axis) = match spatial_done {
-        Some(done) => done,
-        None => {
-            let (mid, axis) = match sah {
-                Some(s) => {
-                    let bins = if n < 256 { 16 } else { MAX_BINS };
-                    let scale = Vec3A::splat(bins as f32 * (1.0 - 1e-6)) / (chi - clo);
-                    let mid = partition(&mut refs[..n], |r| {
-                        bin_of(r.bounds().doubled_centroid(), s.axis, clo, scale, bins) < s.bin
-                    });
-                    if mid == 0 || mid == n {
-                        median_split(&mut refs[..n], clo, chi)
-                    } else {
-                        (mid, s.axis)
-                    }
-                }
-                None => median_split(&mut refs[..n], clo, chi),
-            };
-            // The room is shared in proportion to the references.
-            let room_l = room * mid / n;
-            refs.copy_within(mid..n, mid + room_l);
-            (mid, room_l, n - mid, axis)
+    let (mid, axis) = match sah {
+        Some(s) => {
+            let bins = if n < 256 { 16 } else { MAX_BINS };
+            let scale = Vec3A::splat(bins as f32 * (1.0 - 1e-6)) / (chi - clo);
+            let mid = partition(refs, |r| {
+                bin_of(r.bounds().doubled_centroid(), s.axis, clo, scale, bins) < s.bin
+            });
+            if mid == 0 || mid == n {
+                median_split(refs, clo, chi)
+            } else {
+                (mid, s.axis)
+            }
         }
+        None => median_split(refs, clo, chi),
     };
-    let (left, right) = refs.split_at_mut(nl + room_l);
-    let right_base = base + (nl + room_l) as u32;
+    let (left, right) = refs.split_at_mut(mid);
+    let right_base = base + mid as u32;
     let (head, rest) = out.split_at_mut(1);
     let spans = if n >= PARALLEL_MIN {
         // The right subtree starts where the left one's largest possible tree would end.
-        let right_start = 1 + slots_for(left.len());
+        let right_start = 1 + slots_for(mid);
         let (left_out, right_out) = rest.split_at_mut(right_start - 1);
         let (_, right_used) = rayon::join(
-            || build_node(left, nl, base, depth + 1, left_out, at + 1, ctx),
+            || build_node(left, base, depth + 1, left_out, at + 1, block),
             || {
                 build_node(
                     right,
-                    nr,
                     right_base,
                     depth + 1,
                     right_out,
                     at + right_start as u32,
-                    ctx,
+                    block,
                 )
             },
         );
         (right_start, right_used)
     } else {
-        let left_used = build_node(left, nl, base, depth + 1, rest, at + 1, ctx);
+        let left_used = build_node(left, base, depth + 1, rest, at + 1, block);
         let right_start = 1 + left_used;
         let right_out = &mut rest[left_used..];
         let right_used = build_node(
             right,
-            nr,
             right_base,
             depth + 1,
             right_out,
             at + right_start as u32,
-            ctx,
+            block,
         );
         (right_start, right_used)
     };
     head[0] = Node::interior(&bounds, at + spans.0 as u32, axis);
     spans.0 + spans.1
-}
-
-/// A spatial split: the plane between bins `bin − 1` and `bin` of the node's box on `axis`.
-struct SpatialSplit {
-    axis: usize,
-    bin: usize,
-    cost: f32,
-}
-
-/// The spatial bin of coordinate `x` on `axis` (bins of the node's box `lo..hi`).
-#[inline]
-fn spatial_bin(x: f32, axis: usize, lo: Vec3A, scale: Vec3A) -> usize {
-    (((x - lo[axis]) * scale[axis]) as usize).min(SPATIAL_BINS - 1)
-}
-
-/// The plane at the start of spatial bin `bin` on `axis`.
-#[inline]
-fn spatial_plane(bin: usize, axis: usize, lo: Vec3A, hi: Vec3A) -> f32 {
-    lo[axis] + (hi[axis] - lo[axis]) * (bin as f32 / SPATIAL_BINS as f32)
-}
-
-fn is_empty_box(b: &PrimBox) -> bool {
-    !b.min.cmple(b.max).all()
-}
-
-/// The spatial split of least SAH cost over the node's box `lo..hi`: each reference is clipped
-/// into the bins it spans; a bin counts the references that enter and leave there.
-fn find_spatial_split(
-    refs: &[PrimRef],
-    lo: Vec3A,
-    hi: Vec3A,
-    block: u32,
-    clip: &dyn Clip,
-) -> Option<SpatialSplit> {
-    let extent = hi - lo;
-    let scale = Vec3A::splat(SPATIAL_BINS as f32 * (1.0 - 1e-6)) / extent;
-    let mut best: Option<SpatialSplit> = None;
-    for axis in 0..3 {
-        if !(extent[axis] > 0.0 && scale[axis].is_finite()) {
-            continue;
-        }
-        let mut boxes = [(EMPTY_BIN.min, EMPTY_BIN.max); SPATIAL_BINS];
-        let mut enter = [0u32; SPATIAL_BINS];
-        let mut leave = [0u32; SPATIAL_BINS];
-        for r in refs {
-            let b = r.bounds();
-            let first = spatial_bin(b.min[axis], axis, lo, scale);
-            let last = spatial_bin(b.max[axis], axis, lo, scale).max(first);
-            enter[first] += 1;
-            leave[last] += 1;
-            let mut rest = b;
-            for (bin, slot) in boxes.iter_mut().enumerate().take(last).skip(first) {
-                let (l, r2) = clip.split(r.id, &rest, axis, spatial_plane(bin + 1, axis, lo, hi));
-                if !is_empty_box(&l) {
-                    slot.0 = slot.0.min(l.min);
-                    slot.1 = slot.1.max(l.max);
-                }
-                rest = r2;
-                if is_empty_box(&rest) {
-                    break;
-                }
-            }
-            if !is_empty_box(&rest) {
-                let slot = &mut boxes[last];
-                slot.0 = slot.0.min(rest.min);
-                slot.1 = slot.1.max(rest.max);
-            }
-        }
-        let mut right_cost = [f32::INFINITY; SPATIAL_BINS];
-        let (mut rlo, mut rhi, mut nr) = (EMPTY_BIN.min, EMPTY_BIN.max, 0u32);
-        for i in (1..SPATIAL_BINS).rev() {
-            rlo = rlo.min(boxes[i].0);
-            rhi = rhi.max(boxes[i].1);
-            nr += leave[i];
-            if nr > 0 && rlo.cmple(rhi).all() {
-                right_cost[i] = half_area(rlo, rhi) * blocks(nr, block);
-            }
-        }
-        let (mut llo, mut lhi, mut nl) = (EMPTY_BIN.min, EMPTY_BIN.max, 0u32);
-        for i in 1..SPATIAL_BINS {
-            llo = llo.min(boxes[i - 1].0);
-            lhi = lhi.max(boxes[i - 1].1);
-            nl += enter[i - 1];
-            if nl == 0 || !llo.cmple(lhi).all() {
-                continue;
-            }
-            let cost = half_area(llo, lhi) * blocks(nl, block) + right_cost[i];
-            if cost < best.as_ref().map_or(f32::INFINITY, |s| s.cost) {
-                best = Some(SpatialSplit { axis, bin: i, cost });
-            }
-        }
-    }
-    best
-}
-
-/// Carries out `split` on `refs[..n]`: references wholly on one side go there, the ones that
-/// straddle the plane are clipped into both sides. `None` (nothing changed) when the result
-/// would not fit `refs` or leaves a side empty; otherwise (left count, left room, right
-/// count, axis), the left references at the start of `refs` and the right ones after the
-/// left's room.
-fn apply_spatial_split(
-    refs: &mut [PrimRef],
-    n: usize,
-    lo: Vec3A,
-    hi: Vec3A,
-    split: &SpatialSplit,
-    clip: &dyn Clip,
-) -> Option<(usize, usize, usize, usize)> {
-    let axis = split.axis;
-    let scale = Vec3A::splat(SPATIAL_BINS as f32 * (1.0 - 1e-6)) / (hi - lo);
-    let pos = spatial_plane(split.bin, axis, lo, hi);
-    let mut left = Vec::new();
-    let mut right = Vec::new();
-    for r in &refs[..n] {
-        let b = r.bounds();
-        let first = spatial_bin(b.min[axis], axis, lo, scale);
-        let last = spatial_bin(b.max[axis], axis, lo, scale).max(first);
-        if last < split.bin {
-            left.push(*r);
-        } else if first >= split.bin {
-            right.push(*r);
-        } else {
-            let (l, rb) = clip.split(r.id, &b, axis, pos);
-            if !is_empty_box(&l) {
-                left.push(PrimRef::new(l, r.id));
-            }
-            if !is_empty_box(&rb) {
-                right.push(PrimRef::new(rb, r.id));
-            }
-        }
-    }
-    let (nl, nr) = (left.len(), right.len());
-    if nl == 0 || nr == 0 || nl + nr > refs.len() {
-        return None;
-    }
-    let room = refs.len() - nl - nr;
-    let room_l = room * nl / (nl + nr);
-    refs[..nl].copy_from_slice(&left);
-    refs[nl + room_l..nl + room_l + nr].copy_from_slice(&right);
-    Some((nl, room_l, nr, axis))
 }

@@ -7,7 +7,7 @@
 use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
 
-use super::build::{build_with, Built, Clip, PrimBox, PrimRef};
+use super::build::{build, Built, PrimBox, PrimRef};
 use super::isa::Isa;
 use super::traverse::{traverse, Entry, LeafVisitor};
 use super::wide::{collapse, Wide, WideNode, WideRay, WIDTH};
@@ -194,14 +194,10 @@ impl MeshBvh {
                 id += 1;
             }
         }
-        let triangle_count = refs.len();
-        let clip = TriangleClip {
-            parts,
-            part_starts: &part_starts,
-        };
-        let Built { nodes, order } = build_with(refs, TRI_BLOCK, Some(&clip));
+        let Built { nodes, order } = build(refs, TRI_BLOCK);
         let mut tree = collapse(&nodes);
         drop(nodes);
+        let triangle_count = order.len();
         let ids = pack_leaves(&mut tree, &order);
         drop(order);
         let mut bvh = MeshBvh {
@@ -409,66 +405,4 @@ fn pack_leaves(tree: &mut Wide, order: &[u32]) -> Vec<u32> {
         }
     }
     ids
-}
-
-/// Spatial splits of triangles: the part of a triangle inside a box on each side of a plane.
-struct TriangleClip<'a> {
-    parts: &'a [MeshRef<'a>],
-    part_starts: &'a [u32],
-}
-
-impl Clip for TriangleClip<'_> {
-    fn split(&self, id: u32, bounds: &PrimBox, axis: usize, pos: f32) -> (PrimBox, PrimBox) {
-        let part = self
-            .part_starts
-            .partition_point(|&s| s <= id)
-            .saturating_sub(1);
-        let mesh = &self.parts[part];
-        let prim = (id - self.part_starts[part]) as usize;
-        let v = builder_vertices(mesh, &mesh.triangles[prim]).map(Vec3A::from);
-        split_triangle(&v, bounds, axis, pos)
-    }
-}
-
-/// The bounds of the parts of triangle `v` below and above the plane `pos` on `axis`, each
-/// within `bounds` (Embree's `splitPrimitive`: the triangle's vertices on each side plus its
-/// edges' crossings of the plane). A side the triangle does not reach comes out empty
-/// (min > max).
-pub fn split_triangle(
-    v: &[Vec3A; 3],
-    bounds: &PrimBox,
-    axis: usize,
-    pos: f32,
-) -> (PrimBox, PrimBox) {
-    let empty = PrimBox {
-        min: Vec3A::splat(f32::INFINITY),
-        max: Vec3A::splat(f32::NEG_INFINITY),
-    };
-    let (mut l, mut r) = (empty, empty);
-    let grow = |b: &mut PrimBox, p: Vec3A| {
-        b.min = b.min.min(p);
-        b.max = b.max.max(p);
-    };
-    for i in 0..3 {
-        let (a, c) = (v[i], v[(i + 1) % 3]);
-        let (pa, pc) = (a[axis], c[axis]);
-        if pa <= pos {
-            grow(&mut l, a);
-        }
-        if pa >= pos {
-            grow(&mut r, a);
-        }
-        if (pa < pos && pc > pos) || (pa > pos && pc < pos) {
-            let f = (pos - pa) / (pc - pa);
-            let mut p = (a + (c - a) * f).clamp(a.min(c), a.max(c));
-            p[axis] = pos;
-            grow(&mut l, p);
-            grow(&mut r, p);
-        }
-    }
-    let clip = |b: PrimBox| PrimBox {
-        min: b.min.max(bounds.min),
-        max: b.max.min(bounds.max),
-    };
-    (clip(l), clip(r))
 }
