@@ -88,14 +88,7 @@ pub fn collapse(bin: &[Node]) -> Wide {
         return w;
     }
     w.nodes.reserve(bin.len() / 3 + 1);
-    if std::env::var("SCNC_LAYOUT").is_ok_and(|v| v == "family") {
-        w.nodes.push(EMPTY_NODE);
-        emit_family(bin, 0, 0, &mut w.nodes);
-    } else if std::env::var("SCNC_LAYOUT").is_ok_and(|v| v == "area") {
-        emit_by_area(bin, 0, &mut w.nodes);
-    } else {
-        emit(bin, 0, &mut w.nodes);
-    }
+    emit(bin, 0, &mut w.nodes);
     w.stack_need = stack_need(&w.nodes, 0);
     w
 }
@@ -111,10 +104,9 @@ fn stack_need(nodes: &[WideNode], i: usize) -> usize {
     used - 1 + deepest
 }
 
-/// The binary nodes that become the children of the wide node for binary interior node `i`:
-/// its two children, then the interior child of largest area opened until there are
-/// [`WIDTH`] (or no interior one is left).
-fn wide_children(bin: &[Node], i: usize) -> ([usize; WIDTH], usize) {
+/// Writes the wide node for binary interior node `i` (and, after it, its subtrees); returns its
+/// index.
+fn emit(bin: &[Node], i: usize, out: &mut Vec<WideNode>) -> u32 {
     let mut kids = [0usize; WIDTH];
     kids[0] = i + 1;
     kids[1] = bin[i].index as usize;
@@ -136,82 +128,6 @@ fn wide_children(bin: &[Node], i: usize) -> ([usize; WIDTH], usize) {
         kids[n] = bin[k].index as usize;
         n += 1;
     }
-    (kids, n)
-}
-
-/// Fills node `at` (already allocated) for binary interior node `i`: its interior children's
-/// nodes are allocated side by side right after the nodes allocated so far, then each is
-/// filled in turn (siblings contiguous, families depth-first).
-fn emit_family(bin: &[Node], i: usize, at: usize, out: &mut Vec<WideNode>) {
-    let (kids, n) = wide_children(bin, i);
-    let kids = &kids[..n];
-    let first = out.len();
-    let interior = kids.iter().filter(|&&k| !bin[k].is_leaf()).count();
-    out.resize(first + interior, EMPTY_NODE);
-    let mut j = 0;
-    for (lane, &k) in kids.iter().enumerate() {
-        let b = bin[k].bounds();
-        let row = [b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z];
-        for (r, v) in row.into_iter().enumerate() {
-            out[at].bounds[r][lane] = v;
-        }
-        let (child, count) = if bin[k].is_leaf() {
-            (bin[k].index, bin[k].count())
-        } else {
-            j += 1;
-            ((first + j - 1) as u32, 0)
-        };
-        out[at].child[lane] = child;
-        out[at].count[lane] = count;
-    }
-    let mut j = 0;
-    for &k in kids {
-        if !bin[k].is_leaf() {
-            emit_family(bin, k, first + j, out);
-            j += 1;
-        }
-    }
-}
-
-/// As [`emit`], but the interior children's subtrees are written in order of decreasing
-/// surface area (the likeliest to be entered right after the parent); lanes unchanged.
-fn emit_by_area(bin: &[Node], i: usize, out: &mut Vec<WideNode>) -> u32 {
-    let (kids, n) = wide_children(bin, i);
-    let kids = &kids[..n];
-    let at = out.len();
-    out.push(EMPTY_NODE);
-    let mut order: Vec<(usize, usize)> = Vec::new();
-    for (lane, &k) in kids.iter().enumerate() {
-        let b = bin[k].bounds();
-        let row = [b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z];
-        for (r, v) in row.into_iter().enumerate() {
-            out[at].bounds[r][lane] = v;
-        }
-        if bin[k].is_leaf() {
-            out[at].child[lane] = bin[k].index;
-            out[at].count[lane] = bin[k].count();
-        } else {
-            order.push((lane, k));
-        }
-    }
-    order.sort_by(|a, b| {
-        bin[b.1]
-            .bounds()
-            .surface_area()
-            .total_cmp(&bin[a.1].bounds().surface_area())
-            .then(a.0.cmp(&b.0))
-    });
-    for (lane, k) in order {
-        out[at].child[lane] = emit_by_area(bin, k, out);
-        out[at].count[lane] = 0;
-    }
-    at as u32
-}
-
-/// Writes the wide node for binary interior node `i` (and, after it, its subtrees); returns its
-/// index.
-fn emit(bin: &[Node], i: usize, out: &mut Vec<WideNode>) -> u32 {
-    let (kids, n) = wide_children(bin, i);
     let kids = &kids[..n];
     let at = out.len();
     out.push(EMPTY_NODE);
