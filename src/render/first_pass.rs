@@ -110,3 +110,66 @@ impl FirstBatches {
         FirstBatchSpread::fit(block)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    /// A 5×4 area at (10, 20), one tile, each pixel's first batch a different pair of values
+    /// (one black pixel, which says nothing about relative spread).
+    fn batches() -> FirstBatches {
+        let area = PixelWindow {
+            x0: 10,
+            y0: 20,
+            x1: 15,
+            y1: 24,
+        };
+        let tile = Tile {
+            x0: 10,
+            y0: 20,
+            x1: 15,
+            y1: 24,
+        };
+        let pixels = (0..20)
+            .map(|k| {
+                let mut acc = Accumulator::default();
+                let v = if k == 7 { 0.0 } else { 0.1 + 0.37 * k as f32 };
+                acc.add_replicate(Vec3::splat(v), None);
+                acc.add_replicate(Vec3::splat(v * (1.0 + 0.1 * (k % 3) as f32)), None);
+                acc
+            })
+            .collect();
+        let result = Some((pixels, RayCounts::default()));
+        FirstBatches::assemble(area, None, &[tile], vec![result]).expect("every tile is there")
+    }
+
+    #[test]
+    fn the_summaries_say_what_the_neighbours_accumulators_say() {
+        let first = batches();
+        // Interior, edge and corner pixels of the area, and one outside it.
+        for (x, y) in [(11, 21), (13, 22), (10, 20), (14, 23), (12, 20), (15, 24)] {
+            let offsets = (-1i64..=1).flat_map(|dy| (-1i64..=1).map(move |dx| (dx, dy)));
+            let at = |dx: i64, dy: i64| first.at((x as i64 + dx) as u32, (y as i64 + dy) as u32);
+            let neighbours = offsets
+                .clone()
+                .filter(|&o| o != (0, 0))
+                .filter_map(|(dx, dy)| at(dx, dy));
+            assert_eq!(
+                first.prior(x, y),
+                NeighbourPrior::pool(neighbours),
+                "({x}, {y})"
+            );
+            let block = offsets
+                .filter_map(|(dx, dy)| Some((dx as f64, dy as f64, at(dx, dy)?.mean_luminance())));
+            assert_eq!(
+                first.spread(x, y),
+                FirstBatchSpread::fit(block),
+                "({x}, {y})"
+            );
+        }
+        // A block with samples in it says something (the test is not vacuous).
+        assert_ne!(first.prior(12, 22), NeighbourPrior::default());
+        assert_ne!(first.spread(12, 22), FirstBatchSpread::default());
+    }
+}
