@@ -88,11 +88,18 @@ impl NeighbourPrior {
 
     /// Pools the neighbours' first-batch accumulators (the pixel's own excluded).
     pub fn pool<'a>(neighbours: impl IntoIterator<Item = &'a Accumulator>) -> NeighbourPrior {
+        NeighbourPrior::pool_summaries(neighbours.into_iter().map(FirstBatchSummary::of))
+    }
+
+    /// [`NeighbourPrior::pool`] of the neighbours' [`FirstBatchSummary`]s.
+    pub fn pool_summaries(
+        neighbours: impl IntoIterator<Item = FirstBatchSummary>,
+    ) -> NeighbourPrior {
         let mut prior = NeighbourPrior::default();
         let mut weighted = 0.0;
-        for acc in neighbours {
-            prior.samples += acc.count();
-            if let Some((r, dof)) = acc.relative_sample_variance() {
+        for summary in neighbours {
+            prior.samples += summary.samples;
+            if let Some((r, dof)) = summary.relative_variance {
                 weighted += r * dof;
                 prior.dof += dof;
             }
@@ -101,6 +108,30 @@ impl NeighbourPrior {
             prior.relative_variance = weighted / prior.dof;
         }
         prior
+    }
+}
+
+/// What one pixel's first batch tells its neighbourhood: its samples, its per-sample relative
+/// variance ([`Accumulator::relative_sample_variance`]) and its mean luminance. Derived once per
+/// pixel (`render::first_pass`) rather than once for each of the nine blocks that read it.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct FirstBatchSummary {
+    /// Samples taken, black ones included.
+    pub samples: u32,
+    /// Per-sample variance of the luminance over its squared mean, and its degrees of freedom.
+    pub relative_variance: Option<(f64, f64)>,
+    /// Mean luminance.
+    pub mean_luminance: f64,
+}
+
+impl FirstBatchSummary {
+    /// The summary of a first batch.
+    pub fn of(acc: &Accumulator) -> FirstBatchSummary {
+        FirstBatchSummary {
+            samples: acc.count(),
+            relative_variance: acc.relative_sample_variance(),
+            mean_luminance: acc.mean_luminance(),
+        }
     }
 }
 

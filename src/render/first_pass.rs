@@ -6,7 +6,7 @@
 //!
 //! Syntax: none of its own; `render { noise 0.05 }` / `--noise 0.05` renders this way.
 
-use super::early_stop::{self, FirstBatchSpread, NeighbourPrior};
+use super::early_stop::{self, FirstBatchSpread, FirstBatchSummary, NeighbourPrior};
 use super::estimate::Accumulator;
 use super::integrator::RayCounts;
 use super::{Cancelled, PixelWindow, Tile};
@@ -20,6 +20,8 @@ pub(super) struct FirstBatches {
     area: PixelWindow,
     /// Row-major over `area`.
     pixels: Vec<Accumulator>,
+    /// What each of them tells its neighbours, row-major over `area`.
+    summaries: Vec<FirstBatchSummary>,
     pub(super) counts: RayCounts,
 }
 
@@ -36,6 +38,7 @@ impl FirstBatches {
         let mut out = FirstBatches {
             area,
             pixels: vec![Accumulator::default(); width * area.height() as usize],
+            summaries: Vec::new(),
             counts: RayCounts::default(),
         };
         if let Some(before) = before {
@@ -58,41 +61,115 @@ impl FirstBatches {
                 out.pixels[y * width + x] = acc;
             }
         }
+        out.summaries = out.pixels.iter().map(FirstBatchSummary::of).collect();
         Ok(out)
     }
 
     pub(super) fn at(&self, x: u32, y: u32) -> Option<&Accumulator> {
+        self.index(x, y).and_then(|i| self.pixels.get(i))
+    }
+
+    /// Where (`x`, `y`) is in `pixels` and `summaries`; `None` outside `area`.
+    fn index(&self, x: u32, y: u32) -> Option<usize> {
         let a = &self.area;
         if x < a.x0 || x >= a.x1 || y < a.y0 || y >= a.y1 {
             return None;
         }
-        let i = (y - a.y0) as usize * a.width() as usize + (x - a.x0) as usize;
-        self.pixels.get(i)
+        Some((y - a.y0) as usize * a.width() as usize + (x - a.x0) as usize)
+    }
+
+    /// The summaries of the block within [`early_stop::RADIUS`] of (`x`, `y`) that lie in
+    /// `area`, row by row, each with its offset from (`x`, `y`).
+    fn block(&self, x: u32, y: u32) -> impl Iterator<Item = (i64, i64, &FirstBatchSummary)> {
+        let r = early_stop::RADIUS as i64;
+        let (x, y) = (i64::from(x), i64::from(y));
+        (-r..=r)
+            .flat_map(move |dy| (-r..=r).map(move |dx| (dx, dy)))
+            .filter_map(move |(dx, dy)| {
+                let (nx, ny) = (u32::try_from(x + dx).ok()?, u32::try_from(y + dy).ok()?);
+                let summary = self.summaries.get(self.index(nx, ny)?)?;
+                Some((dx, dy, summary))
+            })
     }
 
     /// What the neighbours of (`x`, `y`) within [`early_stop::RADIUS`] say, in a fixed order.
     pub(super) fn prior(&self, x: u32, y: u32) -> NeighbourPrior {
-        let r = early_stop::RADIUS as i64;
-        let (x, y) = (i64::from(x), i64::from(y));
-        let neighbours = (y - r..=y + r)
-            .flat_map(|ny| (x - r..=x + r).map(move |nx| (nx, ny)))
-            .filter(|&(nx, ny)| (nx, ny) != (x, y) && nx >= 0 && ny >= 0)
-            .filter_map(|(nx, ny)| self.at(nx as u32, ny as u32));
-        NeighbourPrior::pool(neighbours)
+        let neighbours = self
+            .block(x, y)
+            .filter(|&(dx, dy, _)| (dx, dy) != (0, 0))
+            .map(|(_, _, summary)| *summary);
+        NeighbourPrior::pool_summaries(neighbours)
     }
 
     /// The scatter of the first-batch means over the block around (`x`, `y`), its own
     /// included ([`FirstBatchSpread`]).
     pub(super) fn spread(&self, x: u32, y: u32) -> FirstBatchSpread {
-        let r = early_stop::RADIUS as i64;
-        let (x, y) = (i64::from(x), i64::from(y));
-        let block = (y - r..=y + r)
-            .flat_map(|ny| (x - r..=x + r).map(move |nx| (nx, ny)))
-            .filter(|&(nx, ny)| nx >= 0 && ny >= 0)
-            .filter_map(|(nx, ny)| {
-                let acc = self.at(nx as u32, ny as u32)?;
-                Some(((nx - x) as f64, (ny - y) as f64, acc.mean_luminance()))
-            });
+        let block = self
+            .block(x, y)
+            .map(|(dx, dy, summary)| (dx as f64, dy as f64, summary.mean_luminance));
         FirstBatchSpread::fit(block)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    /// A 5×4 area at (10, 20), one tile, each pixel's first batch a different pair of values
+    /// (one black pixel, which says nothing about relative spread).
+    fn batches() -> FirstBatches {
+        let area = PixelWindow {
+            x0: 10,
+            y0: 20,
+            x1: 15,
+            y1: 24,
+        };
+        let tile = Tile {
+            x0: 10,
+            y0: 20,
+            x1: 15,
+            y1: 24,
+        };
+        let pixels = (0..20)
+            .map(|k| {
+                let mut acc = Accumulator::default();
+                let v = if k == 7 { 0.0 } else { 0.1 + 0.37 * k as f32 };
+                acc.add_replicate(Vec3::splat(v), None);
+                acc.add_replicate(Vec3::splat(v * (1.0 + 0.1 * (k % 3) as f32)), None);
+                acc
+            })
+            .collect();
+        let result = Some((pixels, RayCounts::default()));
+        FirstBatches::assemble(area, None, &[tile], vec![result]).expect("every tile is there")
+    }
+
+    #[test]
+    fn the_summaries_say_what_the_neighbours_accumulators_say() {
+        let first = batches();
+        // Interior, edge and corner pixels of the area, and one outside it.
+        for (x, y) in [(11, 21), (13, 22), (10, 20), (14, 23), (12, 20), (15, 24)] {
+            let offsets = (-1i64..=1).flat_map(|dy| (-1i64..=1).map(move |dx| (dx, dy)));
+            let at = |dx: i64, dy: i64| first.at((x as i64 + dx) as u32, (y as i64 + dy) as u32);
+            let neighbours = offsets
+                .clone()
+                .filter(|&o| o != (0, 0))
+                .filter_map(|(dx, dy)| at(dx, dy));
+            assert_eq!(
+                first.prior(x, y),
+                NeighbourPrior::pool(neighbours),
+                "({x}, {y})"
+            );
+            let block = offsets
+                .filter_map(|(dx, dy)| Some((dx as f64, dy as f64, at(dx, dy)?.mean_luminance())));
+            assert_eq!(
+                first.spread(x, y),
+                FirstBatchSpread::fit(block),
+                "({x}, {y})"
+            );
+        }
+        // A block with samples in it says something (the test is not vacuous).
+        assert_ne!(first.prior(12, 22), NeighbourPrior::default());
+        assert_ne!(first.spread(12, 22), FirstBatchSpread::default());
     }
 }

@@ -543,17 +543,23 @@ impl Job<'_> {
         acc: &mut Accumulator,
         counts: &mut RayCounts,
     ) {
-        for g in samples {
-            let mut sampler = sequences.sampler(g);
-            let (index, _) = sampler.index();
-            let o = sampler.point_2d(rng::STREAM_SUBPIXEL, index);
-            let ray = self.camera.ray(Vec2::new(x as f32, y as f32) + o);
-            let l = radiance_scaled(self.scene, &ray, footprint_scale, &mut sampler, counts);
-            if l.is_finite() {
-                acc.add_replicate(l, rng::PixelSequences::replicate(g));
-            } else {
-                counts.nonfinite += 1;
+        // The sub-pixel positions a batch at a time, apart from the rays (`points_2d`).
+        let mut offsets = [Vec2::ZERO; estimate::BATCH as usize];
+        let mut next = samples.start;
+        while next < samples.end {
+            let chunk = next..samples.end.min(next + estimate::BATCH);
+            sequences.points_2d(rng::STREAM_SUBPIXEL, chunk.clone(), &mut offsets);
+            for (g, &o) in chunk.clone().zip(&offsets) {
+                let mut sampler = sequences.sampler(g);
+                let ray = self.camera.ray(Vec2::new(x as f32, y as f32) + o);
+                let l = radiance_scaled(self.scene, &ray, footprint_scale, &mut sampler, counts);
+                if l.is_finite() {
+                    acc.add_replicate(l, rng::PixelSequences::replicate(g));
+                } else {
+                    counts.nonfinite += 1;
+                }
             }
+            next = chunk.end;
         }
     }
 

@@ -16,6 +16,8 @@
 //! (which pixel, which sample, which stratum of the pixel's set), while the shading layer only
 //! maps the numbers it is handed (`u ∈ [0, 1)²`) to directions and points, whatever produced them.
 
+use std::cell::OnceCell;
+
 use glam::Vec2;
 
 /// The samplers of one batch of one pixel: what their keys share is hashed once per pixel, not
@@ -101,10 +103,12 @@ impl PixelBatch {
 /// restarting; each batch of 16 adds a whole 4-point block to each replicate), while the
 /// replicates, scrambled independently, give independent estimates whose spread measures the
 /// error.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct PixelSequences {
     pixel_hash: u64,
-    replicate_keys: [u64; REPLICATES as usize],
+    /// The replicates' scrambles, derived at the first sample past the shared rounds: most
+    /// pixels of a loose target stop within them (two 64-bit hashes per replicate saved).
+    replicate_keys: OnceCell<[u64; REPLICATES as usize]>,
     /// The scramble of the shared rounds' sequence (samples `0..SHARED_ROUNDS·REPLICATES`).
     shared_key: u64,
 }
@@ -119,24 +123,26 @@ impl PixelSequences {
     /// The sequences of pixel (`px`, `py`).
     pub fn new(seed: u64, px: u32, py: u32) -> PixelSequences {
         let pixel_hash = pixel_hash(seed, px, py);
-        let replicate_keys = std::array::from_fn(|r| {
-            mix64(key_of(pixel_hash, u32::MAX - r as u32) ^ 0x2f1d_83a5_c3b9_0e47)
-        });
         PixelSequences {
             pixel_hash,
-            replicate_keys,
+            replicate_keys: OnceCell::new(),
             shared_key: mix64(key_of(pixel_hash, u32::MAX - REPLICATES) ^ 0x2f1d_83a5_c3b9_0e47),
         }
+    }
+
+    /// The replicates' scrambles.
+    fn replicate_keys(&self) -> &[u64; REPLICATES as usize] {
+        self.replicate_keys.get_or_init(|| {
+            std::array::from_fn(|r| {
+                mix64(key_of(self.pixel_hash, u32::MAX - r as u32) ^ 0x2f1d_83a5_c3b9_0e47)
+            })
+        })
     }
 
     /// The sampler of the pixel's sample `global` (counted over all its batches).
     #[inline]
     pub fn sampler(&self, global: u32) -> Sampler {
-        let r = (global % REPLICATES) as usize;
-        let (pixel_key, index) = match global / REPLICATES {
-            round if round < SHARED_ROUNDS => (self.shared_key, global),
-            round => (self.replicate_keys[r], round - SHARED_ROUNDS),
-        };
+        let (_, pixel_key, index) = self.sequence_of(global);
         Sampler {
             key: key_of(self.pixel_hash, global),
             dim: 0,
@@ -146,6 +152,33 @@ impl PixelSequences {
             progressive: true,
             // Progressive points (`point_2d`) do not read them.
             streams: [StreamKey::default(); CACHED_STREAMS],
+        }
+    }
+
+    /// Stream `stream`'s points of samples `samples` into `out` (as many as both hold), each
+    /// exactly `self.sampler(g).point_2d(stream, index)` for its sample `g`. The scramble of
+    /// each sequence is derived once for the run of samples, not once per sample, and the
+    /// points are taken apart from the rays that use them: the adaptive pixel loop takes its
+    /// sub-pixel positions so, so that a sample's camera ray does not wait on the chain of
+    /// hashes behind its position (the adaptive path's own work was about 9% of a sample's
+    /// cost, this point about a third of it: docs/quality.md, sixth session).
+    pub fn points_2d(&self, stream: u64, samples: std::ops::Range<u32>, out: &mut [Vec2]) {
+        let mut scrambles = [None::<OwenSobol>; REPLICATES as usize + 1];
+        for (g, point) in samples.zip(out) {
+            let (slot, pixel_key, index) = self.sequence_of(g);
+            let scramble = *scrambles[slot].get_or_insert_with(|| OwenSobol::of(pixel_key, stream));
+            *point = scramble.point(index);
+        }
+    }
+
+    /// Sample `global`'s sequence (a slot for it among the replicates' and the shared one's,
+    /// its key) and its index in that sequence.
+    #[inline]
+    fn sequence_of(&self, global: u32) -> (usize, u64, u32) {
+        let r = (global % REPLICATES) as usize;
+        match global / REPLICATES {
+            round if round < SHARED_ROUNDS => (REPLICATES as usize, self.shared_key, global),
+            round => (r, self.replicate_keys()[r], round - SHARED_ROUNDS),
         }
     }
 
@@ -270,11 +303,35 @@ impl Sampler {
     /// Point `j` of the pixel's Owen-scrambled Sobol' sequence for `stream` (see the module
     /// doc): every power-of-two prefix is a (0,k,2)-net, each point is uniform on [0, 1)².
     pub fn point_2d(&self, stream: u64, j: u32) -> Vec2 {
-        let bits = self.pixel_bits(stream);
-        let seeds = mix64(bits ^ 0x2545_f491_4f6c_dd1d);
-        let i = owen_scramble(j, (bits >> 32) as u32);
-        let x = owen_scramble(i.reverse_bits(), seeds as u32);
-        let y = owen_scramble(sobol_dim1(i), (seeds >> 32) as u32);
+        OwenSobol::of(self.pixel_key, stream).point(j)
+    }
+}
+
+/// The scramble of one stream of one sequence ([`Sampler::point_2d`]): the two hashes of the
+/// sequence's key and the stream that every point of it shares, derived once where a loop
+/// takes several points of the same sequence ([`PixelSequences::points_2d`]).
+#[derive(Debug, Clone, Copy)]
+struct OwenSobol {
+    bits: u64,
+    seeds: u64,
+}
+
+impl OwenSobol {
+    #[inline]
+    fn of(pixel_key: u64, stream: u64) -> OwenSobol {
+        let bits = mix64(pixel_key ^ stream.wrapping_mul(0x9e37_79b9_7f4a_7c15));
+        OwenSobol {
+            bits,
+            seeds: mix64(bits ^ 0x2545_f491_4f6c_dd1d),
+        }
+    }
+
+    /// Point `j` of the sequence.
+    #[inline]
+    fn point(self, j: u32) -> Vec2 {
+        let i = owen_scramble(j, (self.bits >> 32) as u32);
+        let x = owen_scramble(i.reverse_bits(), self.seeds as u32);
+        let y = owen_scramble(sobol_dim1(i), (self.seeds >> 32) as u32);
         Vec2::new(bits_to_unit(x), bits_to_unit(y))
     }
 }
@@ -650,6 +707,24 @@ mod tests {
                     .all(|&g| PixelSequences::replicate(g) == Some(r as usize)));
                 let own: Vec<Vec2> = own.into_iter().map(point).collect();
                 assert!(is_02_net(&own[..4]) && is_02_net(&own), "replicate {r}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_pixels_points_taken_together_are_its_samplers_points() {
+        for (seed, px, py) in [(0, 0, 0), (3, 10, 20), (9, 511, 3)] {
+            let sequences = PixelSequences::new(seed, px, py);
+            for stream in [0, 3, STREAM_SUBPIXEL] {
+                for samples in [0..2, 2..4, 4..20, 20..36, 1..7, 36..40] {
+                    let mut out = [Vec2::splat(-1.0); 16];
+                    sequences.points_2d(stream, samples.clone(), &mut out);
+                    for (k, g) in samples.enumerate() {
+                        let sampler = sequences.sampler(g);
+                        let one = sampler.point_2d(stream, sampler.index().0);
+                        assert_eq!(out[k], one, "sample {g}, stream {stream}");
+                    }
+                }
             }
         }
     }
