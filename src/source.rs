@@ -11,6 +11,10 @@ use std::sync::Arc;
 use miette::{NamedSource, SourceSpan};
 use serde::Serialize;
 
+mod order;
+
+pub use order::ReadingOrder;
+
 /// Index of a file inside a [`SourceMap`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
 pub struct FileId(pub u32);
