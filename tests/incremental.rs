@@ -2089,7 +2089,7 @@ fn split_scene() -> Vec<(String, String)> {
                 root.push_str(&format!("include \"blocks/b{b}.scn\"\n"));
             }
         }
-        let first_object = i == lines.iter().position(|l| placed(l)).unwrap_or(0);
+        let first_object = i == lines.iter().position(&placed).unwrap_or(0);
         if !placed(line) || first_object {
             root.push_str(line);
         }

@@ -86,7 +86,7 @@ mod tests {
             Some(Span::new(FileId(1), 18, 30)),
             None,
         ]);
-        let at = |f: u32, s: u32| Span::new(FileId(f), s, s + 1);
+        let at = |f: u32, s: usize| Span::new(FileId(f), s, s + 1);
         assert!(order.before(at(0, 7), at(1, 0)));
         assert!(
             order.before(at(1, 50), at(0, 41)),
