@@ -19,8 +19,9 @@
 //! (still `scnc 1`) only moves the spans. An edit that breaks the
 //! syntax gets the full compile's diagnostics from the memo of the last text that parsed
 //! ([`super::broken`]), which stays for the edit that fixes it (diffed against that text). Anything
-//! else is a full compile, which is always correct: a scene with includes or a file-level
-//! diagnostic, a syntax error [`super::broken`] declines, another statement added, removed or renamed among declarations, an edit of a
+//! else is a full compile, which is always correct: a file-level diagnostic (an include that
+//! cannot be read or closes a cycle), an include added, removed or edited, a syntax error in a
+//! scene with includes or one [`super::broken`] declines, another statement added, removed or renamed among declarations, an edit of a
 //! light, a camera or the render block that gives or takes away a diagnostic, or made while the
 //! scene has an error (or of a constant one of them names), a `let` that fails (or failed) while another error
 //! stands, and any edit where a kept span
@@ -28,6 +29,14 @@
 //! declaration fail to lower or lower again, compacts the IR's indices again from the memo
 //! (`check::recheck::compact`). `scnc watch` and `scnc lsp` compile through it;
 //! `tests/incremental.rs` replays seeded edits and compares every result with a fresh compile.
+//!
+//! A scene with includes (2026-11-26, sixth session) keeps one memo over every file read: the
+//! statements in the order the check reads them (an included file's where its include stands),
+//! each with its file ([`super::files`]). Every included file is read again through the loader
+//! (so `scnc watch` records it); each one that changed is an edit of its own statements, mapped
+//! to the list's indices, its spans alone moving; the include statements' places move with
+//! their file's edits ([`crate::source::ReadingOrder`], which the re-check asks where the full
+//! check relies on statement order).
 
 use std::path::Path;
 use std::sync::Arc;
@@ -402,16 +411,7 @@ impl Memo {
     /// The sources after an edit of `file` to `text`: that file's entry with the new text, the
     /// others as they were.
     fn new_sources(&self, file: FileId, text: &str) -> SourceMap {
-        let mut sources = SourceMap::new();
-        for (id, f) in self.sources.files() {
-            let content = if id == file {
-                std::sync::Arc::<str>::from(text)
-            } else {
-                f.text.clone()
-            };
-            sources.add(f.path.clone(), f.name.clone(), content);
-        }
-        sources
+        self.sources.with_text(file, text)
     }
 
     /// The statements' byte ranges after the edit: the changed ones (`old`, list indices)
