@@ -2234,3 +2234,39 @@ fn include_lines(text: &str) -> Vec<&str> {
         .filter(|l| l.trim_start().starts_with("include"))
         .collect()
 }
+
+/// A `let` in an included file names only constants the compile read before it: those before
+/// the include in the file that includes it, not those after it, whatever their byte offsets
+/// (`source::ReadingOrder`). A constant declared after the include named in the included file
+/// is unknown there (an error, as the full compile finds: asserted full and identical); one
+/// declared before it is an ordinary `let` edit (fast).
+#[test]
+fn a_let_in_an_included_file_names_only_constants_read_before_it() {
+    let path = Path::new("scenes/edit.scn");
+    let root = "scnc 1\nlet k = 1\ninclude \"b.scn\"\nlet late = 2\n\
+                camera main { eye (0, 5, -20)  target (0, 0, 0)  fov 40deg }\n\
+                render { resolution 8 x 6 }\nmesh ball = icosphere { radius 1 }\n\
+                material m = phong { diffuse #ccc }\nobject ball { material m }\n";
+    // The included `let` lies past the root's `late` in bytes: only the reading order says
+    // that `late` comes after it.
+    let padding = "// ".to_string() + &"-".repeat(120) + "\n";
+    let included = |value: &str| format!("scnc 1\n{padding}let x = {value}\n");
+    let mut inc = Incremental::new(Overrides::default());
+    for (value, reuse) in [("k", None), ("k + 1", Some(true)), ("late", Some(false))] {
+        let mut loader = MemLoader::new();
+        loader.insert(path, root);
+        loader.insert("scenes/b.scn", included(value));
+        let mut sources = SourceMap::new();
+        let got = inc.compile(path, &loader, &mut sources);
+        let label = format!("let x = {value} ({:?})", inc.reuse);
+        assert_as_full_compile(&label, &got, &sources, &loader, &Overrides::default(), root);
+        if let Some(fast) = reuse {
+            assert_eq!(
+                matches!(inc.reuse, Reuse::Statements { .. }),
+                fast,
+                "{label}"
+            );
+        }
+        assert_eq!(got.has_errors(), value == "late", "{label}");
+    }
+}
