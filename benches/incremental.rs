@@ -1,5 +1,6 @@
 //! Incremental re-checking benchmark (a program, not a test): `cargo bench --bench incremental
-//! [-- --edits N] [-- --objects N] [-- --no-watch] [-- --in-place] [-- --only Uses,BadValue]`.
+//! [-- --edits N] [-- --objects N] [-- --no-watch] [-- --in-place] [-- --only Uses,BadValue]
+//! [-- --split N]`.
 //!
 //! The scene of issue 22: 100,000 `object` statements, each with a rotate and a translate, over
 //! three meshes, an OBJ mesh and an image texture (placed by the group) and 100 materials that
@@ -31,6 +32,10 @@
 //!    image is written before that event), with the compile, build and pass times it reports;
 //!    for the errors, save → `error` event (the diagnostics), and for the edit taking each out,
 //!    save → `checked` and save → first `pass`.
+//!
+//! `--split N` (2026-11-26, sixth session): the same scene written as a root file and `N`
+//! included files of objects (`files_of`); each save writes only the files that changed, and the
+//! kinds of edit that keep the lines in place and the syntax whole are run.
 //!
 //! Medians (and the slowest) per kind of edit are printed; figures go to docs/watch.md by hand.
 
@@ -476,10 +481,64 @@ fn only(kind: Kind) -> bool {
     names.is_none_or(|n| n.split(',').any(|n| n == format!("{kind:?}")))
 }
 
-/// A loader serving the scene `text` at `path` and the scene's assets.
-fn loader_with(path: &Path, text: &str, assets: &[(&str, Vec<u8>)]) -> MemLoader {
+/// `--split N`: the scene's objects split over `N` included files (0: one file).
+fn parts() -> usize {
+    let args: Vec<String> = std::env::args().collect();
+    let at = args.iter().position(|a| a == "--split");
+    at.and_then(|i| args.get(i + 1)?.parse().ok()).unwrap_or(0)
+}
+
+/// Whether `kind` keeps the scene's lines in place and its syntax whole: the kinds `--split`
+/// runs (an edit of included files' text is cut at fixed object lines; a syntax error in a
+/// scene with includes is a full compile, not answered from the memo).
+fn splits(kind: Kind) -> bool {
+    !matches!(
+        kind,
+        Kind::Insert
+            | Kind::Delete
+            | Kind::UnusedLet
+            | Kind::NewMaterial
+            | Kind::GroupAdded
+            | Kind::Stray
+            | Kind::Cut
+            | Kind::LetLost
+            | Kind::MaterialLost
+    )
+}
+
+/// The scene file `text` (the lines of [`scene`], edited) as the files `scnc` reads:
+/// `big.scn` alone, or with `parts` > 0 the root `big.scn` (declarations, settings, one
+/// `include "partP.scn"` per part where the objects stood) and the parts, each a run of the
+/// objects (generated scenes are often written a block per file).
+fn files_of(text: &str, objects: usize, parts: usize) -> Vec<(String, String)> {
+    if parts == 0 {
+        return vec![("big.scn".to_string(), text.to_string())];
+    }
+    let lines: Vec<&str> = text.lines().collect();
+    let chunk = objects.div_ceil(parts);
+    let mut root: Vec<String> = lines[..HEADER].iter().map(|l| l.to_string()).collect();
+    let mut files = vec![("big.scn".to_string(), String::new())];
+    for p in 0..parts {
+        let (from, to) = ((p * chunk).min(objects), ((p + 1) * chunk).min(objects));
+        root.push(format!("include \"part{p}.scn\""));
+        let mut part = String::from("scnc 1\n");
+        for line in &lines[HEADER + from..HEADER + to] {
+            part.push_str(line);
+            part.push('\n');
+        }
+        files.push((format!("part{p}.scn"), part));
+    }
+    root.extend(lines[HEADER + objects..].iter().map(|l| l.to_string()));
+    files[0].1 = root.join("\n") + "\n";
+    files
+}
+
+/// A loader serving the scene's `files` ([`files_of`]) and assets.
+fn loader_with(files: &[(String, String)], assets: &[(&str, Vec<u8>)]) -> MemLoader {
     let mut loader = MemLoader::new();
-    loader.insert(path, text);
+    for (name, text) in files {
+        loader.insert(name.as_str(), text.as_str());
+    }
     for (name, bytes) in assets {
         loader.insert(*name, bytes.clone());
     }
@@ -498,18 +557,20 @@ fn max(v: &[f64]) -> f64 {
 fn front_end(objects: usize, edits: usize) {
     let mut lines = scene(objects);
     let original = lines.join("\n") + "\n";
+    let parts = parts();
+    let files = |text: &str| files_of(text, objects, parts);
     let path = Path::new("big.scn");
     let overrides = Overrides::default();
     let assets = assets();
     let mut full = Vec::new();
     for _ in 0..3 {
-        let loader = loader_with(path, &original, &assets);
+        let loader = loader_with(&files(&original), &assets);
         let t = Instant::now();
         let r = compile_with(path, &loader, &mut SourceMap::new(), &overrides);
         full.push(t.elapsed().as_secs_f64() * 1e3);
         assert!(r.value.is_some(), "the scene compiles");
     }
-    let loader = loader_with(path, &original, &assets);
+    let loader = loader_with(&files(&original), &assets);
     // The memo's own heap: what the incremental front end keeps between compiles (the text,
     // statement spans, constants, name tables, per-statement records, diagnostics and the IR),
     // measured with the compile's result dropped; and the peak while it compiles the first time.
@@ -535,12 +596,14 @@ fn front_end(objects: usize, edits: usize) {
     let mut cache = BuildCache::new();
     let opts = BuildOptions::default();
     println!(
-        "front end, {} bytes: full compile median {:.1} ms; incremental: first (full, with memo) \
-         {first:.1} ms",
+        "front end, {} bytes in {} file(s): full compile median {:.1} ms; incremental: first \
+         (full, with memo) {first:.1} ms",
         original.len(),
+        parts + 1,
         median(&mut full),
     );
-    for kind in KINDS.into_iter().filter(|&k| only(k)) {
+    let run = |k: Kind| only(k) && (parts == 0 || splits(k));
+    for kind in KINDS.into_iter().filter(|&k| run(k)) {
         let mut times = Vec::new();
         let mut build: [Vec<f64>; 3] = Default::default();
         // Pairs of edits for the errors, so that each is taken out before the next kind (and
@@ -549,16 +612,26 @@ fn front_end(objects: usize, edits: usize) {
         let count = if paired { edits + edits % 2 } else { edits };
         // A full compile of the first error, for comparison.
         let mut full_error = None;
+        // What `scnc watch`'s `error` event of each error costs to make ([`error_event_costs`]).
+        let mut event_parts: Vec<([f64; 4], usize)> = Vec::new();
+        // The incremental compiles' CPU time (ms), beside their wall time.
+        let mut cpu_times = Vec::new();
         for k in 0..count {
-            let loader = loader_with(path, &edit(&mut lines, objects, kind, k), &assets);
+            let loader = loader_with(&files(&edit(&mut lines, objects, kind, k)), &assets);
             if errs(kind) && k == 0 {
                 let t = Instant::now();
                 let r = compile_with(path, &loader, &mut SourceMap::new(), &overrides);
                 full_error = Some((t.elapsed().as_secs_f64() * 1e3, r.diagnostics.len()));
             }
             let t = Instant::now();
-            let r = inc.compile(path, &loader, &mut SourceMap::new());
+            let cpu = cpu_time::ThreadTime::now();
+            let mut sources = SourceMap::new();
+            let r = inc.compile(path, &loader, &mut sources);
             times.push(t.elapsed().as_secs_f64() * 1e3);
+            cpu_times.push(cpu.elapsed().as_secs_f64() * 1e3);
+            if errs(kind) && k % 2 == 0 {
+                event_parts.push(error_event_costs(&r.diagnostics, &sources));
+            }
             if errs(kind) {
                 assert_eq!(r.value.is_none(), k % 2 == 0, "{kind:?} edit {k}: an error");
                 // A syntax error is answered from the memo of the text before it (nothing
@@ -606,6 +679,7 @@ fn front_end(objects: usize, edits: usize) {
         let [mut total, mut assets, mut accel] = build;
         if errs(kind) {
             let errors: Vec<f64> = times.iter().copied().step_by(2).collect();
+            let mut error_cpu: Vec<f64> = cpu_times.iter().copied().step_by(2).collect();
             let fixes: Vec<f64> = times.iter().copied().skip(1).step_by(2).collect();
             println!(
                 "{kind:?} edits ({count}, every other one an error): incremental compile median \
@@ -618,6 +692,19 @@ fn front_end(objects: usize, edits: usize) {
                 max(&errors),
                 median(&mut fixes.clone()),
                 max(&fixes)
+            );
+            let part =
+                |i: usize| median(&mut event_parts.iter().map(|p| p.0[i]).collect::<Vec<_>>());
+            println!(
+                "  the errors' CPU time {:.1} ms (median); the error event ({} bytes), CPU time \
+                 medians: made as a value {:.1} ms, printed {:.1} ms, plain text {:.1} ms; \
+                 written straight (this session, text included) {:.1} ms",
+                median(&mut error_cpu),
+                event_parts.first().map_or(0, |p| p.1),
+                part(0),
+                part(2),
+                part(1),
+                part(3)
             );
             continue;
         }
@@ -632,6 +719,49 @@ fn front_end(objects: usize, edits: usize) {
             median(&mut accel)
         );
     }
+}
+
+/// What `scnc watch` does to send the `error` event of `diags` (`cli/watch/status.rs`), in ms
+/// of this thread's CPU time (the machine is shared): the fifth session's way, the diagnostics as a JSON value (0) printed in the event
+/// (2); their plain text, 100 columns (1); and this session's way, the whole line written
+/// straight from the diagnostics, text included (3); with the line's length in bytes (both
+/// ways give the same bytes: asserted).
+fn error_event_costs(diags: &[scnc::diag::Diagnostic], sources: &SourceMap) -> ([f64; 4], usize) {
+    // The line indices are made by the first of the two; made here, neither pays them.
+    for (id, _) in sources.files() {
+        sources.line_col(id, 0);
+    }
+    let t = cpu_time::ThreadTime::now();
+    let json = scnc::diag::json_diagnostics(diags, sources);
+    let t_json = t.elapsed();
+    let text = scnc::diag::render_plain_all(diags, sources, 100);
+    let t_text = t.elapsed();
+    let line = serde_json::json!({"event": "error", "diagnostics": json, "text": text}).to_string();
+    let t_value = t.elapsed();
+    let t = cpu_time::ThreadTime::now();
+    let text = scnc::diag::render_plain_all(diags, sources, 100);
+    let mut direct = Vec::new();
+    direct.extend_from_slice(br#"{"diagnostics":"#);
+    scnc::diag::write_json_diagnostics(&mut direct, diags, sources);
+    direct.extend_from_slice(br#","event":"error","text":"#);
+    serde_json::to_writer(&mut direct, &text).expect("a string serialises");
+    direct.push(b'}');
+    let t_direct = t.elapsed();
+    if scnc::diag::maps_sort_keys() {
+        assert_eq!(
+            direct,
+            line.as_bytes(),
+            "the event written directly is the value printed"
+        );
+    }
+    let ms = |d: Duration| d.as_secs_f64() * 1e3;
+    let parts = [
+        ms(t_json),
+        ms(t_text - t_json),
+        ms(t_value - t_text),
+        ms(t_direct),
+    ];
+    (parts, line.len())
 }
 
 /// How the bench saves the scene file in `scnc watch`'s part.
@@ -664,8 +794,21 @@ fn watch(objects: usize, edits: usize, how: Save) {
     let dir = std::env::temp_dir().join(format!("scnc-incr-bench-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("temp dir");
-    let scn = dir.join("big.scn");
-    std::fs::write(&scn, &original).expect("write scene");
+    let parts = parts();
+    let mut saved = files_of(&original, objects, parts);
+    for (name, text) in &saved {
+        std::fs::write(dir.join(name), text).expect("write scene");
+    }
+    // Saves the files of the scene `text` that changed (an editor saves the file edited).
+    let mut save_all = |text: &str| {
+        let files = files_of(text, objects, parts);
+        for ((name, text), (_, old)) in files.iter().zip(&saved) {
+            if text != old {
+                save(&dir.join(name), text, how);
+            }
+        }
+        saved = files;
+    };
     for (name, bytes) in assets() {
         std::fs::write(dir.join(name), bytes).expect("write an asset");
     }
@@ -678,7 +821,8 @@ fn watch(objects: usize, edits: usize, how: Save) {
         first["compile_ms"].as_f64().unwrap_or(0.0),
         first["build_ms"].as_f64().unwrap_or(0.0),
     );
-    for kind in KINDS.into_iter().filter(|&k| !errs(k) && only(k)) {
+    let run = |k: Kind| only(k) && (parts == 0 || splits(k));
+    for kind in KINDS.into_iter().filter(|&k| !errs(k) && run(k)) {
         let mut figures: [Vec<f64>; 6] = Default::default();
         let mut incremental = 0;
         // What the cached builds made again (`rebuilt` of the `compiled` events), all edits.
@@ -686,7 +830,7 @@ fn watch(objects: usize, edits: usize, how: Save) {
         for k in 0..edits {
             let text = edit(&mut lines, objects, kind, 1000 + k);
             let t0 = Instant::now();
-            save(&scn, &text, how);
+            save_all(&text);
             let (t1, _) = wait("checked", false);
             let (t3, c) = wait("compiled", false);
             let (t2, p) = wait("pass", false);
@@ -725,15 +869,20 @@ fn watch(objects: usize, edits: usize, how: Save) {
     }
     // The errors, each then taken out: save -> the `error` event (the diagnostics; nothing is
     // built) and, for the edit taking it out, save -> `checked`, and the first pass after it.
-    for kind in KINDS.into_iter().filter(|&k| errs(k) && only(k)) {
+    for kind in KINDS.into_iter().filter(|&k| errs(k) && run(k)) {
         let mut figures: [Vec<f64>; 3] = Default::default();
+        // The watch loop's CPU time per error (ms): the save to the `watching` event after it.
+        let mut cpu = Vec::new();
         for k in 0..edits + edits % 2 {
             let text = edit(&mut lines, objects, kind, 1000 + k);
+            let cpu0 = watch.main_thread_cpu_ns();
             let t0 = Instant::now();
-            save(&scn, &text, how);
+            save_all(&text);
             if k.is_multiple_of(2) {
                 let (t1, _) = wait("error", false);
                 figures[0].push((t1 - t0).as_secs_f64() * 1e3);
+                wait("watching", false);
+                cpu.push((watch.main_thread_cpu_ns() - cpu0) as f64 / 1e6);
                 continue;
             }
             let (t1, _) = wait("checked", false);
@@ -745,11 +894,13 @@ fn watch(objects: usize, edits: usize, how: Save) {
         let [mut error, mut fixed, mut image] = figures;
         println!(
             "  {kind:?} edits ({}, every other one an error): save -> diagnostics (error event) \
-             median {:.1} ms (slowest {:.1}); taken out: save -> checked median {:.1} ms \
-             (slowest {:.1}), save -> first image median {:.1} ms (slowest {:.1})",
+             median {:.1} ms (slowest {:.1}; the watch loop's CPU time {:.1} ms); taken out: \
+             save -> checked median {:.1} ms (slowest {:.1}), save -> first image median {:.1} \
+             ms (slowest {:.1})",
             edits + edits % 2,
             median(&mut error),
             max(&error),
+            median(&mut cpu),
             median(&mut fixed),
             max(&fixed),
             median(&mut image),

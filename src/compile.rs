@@ -26,6 +26,7 @@ mod dependents;
 #[cfg(test)]
 mod early_tests;
 mod edit;
+mod files;
 mod incremental;
 
 pub use incremental::{Incremental, Reuse};
@@ -153,6 +154,9 @@ struct Driver<'l> {
     pre: Option<check::PreCheck>,
     /// The pre-check gave up part-way (statements it saw are lost): the compile starts over.
     aborted: bool,
+    /// Per file id read, the file name of the include that read it (`None` for the root), for
+    /// the incremental compile's [`crate::source::ReadingOrder`].
+    included_at: Vec<Option<Span>>,
 }
 
 impl<'l> Driver<'l> {
@@ -168,6 +172,7 @@ impl<'l> Driver<'l> {
             defines: Vec::new(),
             pre: None,
             aborted: false,
+            included_at: Vec::new(),
         }
     }
 
@@ -276,6 +281,8 @@ impl<'l> Driver<'l> {
             .sources
             .add(path.clone(), name, std::sync::Arc::<str>::from(text));
         let text = self.sources.get(id).text.clone();
+        self.included_at.resize(id.0 as usize, None);
+        self.included_at.push(from);
         if text.trim().is_empty() {
             let span = Span::new(id, 0, 0);
             self.diags.push(

@@ -11,6 +11,10 @@ use std::sync::Arc;
 use miette::{NamedSource, SourceSpan};
 use serde::Serialize;
 
+mod order;
+
+pub use order::ReadingOrder;
+
 /// Index of a file inside a [`SourceMap`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
 pub struct FileId(pub u32);
@@ -117,6 +121,18 @@ impl SourceMap {
             line_starts: Arc::default(),
         });
         id
+    }
+
+    /// The map with file `id`'s text replaced by `text` (its line index made again when
+    /// needed); every other file's entry, line index included, is shared, not made again (an
+    /// edit of one included file of a scene split over many).
+    pub fn with_text(&self, id: FileId, text: impl Into<Arc<str>>) -> SourceMap {
+        let mut map = self.clone();
+        if let Some(f) = map.files.get_mut(id.0 as usize) {
+            f.text = text.into();
+            f.line_starts = Arc::default();
+        }
+        map
     }
 
     /// The file `id` names. `id` must come from this map's [`SourceMap::add`].

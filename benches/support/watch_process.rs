@@ -77,6 +77,23 @@ impl WatchProcess {
     }
 }
 
+impl WatchProcess {
+    /// CPU time (ns) the process's main thread (the watch loop: confirming a change, reading,
+    /// compiling, the events) has used so far, from `/proc/PID/task/PID/schedstat`; 0 where
+    /// that cannot be read.
+    #[allow(
+        dead_code,
+        reason = "benches/watch.rs includes this file and does not use it"
+    )]
+    pub fn main_thread_cpu_ns(&self) -> u64 {
+        let pid = self.child.id();
+        std::fs::read_to_string(format!("/proc/{pid}/task/{pid}/schedstat"))
+            .ok()
+            .and_then(|s| s.split_whitespace().next()?.parse().ok())
+            .unwrap_or(0)
+    }
+}
+
 impl Drop for WatchProcess {
     fn drop(&mut self) {
         let _ = self.child.kill();

@@ -88,6 +88,10 @@ pub struct Checker<'s> {
     dropped: recheck::Dropped,
     /// How many diagnostics there were when `finish` began (those after are its own).
     finish_from: usize,
+    /// Which of two spans the check reads first, across included files (set by the
+    /// incremental re-check, which compares declarations' places; the full check reads in
+    /// order and never asks).
+    order: crate::source::ReadingOrder,
 }
 
 impl<'s> Checker<'s> {
@@ -117,6 +121,7 @@ impl<'s> Checker<'s> {
             active_camera: 0,
             dropped: recheck::Dropped::default(),
             finish_from: 0,
+            order: Default::default(),
         }
     }
 

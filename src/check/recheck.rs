@@ -76,6 +76,9 @@ pub struct CheckMemo {
     /// Shared with the compile's result, so that the memo and the scene a caller holds are
     /// one copy; an edit clones it only while a caller still holds the previous one.
     pub scene: Option<Arc<ir::SceneDesc>>,
+    /// Which of two spans the check reads first: the compile's include structure, kept by
+    /// `compile::Incremental` (empty, byte order, for a scene without includes).
+    pub order: crate::source::ReadingOrder,
 }
 
 /// [`super::check_placed`], keeping a [`CheckMemo`]: its `scene` (filtered by errors) and its
@@ -116,6 +119,7 @@ pub fn check_tracked(
         records,
         diagnostics: std::mem::take(&mut cx.diags),
         scene: scene.map(Arc::new),
+        order: Default::default(),
     }
 }
 
@@ -276,6 +280,7 @@ impl CheckMemo {
     fn lend<'s>(&mut self, sources: &'s SourceMap) -> Checker<'s> {
         let mut cx = Checker::new(sources);
         cx.frame = self.frame;
+        cx.order = self.order.clone();
         cx.lets = std::mem::take(&mut self.lets);
         cx.poisoned = std::mem::take(&mut self.poisoned);
         cx.defines = std::mem::take(&mut self.defines);

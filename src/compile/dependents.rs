@@ -9,17 +9,38 @@
 //! A statement parsed from its start to the next statement's start parses as in the whole
 //! file (`edit.rs`).
 
+use std::borrow::Cow;
+
 use crate::source::FileId;
 use crate::syntax::{self, Stmt};
 
-/// The statements of `text` (whose top-level statements lie at `spans`, in order) in which
-/// `name` occurs as a word: index and statement, in order; `None` when one of them does not
-/// parse alone into one statement.
-pub(super) fn naming(text: &str, spans: &[(u32, u32)], name: &str) -> Option<Vec<(usize, Stmt)>> {
-    let found = statements_naming(text, spans, name);
-    (found.into_iter())
-        .map(|i| Some((i, parse_one(text, spans, i)?)))
-        .collect()
+/// One scene file as the search sees it: its text, its statements' byte ranges in order, and
+/// their indices in the check's statement list (`None`: the same, the scene being one file).
+pub(super) struct FileText<'a> {
+    pub file: FileId,
+    pub text: &'a str,
+    pub spans: Cow<'a, [(u32, u32)]>,
+    pub list: Option<Vec<usize>>,
+}
+
+/// The statements of the scene's `files` in which `name` occurs as a word: index in the
+/// statement list and statement, in list order; `None` when one of them does not parse alone
+/// into one statement.
+pub(super) fn naming(files: &[FileText], name: &str) -> Option<Vec<(usize, Stmt)>> {
+    let mut found = Vec::new();
+    for f in files {
+        for i in statements_naming(f.text, &f.spans, name) {
+            let at = match &f.list {
+                Some(list) => *list.get(i)?,
+                None => i,
+            };
+            found.push((at, parse_one(f.file, f.text, &f.spans, i)?));
+        }
+    }
+    if files.len() > 1 {
+        found.sort_by_key(|&(i, _)| i);
+    }
+    Some(found)
 }
 
 /// The indices of the statements of `text` (at `spans`) in which `name` occurs as a word, in
@@ -42,11 +63,11 @@ pub(super) fn statements_naming(text: &str, spans: &[(u32, u32)], name: &str) ->
     found
 }
 
-/// Top-level statement `i` of `text`, parsed alone.
-fn parse_one(text: &str, spans: &[(u32, u32)], i: usize) -> Option<Stmt> {
+/// Top-level statement `i` of `text` (the file `file`), parsed alone.
+fn parse_one(file: FileId, text: &str, spans: &[(u32, u32)], i: usize) -> Option<Stmt> {
     let start = spans.get(i)?.0 as usize;
     let end = spans.get(i + 1).map_or(text.len(), |&(s, _)| s as usize);
-    let mut parsed = syntax::parse_region(FileId(0), text, start, end)?;
+    let mut parsed = syntax::parse_region(file, text, start, end)?;
     match parsed.len() {
         1 => parsed.pop(),
         _ => None,
@@ -62,14 +83,19 @@ mod tests {
     fn finds_the_statements_that_name_a_word_and_no_others() {
         let text = "scnc 1\nlet k = 2\nlet kk = k * 2\n// k in a comment\nlet j = kk\n\
                     object box { transform { translate (k, 0, 0) } }\n";
-        let spans = spans_of(text);
-        let found: Vec<usize> = naming(text, &spans, "k")
+        let files = [FileText {
+            file: FileId(0),
+            text,
+            spans: Cow::Owned(spans_of(text)),
+            list: None,
+        }];
+        let found: Vec<usize> = naming(&files, "k")
             .expect("parses")
             .into_iter()
             .map(|(i, _)| i)
             .collect();
         assert_eq!(found, vec![1, 2, 4]);
-        let found = naming(text, &spans, "kk").expect("parses");
+        let found = naming(&files, "kk").expect("parses");
         assert_eq!(found.len(), 2);
         assert!(matches!(&found[1].1, Stmt::Let { name, .. } if name.name == "j"));
     }

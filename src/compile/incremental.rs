@@ -19,8 +19,9 @@
 //! (still `scnc 1`) only moves the spans. An edit that breaks the
 //! syntax gets the full compile's diagnostics from the memo of the last text that parsed
 //! ([`super::broken`]), which stays for the edit that fixes it (diffed against that text). Anything
-//! else is a full compile, which is always correct: a scene with includes or a file-level
-//! diagnostic, a syntax error [`super::broken`] declines, another statement added, removed or renamed among declarations, an edit of a
+//! else is a full compile, which is always correct: a file-level diagnostic (an include that
+//! cannot be read or closes a cycle), an include added, removed or edited, a syntax error in a
+//! scene with includes or one [`super::broken`] declines, another statement added, removed or renamed among declarations, an edit of a
 //! light, a camera or the render block that gives or takes away a diagnostic, or made while the
 //! scene has an error (or of a constant one of them names), a `let` that fails (or failed) while another error
 //! stands, and any edit where a kept span
@@ -28,6 +29,14 @@
 //! declaration fail to lower or lower again, compacts the IR's indices again from the memo
 //! (`check::recheck::compact`). `scnc watch` and `scnc lsp` compile through it;
 //! `tests/incremental.rs` replays seeded edits and compares every result with a fresh compile.
+//!
+//! A scene with includes (2026-11-26, sixth session) keeps one memo over every file read: the
+//! statements in the order the check reads them (an included file's where its include stands),
+//! each with its file ([`super::files`]). Every included file is read again through the loader
+//! (so `scnc watch` records it); each one that changed is an edit of its own statements, mapped
+//! to the list's indices, its spans alone moving; the include statements' places move with
+//! their file's edits ([`crate::source::ReadingOrder`], which the re-check asks where the full
+//! check relies on statement order).
 
 use std::path::Path;
 use std::sync::Arc;
@@ -35,12 +44,13 @@ use std::sync::Arc;
 use super::broken;
 use super::dependents;
 use super::edit::{self, Region};
+use super::files;
 use super::{decode, reading_order, Driver, Overrides};
 use crate::assets::Loader;
 use crate::check::{check_tracked, CheckMemo, Placed, PreCheck};
 use crate::diag::{Diagnostic, Staged};
 use crate::ir;
-use crate::source::{FileId, SourceMap};
+use crate::source::{FileId, ReadingOrder, SourceMap};
 use crate::syntax::{self, Stmt};
 
 /// How the last [`Incremental::compile`] went.
@@ -73,10 +83,15 @@ pub struct Incremental {
 struct Memo {
     /// The path compiled, as given.
     path: std::path::PathBuf,
-    /// Its sources: the scene file (file 0) and the `--define` files after it.
+    /// Its sources: the scene file (file 0), the files it includes, and the `--define` files.
     sources: SourceMap,
-    /// The byte range of every top-level statement of the scene file, in order.
+    /// How many of `sources`' files are scene files (the root and its includes, first).
+    scene_files: usize,
+    /// The byte range of every top-level statement, in the order the check reads them (an
+    /// included file's where its include stands).
     spans: Vec<(u32, u32)>,
+    /// The file of each statement of `spans`; empty when the scene is one file.
+    files: Vec<FileId>,
     check: CheckMemo,
     /// Whether no line inside a statement starts where the error recovery would cut a chunk
     /// ([`broken::no_inner_resync`]); found when first needed.
@@ -109,7 +124,7 @@ impl Incremental {
         let bytes = loader.read(path);
         if let (Some(mut memo), Ok(bytes)) = (self.memo.take(), &bytes) {
             if memo.path == path {
-                if let Some(reuse) = memo.edit(bytes) {
+                if let Some(reuse) = memo.update(bytes, loader) {
                     *sources = match &memo.broken {
                         Some((broken, _)) => broken.clone(),
                         None => memo.sources.clone(),
@@ -126,13 +141,14 @@ impl Incremental {
         let compiled = match bytes {
             Ok(bytes) => {
                 d.add_root(path, &path.display().to_string(), &bytes);
+                let scene_files = d.sources.files().count();
                 for (name, value) in std::mem::take(&mut d.pending_defines) {
                     d.add_define(&name, &value);
                 }
                 if !d.trackable() {
                     d.finish()
                 } else {
-                    let memo = d.into_memo(path);
+                    let memo = d.into_memo(path, scene_files);
                     *sources = memo.sources.clone();
                     let result = memo.result();
                     self.memo = Some(memo);
@@ -149,33 +165,33 @@ impl Incremental {
 }
 
 impl Driver<'_> {
-    /// Whether the files read allow incremental compiles: one scene file (and the
-    /// `--define`s) with no includes and no diagnostic of its own.
+    /// Whether the files read allow incremental compiles: no diagnostic of the driver's own (a
+    /// syntax error, an include that cannot be read or closes a cycle, a misplaced header).
     fn trackable(&self) -> bool {
-        let includes = self
-            .statements
-            .iter()
-            .any(|s| matches!(s, Stmt::Include { .. }));
-        self.diags.is_empty() && !includes
+        self.diags.is_empty()
     }
 
-    /// The full check, keeping a memo of it.
-    fn into_memo(self, path: &Path) -> Memo {
+    /// The full check, keeping a memo of it; the first `scene_files` files read are the scene's.
+    fn into_memo(self, path: &Path, scene_files: usize) -> Memo {
         let Driver {
             sources,
             statements,
             frame,
             defines,
             pre,
+            included_at,
             ..
         } = self;
         let placed = pre.map(PreCheck::into_placed).unwrap_or_default();
-        let spans = statement_spans(&statements, &placed);
-        let check = check_tracked(&statements, placed, &sources, frame, defines);
+        let (spans, files) = statement_spans(&statements, &placed, scene_files > 1);
+        let mut check = check_tracked(&statements, placed, &sources, frame, defines);
+        check.order = ReadingOrder::new(included_at);
         Memo {
             path: path.to_path_buf(),
             sources,
+            scene_files,
             spans,
+            files,
             check,
             chunks_whole: None,
             broken: None,
@@ -191,9 +207,15 @@ fn supported_header(s: &Stmt) -> bool {
     matches!(value.kind, crate::syntax::ExprKind::Number { value, suffix: None } if value == super::VERSION)
 }
 
-/// The byte range of every top-level statement, those `placed` included, in order.
-fn statement_spans(statements: &[Stmt], placed: &Placed) -> Vec<(u32, u32)> {
+/// The byte range of every top-level statement, those `placed` included, in order, and (when
+/// `several` files are read) the file of each.
+fn statement_spans(
+    statements: &[Stmt],
+    placed: &Placed,
+    several: bool,
+) -> (Vec<(u32, u32)>, Vec<FileId>) {
     let mut spans = Vec::with_capacity(statements.len() + placed.len());
+    let mut files = Vec::new();
     let mut kept = statements.iter().map(|s| s.span());
     let mut early = placed.places().into_iter().peekable();
     for i in 0..statements.len() + placed.len() {
@@ -202,8 +224,9 @@ fn statement_spans(statements: &[Stmt], placed: &Placed) -> Vec<(u32, u32)> {
             None => kept.next(),
         };
         spans.extend(span.map(|s| (s.start, s.end)));
+        files.extend(span.filter(|_| several).map(|s| s.file));
     }
-    spans
+    (spans, files)
 }
 
 impl Memo {
@@ -220,32 +243,77 @@ impl Memo {
         Staged::new(scene, diags)
     }
 
-    /// Brings the memo to the new text `bytes` of the scene file, or `None` when only a full
+    /// Brings the memo to the scene's files as they are now: the root file's `bytes`, and each
+    /// included file read again through `loader` (which records it: the watch set); each file
+    /// that changed is an edit ([`Memo::edit`]), in the order read. `None` when only a full
     /// compile can (the memo is then spoiled).
-    fn edit(&mut self, bytes: &[u8]) -> Option<Reuse> {
+    fn update(&mut self, bytes: &[u8], loader: &dyn Loader) -> Option<Reuse> {
+        let mut reuse = self.edit(FileId(0), bytes)?;
+        for id in (1..self.scene_files).map(|i| FileId(i as u32)) {
+            let path = self.sources.get(id).path.clone();
+            let bytes = loader.read(&path).ok()?;
+            reuse = match (reuse, self.edit(id, &bytes)?) {
+                (Reuse::Unchanged, r) | (r, Reuse::Unchanged) => r,
+                (
+                    Reuse::Statements { parsed, checked },
+                    Reuse::Statements {
+                        parsed: p,
+                        checked: c,
+                    },
+                ) => Reuse::Statements {
+                    parsed: parsed + p,
+                    checked: checked + c,
+                },
+                _ => return None,
+            };
+        }
+        Some(reuse)
+    }
+
+    /// Brings the memo to the new text `bytes` of the scene's file `file`, or `None` when only
+    /// a full compile can (the memo is then spoiled).
+    fn edit(&mut self, file: FileId, bytes: &[u8]) -> Option<Reuse> {
         self.broken = None;
         let text = decode(bytes).ok()?;
         if text.trim().is_empty() {
             return None;
         }
-        let root = FileId(0);
-        let old = self.sources.get(root).text.clone();
-        let Some(region) = edit::region(root, &old, text, &self.spans) else {
+        let old = self.sources.get(file).text.clone();
+        if *old == *text {
             return Some(Reuse::Unchanged);
-        };
-        let Some(parsed) = syntax::parse_region(root, text, region.bytes.start, region.bytes.end)
+        }
+        // One file: its statements are the list; else that file's, mapped to the list's.
+        let several =
+            (!self.files.is_empty()).then(|| files::of_file(&self.spans, &self.files, file));
+        let spans = several.as_ref().map_or(&self.spans[..], |v| &v.spans[..]);
+        let region = edit::region(file, &old, text, spans)?;
+        let Some(parsed) = syntax::parse_region(file, text, region.bytes.start, region.bytes.end)
         else {
-            return self.broken(&old, text, &region);
+            // The recovery's memo reads one file's statements (an included file's diagnostics
+            // would come from a file the scan does not see).
+            return match several {
+                None => self.broken(&old, text, &region),
+                Some(_) => None,
+            };
         };
         let parsed_count = parsed.len();
-        let (old_range, new) = edit::changed(&region, &self.spans, parsed);
+        let (file_range, new) = edit::changed(&region, spans, parsed);
         // The version header stays the first statement (the driver's check of it is not redone),
         // or is edited alone and stays one the driver takes: nothing else reads it.
-        let header = old_range == (0..1) && matches!(&new[..], [s] if supported_header(s));
-        if old_range.start == 0 && (!new.is_empty() || !old_range.is_empty()) && !header {
+        let header = file_range == (0..1) && matches!(&new[..], [s] if supported_header(s));
+        if file_range.start == 0 && (!new.is_empty() || !file_range.is_empty()) && !header {
             return None;
         }
-        let sources = self.new_sources(text);
+        // An include added, removed or edited changes which files the scene reads.
+        let include = |s: &Stmt| matches!(s, Stmt::Include { .. });
+        if new.iter().any(include) {
+            return None;
+        }
+        let old_range = match &several {
+            Some(view) => view.list_range(file_range.clone())?,
+            None => file_range.clone(),
+        };
+        let sources = self.new_sources(file, text);
         if self.chunks_whole == Some(true) {
             let whole = |s: &Stmt| {
                 let span = s.span();
@@ -264,10 +332,13 @@ impl Memo {
             self.move_spans(&region, old_range, &new)?;
             new.len()
         } else {
-            let old_stmts = self.parse_old(&old, old_range.clone())?;
+            let old_stmts = parse_old(file, &old, spans, file_range)?;
+            if old_stmts.iter().any(include) {
+                return None;
+            }
             self.move_spans(&region, old_range.clone(), &new)?;
-            let spans = &self.spans;
-            let mut naming = |name: &str| dependents::naming(text, spans, name);
+            let files = scene_texts(&self.spans, &self.files, self.scene_files, &sources);
+            let mut naming = |name: &str| dependents::naming(&files, name);
             let shift = &region.shift;
             let lets = (old_stmts.iter().chain(&new)).all(|s| matches!(s, Stmt::Let { .. }));
             let setting = match (&old_stmts[..], &new[..]) {
@@ -333,40 +404,18 @@ impl Memo {
             &self.check.diagnostics,
             defines,
         )?;
-        self.broken = Some((self.new_sources(text), diags));
+        self.broken = Some((self.new_sources(FileId(0), text), diags));
         Some(Reuse::Statements { parsed, checked: 0 })
     }
 
-    /// The old statements `range` (of the old text `old`), parsed again.
-    fn parse_old(&self, old: &str, range: std::ops::Range<usize>) -> Option<Vec<Stmt>> {
-        let start = match self.spans.get(range.start) {
-            Some(&(s, _)) => s as usize,
-            None => return range.is_empty().then(Vec::new),
-        };
-        let end = self
-            .spans
-            .get(range.end)
-            .map_or(old.len(), |&(s, _)| s as usize);
-        let parsed = syntax::parse_region(FileId(0), old, start, end)?;
-        (parsed.len() == range.len()).then_some(parsed)
+    /// The sources after an edit of `file` to `text`: that file's entry with the new text, the
+    /// others as they were.
+    fn new_sources(&self, file: FileId, text: &str) -> SourceMap {
+        self.sources.with_text(file, text)
     }
 
-    /// The sources of a compile of `text`: the scene file's entry with the new text, the
-    /// `--define` files as they were.
-    fn new_sources(&self, text: &str) -> SourceMap {
-        let mut sources = SourceMap::new();
-        for (id, f) in self.sources.files() {
-            let content = if id == FileId(0) {
-                std::sync::Arc::<str>::from(text)
-            } else {
-                f.text.clone()
-            };
-            sources.add(f.path.clone(), f.name.clone(), content);
-        }
-        sources
-    }
-
-    /// The statements' byte ranges after the edit: the changed ones replaced, later ones moved.
+    /// The statements' byte ranges after the edit: the changed ones (`old`, list indices)
+    /// replaced, later ones of the edited file moved, and the includes' places with them.
     fn move_spans(
         &mut self,
         region: &Region,
@@ -376,8 +425,15 @@ impl Memo {
         let shift = &region.shift;
         let replaced = new.iter().map(|s| (s.span().start, s.span().end));
         let at = old.start;
-        self.spans.splice(old, []);
-        for span in &mut self.spans {
+        self.spans.splice(old.clone(), []);
+        let several = !self.files.is_empty();
+        if several {
+            self.files.splice(old, []);
+        }
+        for (i, span) in self.spans.iter_mut().enumerate() {
+            if several && self.files[i] != shift.file {
+                continue;
+            }
             let mut s = crate::source::Span {
                 file: shift.file,
                 start: span.0,
@@ -391,6 +447,59 @@ impl Memo {
         let tail = self.spans.split_off(at);
         self.spans.extend(replaced);
         self.spans.extend(tail);
-        Some(())
+        if several {
+            let tail = self.files.split_off(at);
+            self.files.extend(new.iter().map(|_| shift.file));
+            self.files.extend(tail);
+        }
+        self.check.order.shift(shift).then_some(())
     }
+}
+
+/// The old statements `range` of `file` (of its old text `old`, its statements at `spans`),
+/// parsed again.
+fn parse_old(
+    file: FileId,
+    old: &str,
+    spans: &[(u32, u32)],
+    range: std::ops::Range<usize>,
+) -> Option<Vec<Stmt>> {
+    let start = match spans.get(range.start) {
+        Some(&(s, _)) => s as usize,
+        None => return range.is_empty().then(Vec::new),
+    };
+    let end = spans.get(range.end).map_or(old.len(), |&(s, _)| s as usize);
+    let parsed = syntax::parse_region(file, old, start, end)?;
+    (parsed.len() == range.len()).then_some(parsed)
+}
+
+/// Each scene file of `sources` (the new text) with its statements, for the search of what
+/// names a name ([`dependents::naming`]): the memo's one list when the scene is one file (`files` empty).
+fn scene_texts<'a>(
+    spans: &'a [(u32, u32)],
+    files: &[FileId],
+    scene_files: usize,
+    sources: &'a SourceMap,
+) -> Vec<dependents::FileText<'a>> {
+    let text = |id: FileId| &*sources.get(id).text;
+    if files.is_empty() {
+        return vec![dependents::FileText {
+            file: FileId(0),
+            text: text(FileId(0)),
+            spans: std::borrow::Cow::Borrowed(spans),
+            list: None,
+        }];
+    }
+    (0..scene_files)
+        .map(|i| {
+            let file = FileId(i as u32);
+            let view = files::of_file(spans, files, file);
+            dependents::FileText {
+                file,
+                text: text(file),
+                spans: std::borrow::Cow::Owned(view.spans),
+                list: Some(view.flat),
+            }
+        })
+        .collect()
 }

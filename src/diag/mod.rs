@@ -18,6 +18,6 @@ pub mod suggest;
 pub use code::Code;
 pub use diagnostic::{Diagnostic, ExternalLabel, Label, Severity};
 pub use fancy::render_fancy;
-pub use json::{json_diagnostics, render_json};
+pub use json::{json_diagnostics, maps_sort_keys, render_json, write_json_diagnostics};
 pub use plain::{render_plain, render_plain_all, summary};
 pub use staged::Staged;

@@ -113,8 +113,10 @@ impl CheckMemo {
         let mut relowered = Relowered::default();
         if added {
             // Its place among its kind, in statement order.
-            let table = &mut self.tables[ns as usize];
-            let at = table.spans.partition_point(|s| s.start < d.name.span.start);
+            let (table, order) = (&mut self.tables[ns as usize], &self.order);
+            let at = table
+                .spans
+                .partition_point(|s| order.before(*s, d.name.span));
             table.insert_at(at, &d.name.name, d.name.span);
             self.renumber(ns, at, true)?;
             self.lower_added(sources, ns, at, d, &mut relowered)?;

@@ -200,17 +200,17 @@ impl CheckMemo {
         let inv_material = inverse(&self.material_map, scene.materials.len());
         let inv_mesh = inverse(&self.mesh_map, scene.meshes.len());
         let mut unresolved = std::mem::take(&mut self.dropped.unresolved);
-        unresolved.sort_unstable_by_key(|(span, _, _)| (span.start, span.end));
+        unresolved.sort_unstable_by_key(|(span, _, _)| (span.file, span.start, span.end));
         let mut objects = std::mem::take(&mut scene.objects);
         let mut placed = objects.iter_mut();
         let back = |inv: &[Option<u32>], k: u32| inv.get(k as usize).copied().flatten();
         for r in &self.records {
             for o in placed.by_ref().take(r.objects as usize) {
-                let key = (o.span.start, o.span.end);
+                let key = (o.span.file, o.span.start, o.span.end);
                 if r.object {
                     (o.mesh, o.material) = (r.mesh?, r.material?);
                 } else if let Ok(at) =
-                    unresolved.binary_search_by_key(&key, |(s, _, _)| (s.start, s.end))
+                    unresolved.binary_search_by_key(&key, |(s, _, _)| (s.file, s.start, s.end))
                 {
                     (o.mesh, o.material) = (unresolved[at].1, unresolved[at].2);
                 } else {

@@ -93,10 +93,7 @@ impl CheckMemo {
             };
             let reserved = matches!(name.name.as_str(), "true" | "false" | "frame");
             let taken = cx.lets.contains_key(&name.name) || cx.defines.contains_key(&name.name);
-            if reserved
-                || taken
-                || !super::reevaluate::names_only_earlier(&cx, value, name.span.start)
-            {
+            if reserved || taken || !super::reevaluate::names_only_earlier(&cx, value, name.span) {
                 return false;
             }
             match cx.eval(value) {

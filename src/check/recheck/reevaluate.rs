@@ -26,7 +26,7 @@ pub(super) fn reevaluate(
         None => return None,
     };
     let overridden = cx.defines.contains_key(&name.name);
-    if overridden || !names_only_earlier(cx, value, name.span.start) {
+    if overridden || !names_only_earlier(cx, value, name.span) {
         return None;
     }
     let new = cx.eval(value);
@@ -53,10 +53,14 @@ pub(super) fn reevaluate(
 }
 
 /// Whether every constant `e` names was declared before `before` (in the full check, a later
-/// one is unknown to it), and `e` holds no array (read from the text by its own parser).
-pub(super) fn names_only_earlier(cx: &Checker, e: &Expr, before: u32) -> bool {
+/// one is unknown to it; across included files in the compile's reading order), and `e`
+/// holds no array (read from the text by its own parser).
+pub(super) fn names_only_earlier(cx: &Checker, e: &Expr, before: crate::source::Span) -> bool {
     match &e.kind {
-        ExprKind::Name(n) => cx.lets.get(n).is_none_or(|(_, at)| at.start < before),
+        ExprKind::Name(n) => cx
+            .lets
+            .get(n)
+            .is_none_or(|(_, at)| cx.order.before(*at, before)),
         ExprKind::Paren(e) | ExprKind::Neg(e) => names_only_earlier(cx, e, before),
         ExprKind::Tuple(es) => es.iter().all(|e| names_only_earlier(cx, e, before)),
         ExprKind::Call(c) => c.args.iter().all(|e| names_only_earlier(cx, e, before)),

@@ -14,8 +14,6 @@ use std::net::{TcpListener, TcpStream};
 use std::sync::{Arc, Condvar, Mutex};
 use std::time::Duration;
 
-use serde_json::Value;
-
 const PAGE: &str = include_str!("page.html");
 /// Events kept for clients that are between two reads.
 const BACKLOG: usize = 64;
@@ -54,15 +52,15 @@ impl Preview {
         self.state.lock().map_or(0, |s| s.image_version)
     }
 
-    /// Passes a status event to the connected pages.
-    pub fn event(&self, event: &Value) {
+    /// Passes a status event to the connected pages: its JSON `text`, called `name` (its
+    /// `"event"`).
+    pub fn event_line(&self, name: &str, text: String) {
         let Ok(mut s) = self.state.lock() else {
             return;
         };
-        let text = event.to_string();
-        match event.get("event").and_then(Value::as_str) {
-            Some("compiled" | "error") => s.last_outcome = Some(text.clone()),
-            Some("pass") => s.last_pass = Some(text.clone()),
+        match name {
+            "compiled" | "error" => s.last_outcome = Some(text.clone()),
+            "pass" => s.last_pass = Some(text.clone()),
             _ => {}
         }
         let seq = s.next_seq;
