@@ -6,8 +6,8 @@
 //! [`CheckMemo`]. After an edit of the scene file it parses only the statements around the
 //! edited bytes ([`super::edit`]) and, when every statement that changed is a top-level
 //! `object`, re-checks those alone ([`CheckMemo::recheck`]) and moves every other span by the
-//! edit. When the changed statements are `let`s, `material`s, `mesh`es (an `obj` one without
-//! material overrides), `texture`s and `object`s, one for one and each keeping its name, it re-checks them and the statements that
+//! edit. When the changed statements are `let`s, `material`s, `mesh`es (an `obj` one with
+//! material overrides too), `texture`s and `object`s, one for one and each keeping its name, it re-checks them and the statements that
 //! name a constant whose value changed ([`CheckMemo::recheck_decls`], which finds them through
 //! [`super::dependents`]). An edit of `group`s (and `object`s) that keeps the groups' names is
 //! checked as an edit of objects is ([`CheckMemo::recheck_placements`]); a `material`, `mesh`
