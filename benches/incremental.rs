@@ -4,7 +4,7 @@
 //!
 //! The scene of issue 22: 100,000 `object` statements, each with a rotate and a translate, over
 //! three meshes, an OBJ mesh and an image texture (placed by the group) and 100 materials that
-//! name one constant, `gloss`, and one `group` (about 9 MB). Twenty-seven kinds
+//! name one constant, `gloss`, and one `group` (about 9 MB). Thirty-one kinds
 //! of edit, one line each: one object's translate in the middle of the file (a person nudging one
 //! object), one material's colour, the value of `gloss` (its 100 materials re-checked), an
 //! `object` line inserted, one deleted, an object's material misspelt then put back (every
@@ -21,7 +21,10 @@
 //! line (syntax errors that lose a constant and a declaration others name), each taken out;
 //! (2026-11-26, fifth session) the OBJ mesh's file changed, the image texture's wrap mode
 //! changed, the light and the camera renamed, a group added and removed, and material `m0`
-//! (named by the group and 1,000 objects) renamed and named back.
+//! (named by the group and 1,000 objects) renamed and named back; (sixth session) `let gloss`
+//! renamed (its 100 materials fail) and named back, a block of three declarations pasted and
+//! deleted, the OBJ mesh's material override changed, and a material the group names added
+//! after the group named it.
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
 //!    each edit (the text served from memory; diagnostics are ready when it returns).
@@ -264,9 +267,22 @@ enum Kind {
     /// Edits 0, 2, 4, …: material `m0` renamed `m0x` (the group and 1,000 objects name it:
     /// errors); 1, 3, 5, …: named back.
     GroupedRename,
+    /// (Sixth session.) Edits 0, 2, 4, …: `let gloss` renamed `glossy` (the 100 materials that
+    /// name it get an unknown-name error, not lowered); 1, 3, 5, …: named back.
+    LetRenamed,
+    /// Edits 0, 2, 4, …: a block of three declarations pasted after the first material (a
+    /// texture, a material naming it, a mesh; all unused: warnings; every later material's
+    /// table index moves); 1, 3, 5, …: the block deleted.
+    Paste,
+    /// The OBJ mesh's material override: `{ material "wood" mN }`, another material each time.
+    Override,
+    /// Edits 0, 2, 4, …: the group's object named a material not declared yet (an error);
+    /// 1, 3, 5, …: that material's line added before the last `let` (the group resolves; the
+    /// one it named before stays, unused).
+    GroupNamesAdded,
 }
 
-const KINDS: [Kind; 27] = [
+const KINDS: [Kind; 31] = [
     Kind::Object,
     Kind::Material,
     Kind::Let,
@@ -285,6 +301,8 @@ const KINDS: [Kind; 27] = [
     Kind::LightRename,
     Kind::CameraRename,
     Kind::GroupAdded,
+    Kind::Paste,
+    Kind::Override,
     // Last: each error is taken out again (an even number of edits).
     Kind::BadValue,
     Kind::LetError,
@@ -295,6 +313,9 @@ const KINDS: [Kind; 27] = [
     Kind::LetLost,
     Kind::MaterialLost,
     Kind::GroupedRename,
+    Kind::LetRenamed,
+    // Last: it leaves a material line per pair before the last `let`.
+    Kind::GroupNamesAdded,
 ];
 
 /// Kinds whose even edits make an error (`scnc watch` builds nothing then: its figure is save →
@@ -311,6 +332,8 @@ fn errs(kind: Kind) -> bool {
             | Kind::MaterialLost
             | Kind::Rename
             | Kind::GroupedRename
+            | Kind::LetRenamed
+            | Kind::GroupNamesAdded
     )
 }
 
@@ -445,6 +468,38 @@ fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String
             let line = &mut lines[FIRST_MATERIAL];
             *line = line.replacen(from, to, 1);
         }
+        Kind::LetRenamed => {
+            let (from, to) = match k % 2 {
+                0 => ("let gloss =", "let glossy ="),
+                _ => ("let glossy =", "let gloss ="),
+            };
+            lines[LET_LINE] = lines[LET_LINE].replacen(from, to, 1);
+        }
+        Kind::Paste if k.is_multiple_of(2) => {
+            let block = [
+                format!("texture pasted{k} = checker {{ even #fff  odd #000 }}"),
+                format!("material pasted{k} = phong {{ diffuse pasted{k} }}"),
+                format!("mesh pasted{k} = box {{ size 1 }}"),
+            ];
+            let at = FIRST_MATERIAL + 1;
+            lines.splice(at..at, block);
+        }
+        Kind::Paste => {
+            lines.drain(FIRST_MATERIAL + 1..FIRST_MATERIAL + 4);
+        }
+        Kind::Override => {
+            let base = lines[OBJ_LINE].split(" {").next().unwrap_or("").to_string();
+            lines[OBJ_LINE] = format!("{base} {{ material \"wood\" m{} }}", 1 + k % 99);
+        }
+        Kind::GroupNamesAdded if k.is_multiple_of(2) => {
+            let named = format!("material later{k} ");
+            lines[GROUP_LINE] = group_line(0).replacen("material m0 ", &named, 1);
+        }
+        Kind::GroupNamesAdded => {
+            let at = lines.len() - 2;
+            let line = format!("material later{} = phong {{ diffuse #345 }}", k - 1);
+            lines.insert(at, line);
+        }
         Kind::Rename => {
             let (name, renamed) = ("material m5 =", "material m5x =");
             let (from, to) = if k.is_multiple_of(2) {
@@ -468,6 +523,7 @@ fn checked(kind: Kind, k: usize) -> usize {
         Kind::Let => 101,
         Kind::SettingLet => 2,
         Kind::UnusedLet | Kind::NewMaterial | Kind::GroupAdded => 1 - k % 2,
+        Kind::Paste => 3 * (1 - k % 2),
         Kind::Delete => 0,
         _ => 1,
     }
@@ -608,7 +664,8 @@ fn front_end(objects: usize, edits: usize) {
         let mut build: [Vec<f64>; 3] = Default::default();
         // Pairs of edits for the errors, so that each is taken out before the next kind (and
         // for an inserted material, which would move the material lines of the next kinds).
-        let paired = errs(kind) || matches!(kind, Kind::NewMaterial | Kind::GroupAdded);
+        let paired =
+            errs(kind) || matches!(kind, Kind::NewMaterial | Kind::GroupAdded | Kind::Paste);
         let count = if paired { edits + edits % 2 } else { edits };
         // A full compile of the first error, for comparison.
         let mut full_error = None;
@@ -643,6 +700,8 @@ fn front_end(objects: usize, edits: usize) {
                         | Kind::LetError
                         | Kind::Rename
                         | Kind::GroupedRename
+                        | Kind::LetRenamed
+                        | Kind::GroupNamesAdded
                 );
                 let checked = match kind {
                     Kind::LetError => checked(Kind::Let, k),
@@ -650,6 +709,10 @@ fn front_end(objects: usize, edits: usize) {
                     Kind::Rename => 1 + objects / 100 + usize::from(objects % 100 > 5),
                     // The material, the objects that name `m0` and the group.
                     Kind::GroupedRename => 2 + objects.div_ceil(100),
+                    // The `let` and the 100 materials that name it.
+                    Kind::LetRenamed => 101,
+                    // The group; then the material added and the group.
+                    Kind::GroupNamesAdded => 1 + k % 2,
                     _ => usize::from(checks || k % 2 == 1),
                 };
                 let unchanged = !checks && inc.reuse == Reuse::Unchanged;

@@ -70,6 +70,10 @@ pub struct Checker<'s> {
     /// The textures each material that refers to any refers to: (material table index,
     /// texture table indices), ascending.
     material_textures: Vec<(u32, Vec<usize>)>,
+    /// The material overrides of each mesh `finish` kept that has any: (mesh table index,
+    /// the overrides' material table indices, in order), ascending; `finish` remaps the IR's
+    /// to IR indices, and the incremental re-compaction maps them back from this list.
+    mesh_overrides: Vec<(u32, Vec<u32>)>,
     used_materials: Vec<bool>,
     used_meshes: Vec<bool>,
     /// How many objects name each material and mesh (table indices), for the incremental
@@ -111,6 +115,7 @@ impl<'s> Checker<'s> {
             objects: Vec::new(),
             cameras: Vec::new(),
             material_textures: Vec::new(),
+            mesh_overrides: Vec::new(),
             used_materials: Vec::new(),
             used_meshes: Vec::new(),
             material_uses: Vec::new(),

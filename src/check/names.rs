@@ -366,6 +366,7 @@ impl Checker<'_> {
         let mut kept = 0;
         let mut names = Names::default();
         let mut dropped = Vec::new();
+        let mut overrides = Vec::new();
         let meshes = (all.into_iter().enumerate())
             .filter_map(|(i, m)| {
                 let used = self.used_meshes.get(i).copied().unwrap_or(true);
@@ -376,6 +377,15 @@ impl Checker<'_> {
                     return None;
                 }
                 let mut m = m?;
+                let listed: Vec<u32> = m
+                    .obj_options()
+                    .materials
+                    .iter()
+                    .map(|o| o.material)
+                    .collect();
+                if !listed.is_empty() {
+                    overrides.push((i as u32, listed));
+                }
                 for o in m.obj.iter_mut().flat_map(|o| &mut o.materials) {
                     o.material = material_map[o.material as usize].unwrap_or(0);
                 }
@@ -385,6 +395,7 @@ impl Checker<'_> {
             })
             .collect();
         self.dropped.meshes = dropped;
+        self.mesh_overrides = overrides;
         (meshes, mesh_map)
     }
 }

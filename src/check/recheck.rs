@@ -7,7 +7,8 @@
 //! ([`decls`]); `let`s added or removed that nothing names are checked alone ([`lets`]); a
 //! value edit of a camera, a light or the render block is checked alone ([`settings`]); an
 //! edit of `group`s that keeps their names is checked as one of `object`s ([`groups`]); a
-//! renamed declaration is checked with what reads either name ([`renamed`]);
+//! renamed declaration is checked with what reads either name ([`renamed`]), and so is a
+//! renamed `let` ([`let_renamed`]);
 //! everything else is a full check.
 //!
 //! Why the result is the full check's: an `object` is checked in the placement phase, after
@@ -28,6 +29,7 @@ mod area_light;
 mod compact;
 mod decls;
 mod groups;
+mod let_renamed;
 mod lets;
 mod redo;
 mod reevaluate;
@@ -62,6 +64,9 @@ pub struct CheckMemo {
     mesh_uses: Vec<u32>,
     /// The materials that refer to textures: (material, texture table indices), ascending.
     material_textures: Vec<(u32, Vec<usize>)>,
+    /// The material overrides of the `obj` meshes the IR holds: (mesh, materials), table
+    /// indices, ascending (what `finish` remapped, for the re-compaction to map back).
+    mesh_overrides: Vec<(u32, Vec<u32>)>,
     texture_map: Vec<Option<u32>>,
     /// The lowered declarations the IR leaves out, for an edit that makes one used.
     dropped: Dropped,
@@ -113,6 +118,7 @@ pub fn check_tracked(
         material_uses: std::mem::take(&mut cx.material_uses),
         mesh_uses: std::mem::take(&mut cx.mesh_uses),
         material_textures: std::mem::take(&mut cx.material_textures),
+        mesh_overrides: std::mem::take(&mut cx.mesh_overrides),
         texture_map: std::mem::take(&mut cx.texture_map),
         dropped: std::mem::take(&mut cx.dropped),
         finish_diags: cx.diags.len() - cx.finish_from,

@@ -6,16 +6,17 @@
 //! [`CheckMemo`]. After an edit of the scene file it parses only the statements around the
 //! edited bytes ([`super::edit`]) and, when every statement that changed is a top-level
 //! `object`, re-checks those alone ([`CheckMemo::recheck`]) and moves every other span by the
-//! edit. When the changed statements are `let`s, `material`s, `mesh`es (an `obj` one without
-//! material overrides), `texture`s and `object`s, one for one and each keeping its name, it re-checks them and the statements that
+//! edit. When the changed statements are `let`s, `material`s, `mesh`es (an `obj` one with
+//! material overrides too), `texture`s and `object`s, one for one and each keeping its name, it re-checks them and the statements that
 //! name a constant whose value changed ([`CheckMemo::recheck_decls`], which finds them through
 //! [`super::dependents`]). An edit of `group`s (and `object`s) that keeps the groups' names is
 //! checked as an edit of objects is ([`CheckMemo::recheck_placements`]); a `material`, `mesh`
 //! or `texture` renamed is checked with what names either name and what has an unknown-name
-//! diagnostic of its kind (in [`CheckMemo::recheck_decls`]). `let`s added or removed that nothing else names, in a scene without
+//! diagnostic of its kind (in [`CheckMemo::recheck_decls`]), and so is a `let` renamed, with
+//! what names either name or has an unknown-name diagnostic. `let`s added or removed that nothing else names, in a scene without
 //! a diagnostic, are checked alone ([`CheckMemo::add_or_remove_lets`]); so is a value edit of a
-//! camera, a light or the render block, or a camera's or light's rename ([`CheckMemo::recheck_setting`]), and one `material`,
-//! `mesh` or `texture` added or removed ([`CheckMemo::add_or_remove_decl`]); the version header edited alone
+//! camera, a light or the render block, or a camera's or light's rename ([`CheckMemo::recheck_setting`]), and `material`s,
+//! `mesh`es and `texture`s added (a pasted block) or removed ([`CheckMemo::add_or_remove_decl`]); the version header edited alone
 //! (still `scnc 1`) only moves the spans. An edit that breaks the
 //! syntax gets the full compile's diagnostics from the memo of the last text that parsed
 //! ([`super::broken`]), which stays for the edit that fixes it (diffed against that text). Anything

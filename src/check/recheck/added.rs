@@ -1,7 +1,7 @@
-//! Stage 2, check, incrementally: one `material`, `mesh` or `texture` declaration added
-//! (`material spare = phong { diffuse #888 }` typed on a new line; what names it checked
-//! again) or removed (the line of one nothing names deleted), checked alone and spliced into
-//! the [`CheckMemo`].
+//! Stage 2, check, incrementally: `material`, `mesh` and `texture` declarations added
+//! (`material spare = phong { diffuse #888 }` typed on a new line, or a block of them pasted:
+//! 2026-11-26, sixth session; what names them checked again) or removed (the lines of ones
+//! nothing names deleted), checked alone and spliced into the [`CheckMemo`].
 //!
 //! Why the result is the full check's: nothing names a removed declaration (the whole-word
 //! search of the new text through [`Dependents`] finds none), so no other statement checks
@@ -9,16 +9,20 @@
 //! material is typed before the material is) is checked again once it is in, and so is every
 //! statement with an unknown-name diagnostic of its namespace, whose did-you-mean lists the
 //! namespace's names ([`CheckMemo::recheck_unknown_names`], 2026-11-26 fifth session; one of
-//! another kind lists other names); a `group` naming an added one declines (its uses under
-//! the name it did not resolve are not known one by one), and so does an area light (a
-//! setting) among them. What
-//! changes is its table: a declaration's table index is its place among those of its kind in
-//! statement order, so the added one is put at its place and every table index after it (in
-//! statement records, use counts, index maps, texture lists, dropped declarations) moves up by
-//! one, or down by one after a removed one. An added declaration is lowered as the check lowers
-//! it (its diagnostics, in its own text, join those before the placement phase); then the IR is
-//! compacted again ([`super::compact`]): the new one is unused, so it is left out with a
-//! warning, and a removed one's warning goes.
+//! another kind lists other names). A `group` naming an added one (sixth session; it
+//! declined before) has the uses its objects counted under the names that resolved taken out
+//! before the tables change (it is checked against them, as [`super::groups`] takes an old
+//! group's out), and its uses counted anew when it is checked again; an area light (a
+//! setting) among them declines. What
+//! changes is the tables: a declaration's table index is its place among those of its kind in
+//! statement order, so each added one is put at its place (in statement order) and every table
+//! index after it (in statement records, use counts, index maps, texture lists, material
+//! overrides, dropped declarations) moves up by one, or down by one after a removed one. The
+//! added declarations are lowered as the check lowers them, once all are in the tables
+//! (textures, then materials, then meshes; their diagnostics, in their own text, join those
+//! before the placement phase); then the IR is compacted again ([`super::compact`]): a new one
+//! is unused, so it is left out with a warning, and a removed one's warning goes. Declined: a
+//! name declared already, or twice among the added ones.
 
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -27,8 +31,9 @@ use super::super::names::Namespace;
 use super::super::StmtRecord;
 use super::compact::Relowered;
 use super::redo::redo;
+use super::reevaluate::Failing;
 use super::{CheckMemo, Dependents, Rechecked};
-use crate::source::{Shift, SourceMap};
+use crate::source::{Shift, SourceMap, Span};
 use crate::syntax::{Decl, DeclKind, Stmt};
 
 /// The namespace of a declaration the re-check may add or remove.
@@ -43,10 +48,11 @@ fn namespace(d: &Decl) -> Option<Namespace> {
 
 impl CheckMemo {
     /// Replaces the statements `old` (indices into the old list; `old_stmts`, as parsed from the
-    /// old text) by `new` when one of the two is empty and the other is one `material`, `mesh`
-    /// or `texture` declaration that nothing else names; every other span moves by `shift`, and
-    /// `sources` holds the new text. The number of statements checked again, or `None` when the
-    /// result could differ from a full check's (the memo is then spoiled).
+    /// old text) by `new` when one of the two is empty and the other is `material`, `mesh` or
+    /// `texture` declarations: one removed that nothing else names, or any number added (a
+    /// pasted block); every other span moves by `shift`, and `sources` holds the new text. The
+    /// number of statements checked again, or `None` when the result could differ from a full
+    /// check's (the memo is then spoiled).
     pub fn add_or_remove_decl(
         &mut self,
         sources: &SourceMap,
@@ -56,49 +62,85 @@ impl CheckMemo {
         shift: &Shift,
         dependents: &mut Dependents,
     ) -> Option<usize> {
-        let (added, d) = match (old_stmts, new) {
-            ([], [Stmt::Decl(d)]) => (true, d),
-            ([Stmt::Decl(d)], []) => (false, d),
+        fn decl(s: &Stmt) -> Option<&Decl> {
+            match s {
+                Stmt::Decl(d) => Some(d),
+                _ => None,
+            }
+        }
+        let (added, decls): (bool, Vec<&Decl>) = match (old_stmts, new) {
+            ([], [_, ..]) => (true, new.iter().map(decl).collect::<Option<_>>()?),
+            ([_, ..], []) => (false, old_stmts.iter().map(decl).collect::<Option<_>>()?),
             _ => return None,
         };
-        let ns = namespace(d)?;
+        let mut namespaces = Vec::new();
+        for d in &decls {
+            let ns = namespace(d)?;
+            if !namespaces.contains(&ns) {
+                namespaces.push(ns);
+            }
+        }
         if old.len() != old_stmts.len() {
             return None;
         }
-        let named = dependents(&d.name.name)?;
-        let table = &mut self.tables[ns as usize];
+        let own = old.start..old.start + new.len();
         // What names an added one (it had an unknown name): checked again once it is in.
         let mut naming = BTreeMap::new();
+        // The groups among them, whose uses are counted again.
+        let mut fresh = Vec::new();
         if added {
-            naming.extend(named.into_iter().filter(|(i, _)| *i != old.start));
-            // A group's uses under the name it did not resolve are not known one by one.
-            let group = naming.values().any(|s| matches!(s, Stmt::Group(_)));
-            if group || table.get(&d.name.name).is_some() {
-                return None;
+            for d in &decls {
+                let ns = namespace(d)?;
+                let same = |e: &&&Decl| namespace(e) == Some(ns) && e.name.name == d.name.name;
+                let twice = decls.iter().filter(same).count() > 1;
+                if twice || self.tables[ns as usize].get(&d.name.name).is_some() {
+                    return None;
+                }
+                let named = dependents(&d.name.name)?;
+                naming.extend(named.into_iter().filter(|(i, _)| !own.contains(i)));
+            }
+            // A group naming an added one counted its objects' uses under the names that
+            // resolved: those are taken out now (the tables are the old ones), and its uses
+            // counted anew when it is checked again (`redo`'s `fresh`).
+            let groups: Vec<(usize, Stmt)> = (naming.iter())
+                .filter(|(_, s)| matches!(s, Stmt::Group(_)))
+                .map(|(i, s)| (*i, s.clone()))
+                .collect();
+            if !groups.is_empty() {
+                let stmts: Vec<Stmt> = groups.iter().map(|(_, s)| s.clone()).collect();
+                self.forget_uses(sources, &stmts)?;
+                fresh = groups.into_iter().map(|(i, _)| i).collect();
             }
         } else {
-            // Out of the memo before the spans move (its own lie in the edited bytes).
-            let at = table.get(&d.name.name)?;
-            if table.spans.get(at) != Some(&d.name.span) || !named.is_empty() {
-                return None;
+            // Out of the memo before the spans move (their own lie in the edited bytes).
+            for d in &decls {
+                let ns = namespace(d)?;
+                let named = dependents(&d.name.name)?;
+                let table = &mut self.tables[ns as usize];
+                let at = table.get(&d.name.name)?;
+                if table.spans.get(at) != Some(&d.name.span) || !named.is_empty() {
+                    return None;
+                }
+                table.remove_at(at);
+                self.renumber(ns, at, false)?;
             }
-            table.remove_at(at);
-            self.drop_early(&[d.span]);
-            // Its unused-declaration warning (the re-compaction below gives the others again).
+            let spans: Vec<Span> = decls.iter().map(|d| d.span).collect();
+            self.drop_early(&spans);
+            // Their unused-declaration warnings (the re-compaction below gives the others
+            // again).
             let end = self.diagnostics.len();
             let finish = self
                 .diagnostics
                 .split_off(end.checked_sub(self.finish_diags)?);
-            let (own, kept): (Vec<_>, Vec<_>) = finish.into_iter().partition(|e| {
-                let at = e.primary.as_ref().map(|l| l.span);
-                at.is_some_and(|s| {
-                    s.file == d.span.file && (d.span.start..d.span.end).contains(&s.start)
-                })
-            });
-            (own.len() <= 1).then_some(())?;
+            let inside = |s: Span| {
+                (spans.iter()).any(|d| s.file == d.file && (d.start..d.end).contains(&s.start))
+            };
+            let (own, kept): (Vec<_>, Vec<_>) = finish
+                .into_iter()
+                .partition(|e| e.primary.as_ref().is_some_and(|l| inside(l.span)));
+            (own.len() <= decls.len()).then_some(())?;
             self.finish_diags = kept.len();
             self.diagnostics.extend(kept);
-            self.renumber(ns, at, false)?;
         }
         let records = vec![StmtRecord::default(); new.len()];
         let nothing = Rechecked {
@@ -106,39 +148,49 @@ impl CheckMemo {
             objects: Vec::new(),
             records,
         };
-        let own = added.then_some(old.start);
         if !self.splice(0..0, 0..0, old, nothing, shift) {
             return None;
         }
         let mut relowered = Relowered::default();
         if added {
-            // Its place among its kind, in statement order.
-            let (table, order) = (&mut self.tables[ns as usize], &self.order);
-            let at = table
-                .spans
-                .partition_point(|s| order.before(*s, d.name.span));
-            table.insert_at(at, &d.name.name, d.name.span);
-            self.renumber(ns, at, true)?;
-            self.lower_added(sources, ns, at, d, &mut relowered)?;
+            // Each at its place among its kind, in statement order.
+            for d in &decls {
+                let ns = namespace(d)?;
+                let (table, order) = (&mut self.tables[ns as usize], &self.order);
+                let at = table
+                    .spans
+                    .partition_point(|s| order.before(*s, d.name.span));
+                table.insert_at(at, &d.name.name, d.name.span);
+                self.renumber(ns, at, true)?;
+            }
+            // Lowered as the check lowers them: textures, then materials, then meshes.
+            for ns in [Namespace::Texture, Namespace::Material, Namespace::Mesh] {
+                for d in decls.iter().filter(|d| namespace(d) == Some(ns)) {
+                    let at = self.tables[ns as usize].get(&d.name.name)?;
+                    self.lower_added(sources, ns, at, d, &mut relowered)?;
+                }
+            }
         }
         self.recompact(sources, relowered)?;
-        let rechecked = self.recheck_unknown_names(sources, ns, naming, own, dependents)?;
+        let rechecked =
+            self.recheck_unknown_names(sources, &namespaces, naming, own, &fresh, dependents)?;
         Some(new.len() + rechecked)
     }
 
-    /// After a declaration of `ns` was added or removed (every span already the new text's):
-    /// the statements `naming` (they name an added one) and those with an unknown-name
-    /// diagnostic of `ns` (its did-you-mean lists `ns`'s names, which changed; found as a
-    /// rename finds them, [`CheckMemo::rename_dependents`]), but the statement `own`, checked
-    /// again in place ([`super::redo`], [`CheckMemo::splice_decls`]). How many, or `None`
-    /// when one of them is a setting (an area light naming an unknown mesh) or the re-check
-    /// declines.
+    /// After declarations of `namespaces` were added or removed (every span already the new
+    /// text's): the statements `naming` (they name an added one; the `group`s among them at
+    /// `fresh`, their uses taken out) and those with an unknown-name diagnostic of one of
+    /// `namespaces` (its did-you-mean lists the names, which changed; found as a rename finds
+    /// them, [`CheckMemo::rename_dependents`]), but the statements `own`, checked again in
+    /// place ([`super::redo`], [`CheckMemo::splice_decls`]). How many, or `None` when one of
+    /// them is a setting (an area light naming an unknown mesh) or the re-check declines.
     fn recheck_unknown_names(
         &mut self,
         sources: &SourceMap,
-        ns: Namespace,
+        namespaces: &[Namespace],
         mut naming: BTreeMap<usize, Stmt>,
-        own: Option<usize>,
+        own: Range<usize>,
+        fresh: &[usize],
         dependents: &mut Dependents,
     ) -> Option<usize> {
         let unmoved = Shift {
@@ -147,17 +199,20 @@ impl CheckMemo {
             old_end: u32::MAX,
             new_end: u32::MAX,
         };
-        naming.extend(self.rename_dependents(sources, ns, &[], &unmoved, dependents)?);
-        if let Some(own) = own {
-            naming.remove(&own);
+        for &ns in namespaces {
+            naming.extend(self.rename_dependents(sources, ns, &[], &unmoved, dependents)?);
         }
+        naming.retain(|i, _| !own.contains(i));
         if naming.is_empty() {
             return Some(0);
         }
         let was_used = (self.used_meshes(), self.used_materials());
         let mut cx = self.lend(sources);
         let (records, textures) = (&self.records, &self.material_textures);
-        let redone = redo(&mut cx, naming, records, textures, false, dependents, None);
+        let failing = Failing::Declined;
+        let redone = redo(
+            &mut cx, naming, records, textures, failing, dependents, None, fresh,
+        );
         self.take_back(&mut cx);
         let redone = redone?;
         if !redone.settings.is_empty() {
@@ -276,6 +331,16 @@ impl CheckMemo {
                 for (m, _) in &mut self.material_textures {
                     *m = moved(*m);
                 }
+                // Material overrides: the kept meshes' list, the dropped meshes' own (table
+                // indices; nothing names a removed one).
+                for m in (self.mesh_overrides.iter_mut()).flat_map(|(_, l)| l) {
+                    *m = moved(*m);
+                }
+                let dropped_overrides = (dropped.meshes.iter_mut())
+                    .flat_map(|(_, m)| m.obj.iter_mut().flat_map(|o| &mut o.materials));
+                for o in dropped_overrides {
+                    o.material = moved(o.material);
+                }
             }
             Namespace::Mesh => {
                 if !added {
@@ -285,6 +350,9 @@ impl CheckMemo {
                     r.mesh = r.mesh.map(moved);
                 }
                 for (i, _) in &mut dropped.meshes {
+                    *i = moved(*i);
+                }
+                for (i, _) in &mut self.mesh_overrides {
                     *i = moved(*i);
                 }
                 for (_, m, _) in &mut dropped.unresolved {

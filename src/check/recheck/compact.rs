@@ -18,10 +18,12 @@
 //! about a millisecond for 100,000) and over the declarations, and clones nothing but the
 //! render settings.
 //!
-//! It declines (the caller then checks in full) when the IR's indices cannot be inverted
-//! exactly: an `obj` mesh's material overrides (remapped to a placeholder when their material
-//! failed). A material's textures come back from its list of textures (table indices, in the
-//! order of its inputs), exact also where one failed to lower.
+//! A material's textures come back from its list of textures (table indices, in the order of
+//! its inputs), exact also where one failed to lower; an `obj` mesh's material overrides from
+//! the list `finish` keeps of them (2026-11-26, sixth session: they declined before, since a
+//! failed material is remapped to a placeholder 0). `finish` marks the materials a used
+//! mesh's overrides name as used, so a re-compaction gives their used-ness too; the memo's
+//! own used-ness does not count them, which only sends more edits to a re-compaction.
 
 use std::sync::Arc;
 
@@ -128,10 +130,21 @@ impl CheckMemo {
             let used = used.get(i).copied().unwrap_or(true);
             in_ir == (lowered && used)
         };
-        let fits = r
-            .textures
-            .iter()
-            .all(|(i, t)| stays(&self.texture_map, &used_textures, *i, t.is_some()))
+        // A mesh the IR holds with material overrides (before or after): they are IR indices
+        // there, and may make materials used or unused.
+        let plain_meshes = r.meshes.iter().all(|(i, m)| {
+            let in_ir = self.mesh_map.get(*i).copied().flatten().is_some();
+            let key = *i as u32;
+            let had = (self.mesh_overrides.binary_search_by_key(&key, |(k, _)| *k)).is_ok();
+            let has = m
+                .as_ref()
+                .is_some_and(|m| !m.obj_options().materials.is_empty());
+            !in_ir || (!had && !has)
+        });
+        let fits = plain_meshes
+            && r.textures
+                .iter()
+                .all(|(i, t)| stays(&self.texture_map, &used_textures, *i, t.is_some()))
             && r.materials
                 .iter()
                 .all(|(i, m)| stays(&self.material_map, &used_materials, *i, m.is_some()))
@@ -191,11 +204,6 @@ impl CheckMemo {
         let used_meshes = self.used_meshes();
         let mut shared = self.scene.take()?;
         let scene = Arc::make_mut(&mut shared);
-        let dropped_meshes = self.dropped.meshes.iter().map(|(_, m)| m);
-        let overrides = |m: &ir::Mesh| !m.obj_options().materials.is_empty();
-        if scene.meshes.iter().chain(dropped_meshes).any(overrides) {
-            return None;
-        }
         let inv_texture = inverse(&self.texture_map, scene.textures.len());
         let inv_material = inverse(&self.material_map, scene.materials.len());
         let inv_mesh = inverse(&self.mesh_map, scene.meshes.len());
@@ -260,7 +268,21 @@ impl CheckMemo {
         let mut materials = by_table(materials, &inv_material, dropped.materials, len, untie)?;
         let meshes = std::mem::take(&mut scene.meshes);
         let len = self.mesh_map.len();
-        let mut meshes = by_table(meshes, &inv_mesh, dropped.meshes, len, |_, _| Some(()))?;
+        // An `obj` mesh's material overrides by table index, from the list `finish` kept (the
+        // IR has 0 in place of one that failed to lower).
+        let overrides = &self.mesh_overrides;
+        let untie_mesh = |i: u32, m: &mut ir::Mesh| {
+            let list = match overrides.binary_search_by_key(&i, |(k, _)| *k) {
+                Ok(at) => &overrides[at].1[..],
+                Err(_) => &[],
+            };
+            let mut each = list.iter();
+            for o in m.obj.iter_mut().flat_map(|o| &mut o.materials) {
+                o.material = *each.next()?;
+            }
+            each.next().is_none().then_some(())
+        };
+        let mut meshes = by_table(meshes, &inv_mesh, dropped.meshes, len, untie_mesh)?;
         for (i, t) in relowered.textures {
             *textures.get_mut(i)? = t;
         }
@@ -288,6 +310,7 @@ impl CheckMemo {
         self.texture_map = std::mem::take(&mut cx.texture_map);
         self.material_map = std::mem::take(&mut cx.material_map);
         self.mesh_map = std::mem::take(&mut cx.mesh_map);
+        self.mesh_overrides = std::mem::take(&mut cx.mesh_overrides);
         self.dropped = std::mem::take(&mut cx.dropped);
         let kept = self.diagnostics.len().checked_sub(self.finish_diags)?;
         self.diagnostics.truncate(kept);

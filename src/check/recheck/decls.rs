@@ -12,9 +12,10 @@
 //! An `obj` mesh and an `image` texture are declarations like the others here (2026-11-26,
 //! fifth session): the check reads no file (the path is resolved against the scene's
 //! directory; the build loads and caches the file by path and content hash), so their IR is a
-//! function of their text. Two things read more than the declaration's own IR, and decline:
-//! an `obj` mesh's `material` overrides (they name materials and make them used; the
-//! re-compaction does not invert their indices), and a normal map's sRGB warning, which reads
+//! function of their text. An `obj` mesh's `material` overrides name materials and make them
+//! used: a mesh the IR holds with any (before or after the edit) is put in by a re-compaction
+//! ([`super::compact`], which maps them back by table index; sixth session). A normal map's
+//! sRGB warning reads more than the declaration's own IR, and declines: it reads
 //! whether the texture it names is an image decoded as sRGB: a texture whose answer changes
 //! is declined when a material that names it has a `normal_map`
 //! ([`CheckMemo::normal_maps_unchanged`]). Their IR holds a span in the declaration's value
@@ -23,8 +24,7 @@
 //!
 //! Why the result is the full check's: a re-checked `let` with an unknown name, or that fails
 //! (or failed) while another error stands, a renamed
-//! statement, a redeclaration (not the first of its name), an `obj` mesh with material
-//! overrides, a material with a normal map (its warning reads the texture's IR), a `let` that a
+//! statement, a redeclaration (not the first of its name), a material with a normal map (its warning reads the texture's IR), a `let` that a
 //! `--define` overrides or that names a constant declared after it, and a constant named by
 //! any other kind of statement (a camera, a light, the render block) make it decline. A `group`
 //! that names a changed constant is checked again as an edited group is ([`super::groups`]:
@@ -53,6 +53,7 @@ use super::super::names::Namespace;
 use super::super::StmtRecord;
 use super::compact::Relowered;
 use super::redo::{names_a_normal_map, redo};
+use super::reevaluate::Failing;
 use super::renamed::renamed;
 use super::CheckMemo;
 use crate::diag::Diagnostic;
@@ -109,7 +110,7 @@ impl CheckMemo {
             return None;
         }
         if super::lets::renamed_let(old_stmts, &new) {
-            return self.add_or_remove_lets(sources, old, old_stmts, &new, shift, dependents);
+            return self.rename_let(sources, old, old_stmts, &new, shift, dependents);
         }
         let rename = match (old_stmts, &new[..]) {
             ([o], [n]) => renamed(o, n),
@@ -147,10 +148,20 @@ impl CheckMemo {
         let textures = &self.material_textures;
         // A `let` may come to have a diagnostic, or lose one, only when no other error stands
         // (an unknown name's did-you-mean lists the constants, which such an edit changes).
-        let clean = !self.diagnostics.iter().any(Diagnostic::is_error);
+        let failing = match self.diagnostics.iter().any(Diagnostic::is_error) {
+            true => Failing::Declined,
+            false => Failing::Clean,
+        };
         let records = &self.records;
         let redone = redo(
-            &mut cx, changed, records, textures, clean, dependents, renaming,
+            &mut cx,
+            changed,
+            records,
+            textures,
+            failing,
+            dependents,
+            renaming,
+            &[],
         );
         self.take_back(&mut cx);
         let mut redone = redone?;
@@ -210,7 +221,7 @@ fn srgb_image(t: Option<&ir::Texture>) -> bool {
 }
 
 /// Whether `new` may stand in for `old` in [`CheckMemo::recheck_decls`]: the same `let`,
-/// `material`, `mesh` (an `obj` one without material overrides) or `texture` by name, or two
+/// `material`, `mesh` (an `obj` one with material overrides too) or `texture` by name, or two
 /// `object`s.
 fn same_declaration(old: &Stmt, new: &Stmt) -> bool {
     match (old, new) {
@@ -220,22 +231,9 @@ fn same_declaration(old: &Stmt, new: &Stmt) -> bool {
                 a.kind,
                 DeclKind::Material | DeclKind::Mesh | DeclKind::Texture
             );
-            let plain = !overrides_materials(a) && !overrides_materials(b);
-            kind && a.kind == b.kind && a.name.name == b.name.name && plain
+            kind && a.kind == b.kind && a.name.name == b.name.name
         }
         (Stmt::Object(_), Stmt::Object(_)) => true,
         _ => false,
     }
-}
-
-/// Whether `d` is a mesh whose body has a `material` key (an `obj` mesh's material override,
-/// or the word anywhere in another mesh's body: over-cautious, never wrong). Overrides name
-/// materials and make them used; the re-check does not follow them (the re-compaction
-/// declines them too), so such an edit is a full compile.
-pub(super) fn overrides_materials(d: &crate::syntax::Decl) -> bool {
-    let items = d.body.iter().flat_map(|b| &b.items);
-    d.kind == DeclKind::Mesh
-        && items
-            .into_iter()
-            .any(|i| matches!(i, crate::syntax::Item::Value(e) if e.as_name() == Some("material")))
 }

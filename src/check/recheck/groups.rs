@@ -145,7 +145,7 @@ impl CheckMemo {
 
     /// Takes out the uses of meshes and materials that `stmts` (placements of the old text,
     /// which `old_sources` holds) counted: they are checked again to count them.
-    fn forget_uses(&mut self, old_sources: &SourceMap, stmts: &[Stmt]) -> Option<()> {
+    pub(super) fn forget_uses(&mut self, old_sources: &SourceMap, stmts: &[Stmt]) -> Option<()> {
         let before = (self.mesh_uses.clone(), self.material_uses.clone());
         let _ = self.check_objects(old_sources, stmts);
         let forget = |uses: &mut [u32], before: &[u32]| -> Option<()> {

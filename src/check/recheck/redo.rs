@@ -9,23 +9,28 @@ use std::collections::BTreeMap;
 
 use super::super::names::Namespace;
 use super::super::{Checker, StmtRecord};
-use super::decls::{overrides_materials, Dependents, Redone};
+use super::decls::{Dependents, Redone};
 use super::groups::declared_groups;
-use super::reevaluate::reevaluate;
+use super::reevaluate::{reevaluate, Failing};
 use crate::diag::Diagnostic;
 use crate::source::Span;
 use crate::syntax::{DeclKind, Item, Stmt};
 
 /// Checks the statements `changed` (index → new statement) again against the memo's state in
 /// `cx`, then those that name a constant whose value changed: `None` when it must decline.
+/// `failing` says when a `let` may come to fail or stop failing; the `group`s at the indices
+/// `fresh` had their uses of meshes and materials taken out of the counts before (a
+/// declaration they name was added): they are counted as they are checked.
+#[allow(clippy::too_many_arguments)] // the memo's parts, lent apart from the checker's
 pub(super) fn redo(
     cx: &mut Checker,
     changed: BTreeMap<usize, Stmt>,
     records: &[StmtRecord],
     material_textures: &[(u32, Vec<usize>)],
-    clean: bool,
+    failing: Failing,
     dependents: &mut Dependents,
     renaming: Option<(Namespace, usize, String)>,
+    fresh: &[usize],
 ) -> Option<Redone> {
     let (mut lets, mut others): (BTreeMap<_, _>, BTreeMap<_, _>) = changed
         .into_iter()
@@ -37,7 +42,7 @@ pub(super) fn redo(
         let Stmt::Let { name, value, span } = &stmt else {
             return None;
         };
-        let changed = reevaluate(cx, name, value, clean)?;
+        let changed = reevaluate(cx, name, value, failing, dependents)?;
         // Its diagnostics lie in its own text, where the next re-check of it finds them.
         if !cx.diags.iter().all(|d| lies_in(d, *span)) {
             return None;
@@ -97,9 +102,10 @@ pub(super) fn redo(
                 }
                 redone.relowered.materials.push((at, material));
             }
-            // An `obj` mesh too (its file is read by the build, not here), when it overrides
-            // no material (an override makes a material used).
-            Stmt::Decl(d) if d.kind == DeclKind::Mesh && !overrides_materials(d) => {
+            // An `obj` mesh too (its file is read by the build, not here), with material
+            // overrides (table indices here; a mesh the IR holds with any is put in by a
+            // re-compaction, which remaps them and gives the materials' used-ness).
+            Stmt::Decl(d) if d.kind == DeclKind::Mesh => {
                 let at = declared_at(cx, Namespace::Mesh, d)?;
                 let mesh = cx.mesh(d);
                 redone.relowered.meshes.push((at, mesh));
@@ -113,7 +119,9 @@ pub(super) fn redo(
             }
             Stmt::Group(_) => {
                 let old = *records.get(i)?;
-                let (record, diags, objects) = group_again(cx, &stmt, old, renaming.as_ref())?;
+                let counted = fresh.contains(&i);
+                let again = group_again(cx, &stmt, old, renaming.as_ref(), counted);
+                let (record, diags, objects) = again?;
                 redone.objects.insert(i, (record, diags, objects));
                 redone.group_spans.push(stmt.span());
             }
@@ -182,12 +190,14 @@ fn forget_use(uses: &mut [u32], at: Option<u32>) -> Option<()> {
 /// (the namespace, table index and old name of a declaration the table now holds under its
 /// new name), those it counted under the old name (the group checked once more with the
 /// table's entry named back, its output thrown away) are taken out and those under the new
-/// name kept. Its record, diagnostics and objects (table indices).
+/// name kept. With `fresh` (its uses were taken out before: a declaration it names was added),
+/// its uses are counted as it is checked. Its record, diagnostics and objects (table indices).
 fn group_again(
     cx: &mut Checker,
     stmt: &Stmt,
     old: StmtRecord,
     renaming: Option<&(Namespace, usize, String)>,
+    fresh: bool,
 ) -> Option<(StmtRecord, Vec<Diagnostic>, Vec<crate::ir::Object>)> {
     let groups = &cx.tables[Namespace::Group as usize];
     let first = |(name, span): (&str, Span)| {
@@ -205,6 +215,9 @@ fn group_again(
     let uses = (cx.mesh_uses.clone(), cx.material_uses.clone());
     let groups = std::mem::take(&mut cx.tables[Namespace::Group as usize]);
     match renaming {
+        None if fresh => {
+            let _ = cx.placement(stmt);
+        }
         None => {
             let _ = cx.placement(stmt);
             (cx.mesh_uses, cx.material_uses) = uses;

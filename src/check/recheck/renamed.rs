@@ -12,9 +12,9 @@
 //! namespace, whose did-you-mean lists its names (found by the unknown name, read at the
 //! diagnostic's label). A `group` among them is checked twice (`redo::group_again`): once with
 //! the table's entry named back, to count the uses its objects made under the old name (taken
-//! out of the counts), once under the new name (kept). An area light or an `obj` mesh with
-//! material overrides among them is declined (the re-check declines statements of those
-//! kinds). The IR is compacted again whatever the
+//! out of the counts), once under the new name (kept). An area light among them is declined
+//! (the re-check declines statements of that kind); an `obj` mesh whose material overrides
+//! name the renamed material is lowered again. The IR is compacted again whatever the
 //! edit changed, so that an unused declaration's warning carries the new name; the renamed
 //! one's old IR entry (its spans in the edited bytes, which cannot move) is set aside while
 //! every other span moves ([`SetAside`]), and the re-compaction puts the one lowered again in
@@ -23,7 +23,6 @@
 use std::collections::BTreeMap;
 
 use super::super::names::Namespace;
-use super::decls::overrides_materials;
 use super::{CheckMemo, Dependents};
 use crate::diag::Code;
 use crate::ir;
@@ -31,7 +30,7 @@ use crate::source::{Shift, SourceMap, Span};
 use crate::syntax::{DeclKind, Ident, Stmt};
 
 /// The namespace, old and new name of a renamed declaration: `old` → `new` is a `material`,
-/// `mesh` (an `obj` one without material overrides) or `texture` given another name.
+/// `mesh` or `texture` given another name.
 pub(super) fn renamed<'a>(
     old: &'a Stmt,
     new: &'a Stmt,
@@ -45,8 +44,7 @@ pub(super) fn renamed<'a>(
         DeclKind::Texture => Namespace::Texture,
         DeclKind::Light => return None,
     };
-    let plain = !overrides_materials(a) && !overrides_materials(b);
-    (a.kind == b.kind && a.name.name != b.name.name && plain).then_some((ns, &a.name, &b.name))
+    (a.kind == b.kind && a.name.name != b.name.name).then_some((ns, &a.name, &b.name))
 }
 
 impl CheckMemo {
