@@ -18,6 +18,7 @@
 //! `lights.len()`), with the power estimate of [`Environment::power`].
 
 pub mod area;
+pub mod complex_arg;
 pub mod emitter_bounds;
 pub mod env_angles;
 pub mod env_bright;

@@ -9,15 +9,18 @@
 //! sine are ratios of square roots. Ω, the corner angles' sum less 2π, is a small difference
 //! of angles near 2π: rather than four `acos` and a subtraction that loses it (in f32 it would
 //! be off by ~1e-4 relative for a light of a few millisteradians, a bias
-//! `tests/render_light_sampling.rs` sees), the set-up multiplies the corners' unit complex
-//! numbers `cos gᵢ + i·sin gᵢ` in f64 and takes one `atan2` of the product, whose argument
-//! *is* Ω; the per-sample mapping's offset angle `k = 2π − g₂ − g₃` is kept the same way, as
+//! `tests/render_light_sampling.rs` sees), the set-up multiplies the corners' complex numbers
+//! `cos gᵢ + i·sin gᵢ` in f64 (each scaled by a positive length, which changes no argument:
+//! one normalisation instead of four) and takes one argument of the product
+//! (`complex_arg::arg`, a short f64 polynomial in place of libm's `atan2f`), which *is* Ω; the per-sample mapping's offset angle `k = 2π − g₂ − g₃` is kept the same way, as
 //! its cosine and sine, so a sample needs one f32 `sincos` of `u·Ω` (small, so exact to f32's
 //! relative precision) and square roots. Below
 //! [`spherical::MIN_SOLID_ANGLE`](super::spherical::MIN_SOLID_ANGLE) a caller samples by area
 //! (as `area` does for triangles).
 
 use glam::{DVec2, Vec2, Vec3};
+
+use super::complex_arg::arg;
 
 /// A rectangle as seen from a shading point, ready to be sampled: the local frame (x, y along
 /// the edges, z towards the point's side flipped away) and the spherical rectangle's angles.
@@ -54,13 +57,14 @@ pub struct RectSample {
     pub t: f32,
 }
 
-/// `cos g + i·sin g` of the angle at a corner of the spherical rectangle: the angle between the
-/// great circles through the corner's two edges, given by the (unnormalised) closed-form
-/// normals' lengths `la`, `lb`, the numerator of the cosine and the corner's distance.
+/// `(cos g + i·sin g)·|nₐ|·|n_b|`, the angle at a corner of the spherical rectangle between
+/// the great circles through the corner's two edges, scaled by the lengths of the
+/// (unnormalised) closed-form normals `nₐ`, `n_b`: the numerator of the cosine, and the sine's
+/// `|nₐ × n_b| = |z₀|·(the corner's distance)`. A positive factor changes no argument, so the
+/// corners are multiplied without the four normalisations.
 #[inline]
-fn corner_turn(cos_numerator: f64, z0: f64, corner_length: f64, la: f64, lb: f64) -> DVec2 {
-    let inv = 1.0 / (la * lb);
-    DVec2::new(cos_numerator * inv, z0.abs() * corner_length * inv)
+fn corner_turn(cos_numerator: f64, z0: f64, corner_length: f64) -> DVec2 {
+    DVec2::new(cos_numerator, z0.abs() * corner_length)
 }
 
 /// The complex product `a · b`.
@@ -137,25 +141,30 @@ impl SphericalRect {
         let (x0, y0) = (d.dot(x), d.dot(y));
         let (x1, y1) = (x0 + exl, y0 + eyl);
         // The set-up in f64 (see the module doc): the closed-form normals n₀ ∝ (0, z₀, −y₀),
-        // n₁ ∝ (−z₀, 0, x₁), n₂ ∝ (0, −z₀, y₁), n₃ ∝ (z₀, 0, −x₀) have these lengths…
+        // n₁ ∝ (−z₀, 0, x₁), n₂ ∝ (0, −z₀, y₁), n₃ ∝ (z₀, 0, −x₀); n₀ and n₂ have lengths…
         let (dx0, dx1, dy0, dy1, dz0) = (x0 as f64, x1 as f64, y0 as f64, y1 as f64, z0 as f64);
         let zz = dz0 * dz0;
-        let (l0, l1) = ((zz + dy0 * dy0).sqrt(), (zz + dx1 * dx1).sqrt());
-        let (l2, l3) = ((zz + dy1 * dy1).sqrt(), (zz + dx0 * dx0).sqrt());
+        let (l0, l2) = ((zz + dy0 * dy0).sqrt(), (zz + dy1 * dy1).sqrt());
         let corner_len = |a: f64, b: f64| (a * a + b * b + zz).sqrt();
-        // …and the angle gᵢ = acos(−nᵢ·nᵢ₊₁) at each corner, as cos + i·sin (sin = |nᵢ × nᵢ₊₁|).
-        let g0 = corner_turn(dy0 * dx1, dz0, corner_len(dx1, dy0), l0, l1);
-        let g1 = corner_turn(-dx1 * dy1, dz0, corner_len(dx1, dy1), l1, l2);
-        let g2 = corner_turn(dx0 * dy1, dz0, corner_len(dx0, dy1), l2, l3);
-        let g3 = corner_turn(-dx0 * dy0, dz0, corner_len(dx0, dy0), l3, l0);
-        let (g01, g23) = (turn(g0, g1), turn(g2, g3));
-        let all = turn(g01, g23);
+        // …and the angle gᵢ = acos(−nᵢ·nᵢ₊₁) at each corner is the argument of
+        // (−nᵢ·nᵢ₊₁, |nᵢ × nᵢ₊₁|) with the normals unnormalised (`corner_turn`).
+        let g0 = corner_turn(dy0 * dx1, dz0, corner_len(dx1, dy0));
+        let g1 = corner_turn(-dx1 * dy1, dz0, corner_len(dx1, dy1));
+        let g2 = corner_turn(dx0 * dy1, dz0, corner_len(dx0, dy1));
+        let g3 = corner_turn(-dx0 * dy0, dz0, corner_len(dx0, dy0));
+        // The product's argument is Ω; its length (the normals' lengths squared, eight powers
+        // of the distances: within f64's range for any f32 coordinates) does not matter, so
+        // Ω does not wait for a normalisation.
+        let g23 = turn(g2, g3);
+        let all = turn(turn(g0, g1), g23);
+        // e^{i(g₂ + g₃)}, normalised: the sample's offset angle k needs its cosine and sine.
+        let g23 = g23 * (1.0 / g23.length());
         // arg(e^{i(2π + Ω)}) = Ω, in (−π, π]; a light filling more than half the hemisphere
         // (Ω > π) comes out negative. A negative figure is told apart from a rounding of a
         // vanishing Ω by the plain angle sum, which only this rare case pays for.
-        // The product is exact to f64; its argument to f32 needs only f32's `atan2` (each part
-        // rounded to f32 moves Ω by ~1e-7 relative, whatever Ω's size).
-        let mut omega = f64::from((all.y as f32).atan2(all.x as f32));
+        // The product is exact to f64 and its argument to `complex_arg::ARG_RELATIVE_ERROR`
+        // (5e-11), far under the f32 Ω is kept in.
+        let mut omega = arg(all);
         if omega <= 0.0 {
             let angle = |g: DVec2| g.y.atan2(g.x);
             let sum = angle(g0) + angle(g1) + angle(g2) + angle(g3) - 2.0 * std::f64::consts::PI;
