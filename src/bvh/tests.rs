@@ -204,6 +204,24 @@ fn non_finite_rays_miss() {
             "{ray:?}"
         );
     }
+    // A NaN or an infinity in any one coordinate of the origin or the direction (the
+    // finiteness test is one vector compare per vector: every lane must count), on a ray
+    // that hits when that coordinate is finite.
+    let (o, d) = (Vec3::new(0.1, 0.1, 1.0), Vec3::new(0.0, 0.0, -1.0));
+    assert!(bvh.closest_hit(&Ray::new(o, d)).is_some());
+    for axis in 0..3 {
+        for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+            let (mut o2, mut d2) = (o, d);
+            o2[axis] = bad;
+            d2[axis] = bad;
+            for ray in [Ray::new(o2, d), Ray::new(o, d2)] {
+                assert!(
+                    bvh.closest_hit(&ray).is_none() && !bvh.any_hit(&ray),
+                    "{ray:?}"
+                );
+            }
+        }
+    }
 }
 
 #[test]

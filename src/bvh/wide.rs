@@ -168,45 +168,37 @@ pub struct WideRay {
 pub(super) const EXIT_SLACK: f32 = 1.0 + 3.0 * f32::EPSILON / (1.0 - 1.5 * f32::EPSILON);
 
 impl WideRay {
-    /// Prepares `ray` for the slab tests, once per query.
+    /// Prepares `ray` for the slab tests, once per query. Built in vector form: one division
+    /// for the three reciprocals (the fourth lane divides 1 by 1 and is never read), one
+    /// `movmskps` for the direction's signs; the scalar form (three divisions, each with its
+    /// own finiteness branch, and the rows chosen per axis) cost about a fifth of the per-ray
+    /// set-up (docs/bvh.md, sixth session). The same bits: IEEE division and multiplication
+    /// are the same per lane, and `copysign` is a bit operation.
+    #[inline(always)]
     pub fn new(ray: &Ray) -> WideRay {
-        let inv = |d: f32| {
-            let i = 1.0 / d;
-            // 1/±0 (or a reciprocal that overflows) becomes a huge finite value of the same
-            // sign, so that (bound − origin)·inv is never 0·∞.
-            if i.is_finite() {
-                i
-            } else {
-                f32::MAX.copysign(d)
-            }
-        };
-        // The far planes' reciprocal carries the exit slack; one that overflows stays the
-        // largest finite value of its sign, as `inv` does.
-        let inv_far = |d: f32| {
-            let i = inv(d) * EXIT_SLACK;
-            if i.is_finite() {
-                i
-            } else {
-                f32::MAX.copysign(d)
-            }
-        };
-        let d = ray.dir;
+        let d = ray.dir.extend(1.0);
+        // 1/±0 (or a reciprocal that overflows) becomes a huge finite value of the same sign,
+        // so that (bound − origin)·inv is never 0·∞. The far planes' reciprocal carries the
+        // exit slack; one that overflows stays the largest finite value of its sign.
+        let huge = Vec4::splat(f32::MAX).copysign(d);
+        let finite_or_huge = |i: Vec4| Vec4::select(i.abs().cmplt(Vec4::INFINITY), i, huge);
+        let inv = finite_or_huge(Vec4::ONE / d);
+        let inv_far = finite_or_huge(inv * EXIT_SLACK);
+        // Bit `axis` set when the direction's sign bit is (−0 included): the near plane is
+        // then the max row (`axis + 3`) and the far plane the min row.
+        let negative = d.is_negative_bitmask() as usize;
+        let flip = |axis: usize| 3 * ((negative >> axis) & 1);
         let o = ray.origin;
-        let row = |d: f32, axis: usize| if d.is_sign_negative() { axis + 3 } else { axis };
         WideRay {
             org: [Vec4::splat(o.x), Vec4::splat(o.y), Vec4::splat(o.z)],
-            inv: [
-                Vec4::splat(inv(d.x)),
-                Vec4::splat(inv(d.y)),
-                Vec4::splat(inv(d.z)),
-            ],
+            inv: [Vec4::splat(inv.x), Vec4::splat(inv.y), Vec4::splat(inv.z)],
             inv_far: [
-                Vec4::splat(inv_far(d.x)),
-                Vec4::splat(inv_far(d.y)),
-                Vec4::splat(inv_far(d.z)),
+                Vec4::splat(inv_far.x),
+                Vec4::splat(inv_far.y),
+                Vec4::splat(inv_far.z),
             ],
-            near_row: [row(d.x, 0), row(d.y, 1), row(d.z, 2)],
-            far_row: [row(-d.x, 0), row(-d.y, 1), row(-d.z, 2)],
+            near_row: [flip(0), 1 + flip(1), 2 + flip(2)],
+            far_row: [3 - flip(0), 4 - flip(1), 5 - flip(2)],
         }
     }
 
@@ -320,6 +312,75 @@ mod tests {
                     mask, 1,
                     "case {case}: o {o} d {d} box {min}..{max} t_max {t_max}"
                 );
+            }
+        }
+    }
+
+    /// The vector-form [`WideRay::new`] against the scalar form it replaced, bit for bit:
+    /// signed zeros, reciprocals that overflow (tiny components), and random directions.
+    #[test]
+    fn wide_ray_matches_the_scalar_construction() {
+        let inv = |d: f32| {
+            let i = 1.0 / d;
+            if i.is_finite() {
+                i
+            } else {
+                f32::MAX.copysign(d)
+            }
+        };
+        let inv_far = |d: f32| {
+            let i = inv(d) * EXIT_SLACK;
+            if i.is_finite() {
+                i
+            } else {
+                f32::MAX.copysign(d)
+            }
+        };
+        let row = |d: f32, axis: usize| if d.is_sign_negative() { axis + 3 } else { axis };
+        let mut rng = crate::testing::SplitMix64(61);
+        let special = [
+            0.0,
+            -0.0,
+            1e-39,
+            -1e-39,
+            2.9e-39,
+            f32::MIN_POSITIVE,
+            1.0,
+            -3.5,
+            1e38,
+        ];
+        for case in 0..20_000 {
+            let mut pick = || {
+                let r = rng.next_u64();
+                if r.is_multiple_of(3) {
+                    special[(r >> 8) as usize % special.len()]
+                } else {
+                    ((r >> 11) % 2001) as f32 / 1000.0 - 1.0
+                }
+            };
+            let d = Vec3::new(pick(), pick(), pick());
+            let o = Vec3::new(pick(), pick(), pick());
+            let w = WideRay::new(&Ray::new(o, d));
+            for axis in 0..3 {
+                let (da, oa) = (d[axis], o[axis]);
+                assert_eq!(w.origin(axis).to_bits(), oa.to_bits(), "case {case} d {d}");
+                assert_eq!(
+                    w.inv_dir(axis).to_bits(),
+                    inv(da).to_bits(),
+                    "case {case} d {d}"
+                );
+                assert_eq!(
+                    w.inv_dir_far(axis).to_bits(),
+                    inv_far(da).to_bits(),
+                    "case {case} d {d}"
+                );
+                assert_eq!(w.near_row[axis], row(da, axis), "case {case} d {d}");
+                assert_eq!(w.far_row[axis], row(-da, axis), "case {case} d {d}");
+                for lane in 1..4 {
+                    assert_eq!(w.inv[axis][lane].to_bits(), inv(da).to_bits());
+                    assert_eq!(w.inv_far[axis][lane].to_bits(), inv_far(da).to_bits());
+                    assert_eq!(w.org[axis][lane].to_bits(), oa.to_bits());
+                }
             }
         }
     }

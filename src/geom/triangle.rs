@@ -99,7 +99,8 @@ impl WatertightRay {
             ((kz + 1) % 3, (kz + 2) % 3)
         };
         let dv = [d.x, d.y, d.z];
-        let (sx, sy, sz) = (dv[kx] / dz, dv[ky] / dz, 1.0 / dz);
+        // One division for the three factors (the same bits as three `divss`).
+        let [sx, sy, sz] = (Vec3A::new(dv[kx], dv[ky], 1.0) / dz).to_array();
         // Camera, shadow and BRDF rays are unit length up to rounding; keeping exactly 1 for
         // them keeps pbrt's bound (and every image) bit for bit. Object-space rays of scaled
         // instances are not: their `t` is in units of a `dir` that may be 1e-6 or 1e6 long.
