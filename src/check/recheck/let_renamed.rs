@@ -126,22 +126,8 @@ impl CheckMemo {
         shift: &Shift,
         dependents: &mut Dependents,
     ) -> Option<BTreeMap<usize, Stmt>> {
-        let mut words: Vec<String> = names.iter().map(|n| n.to_string()).collect();
-        let unknown = self.diagnostics.iter();
-        for d in unknown.filter(|d| d.code == Code::CheckUnknownName) {
-            let mut at = d.primary.as_ref()?.span;
-            if !shift.apply(&mut at) {
-                return None;
-            }
-            words.push(sources.snippet(at).to_string());
-        }
-        words.sort_unstable();
-        words.dedup();
-        let mut found = BTreeMap::new();
-        for w in words {
-            found.extend(dependents(&w)?);
-        }
-        Some(found)
+        let unknown = |code| code == Code::CheckUnknownName;
+        self.naming_or_listing(sources, names, unknown, shift, dependents)
     }
 }
 

@@ -85,12 +85,24 @@ impl CheckMemo {
         shift: &Shift,
         dependents: &mut Dependents,
     ) -> Option<BTreeMap<usize, Stmt>> {
+        let lists = |code| lists_names_of(ns, code);
+        self.naming_or_listing(sources, names, lists, shift, dependents)
+    }
+
+    /// The statements (index → statement of the new text) that name one of `names`, or carry
+    /// a diagnostic whose code `lists` says may list them in its did-you-mean (the name it
+    /// labels, moved by `shift` into the new text, searched for too). `None` when one cannot
+    /// be parsed alone or a label lies in the edited bytes.
+    pub(super) fn naming_or_listing(
+        &self,
+        sources: &SourceMap,
+        names: &[&str],
+        lists: impl Fn(Code) -> bool,
+        shift: &Shift,
+        dependents: &mut Dependents,
+    ) -> Option<BTreeMap<usize, Stmt>> {
         let mut words: Vec<String> = names.iter().map(|n| n.to_string()).collect();
-        for d in self
-            .diagnostics
-            .iter()
-            .filter(|d| lists_names_of(ns, d.code))
-        {
+        for d in self.diagnostics.iter().filter(|d| lists(d.code)) {
             let mut span = d.primary.as_ref()?.span;
             if !shift.apply(&mut span) {
                 return None;
