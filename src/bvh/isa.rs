@@ -9,7 +9,8 @@
 //! path is one monomorphic loop. Both forms compute the same bits (same operations, same
 //! order, no fused multiply-adds), so which path runs never changes a hit or an image.
 
-use super::wide::{WideNode, WideRay, EXIT_SLACK, WIDTH};
+use super::octant::{self, OctantQuery};
+use super::wide::{Rows, WideNode, WideRay, EXIT_SLACK, WIDTH};
 use crate::geom::avx2::{Avx2, Avx512, F8};
 use crate::geom::triangle::{TriangleHit, WatertightRay};
 use crate::geom::triangle4::{any4, closest4, Tri4};
@@ -32,7 +33,15 @@ pub enum Simd {
 pub trait Isa: Copy {
     /// Entry distances of the node's children and the mask (bit k) of those entered within
     /// `(0, t_max)`.
-    fn slab(self, ray: &WideRay, n: &WideNode, t_max: f32) -> ([f32; WIDTH], u32);
+    #[inline(always)]
+    fn slab(self, ray: &WideRay, n: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
+        self.slab_rows(ray, n, t_max, ray.rows())
+    }
+    /// [`Self::slab`] with the near and far bounds rows given (`ray`'s own, or constants).
+    fn slab_rows(self, ray: &WideRay, n: &WideNode, t_max: f32, rows: Rows) -> ([f32; WIDTH], u32);
+    /// Runs `query` on this instruction set: on the AVX2 and AVX-512 paths inside a copy
+    /// specialised for the direction `octant` (`octant.rs`), elsewhere as it is.
+    fn per_octant<Q: OctantQuery>(self, octant: usize, query: Q) -> Q::Output;
     /// The closest watertight hit among the packets `tris`, as `triangle4::closest4`.
     fn closest_tris(
         self,
@@ -56,6 +65,16 @@ impl Isa for Portable {
         ray.hit(n, t_max)
     }
     #[inline(always)]
+    fn slab_rows(self, ray: &WideRay, n: &WideNode, t_max: f32, rows: Rows) -> ([f32; WIDTH], u32) {
+        ray.hit_rows(n, t_max, rows)
+    }
+    /// As it is: eight copies of the loop for the path of CPUs without AVX2 are not worth
+    /// their size.
+    #[inline(always)]
+    fn per_octant<Q: OctantQuery>(self, _: usize, query: Q) -> Q::Output {
+        query.run(self)
+    }
+    #[inline(always)]
     fn closest_tris(
         self,
         r: &WatertightRay,
@@ -77,9 +96,9 @@ impl Isa for Portable {
 /// [`WideRay::hit`] on all eight lanes at once, the same operations in the same order, up to
 /// the final comparison: the entry distances and the slackened exit distances.
 #[inline(always)]
-fn slab8(avx: Avx2, ray: &WideRay, n: &WideNode, t_max: f32) -> (F8, F8) {
+fn slab8(avx: Avx2, ray: &WideRay, n: &WideNode, t_max: f32, rows: Rows) -> (F8, F8) {
     // No closures here: their bodies might not be inlined into the AVX2 kernel.
-    let (near, far) = (&ray.near_row, &ray.far_row);
+    let (near, far) = (&rows.0, &rows.1);
     let (nx, ny, nz) = (
         plane(avx, n, near[0], ray.origin(0), ray.inv_dir(0)),
         plane(avx, n, near[1], ray.origin(1), ray.inv_dir(1)),
@@ -109,9 +128,13 @@ fn plane(avx: Avx2, n: &WideNode, row: usize, org: f32, inv: f32) -> F8 {
 impl Isa for Avx2 {
     /// [`WideRay::hit`] on all eight lanes at once: the same operations in the same order.
     #[inline(always)]
-    fn slab(self, ray: &WideRay, n: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
-        let (t_near, t_exit) = slab8(self, ray, n, t_max);
+    fn slab_rows(self, ray: &WideRay, n: &WideNode, t_max: f32, rows: Rows) -> ([f32; WIDTH], u32) {
+        let (t_near, t_exit) = slab8(self, ray, n, t_max, rows);
         (self.store(t_near), self.bitmask(self.le(t_near, t_exit)))
+    }
+    #[inline(always)]
+    fn per_octant<Q: OctantQuery>(self, octant: usize, query: Q) -> Q::Output {
+        octant::dispatch(self, octant, query)
     }
     #[inline(always)]
     fn closest_tris(
@@ -135,9 +158,13 @@ impl Isa for Avx2 {
 impl Isa for Avx512 {
     /// The AVX2 slab test, its last comparison made straight into a mask register.
     #[inline(always)]
-    fn slab(self, ray: &WideRay, n: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
-        let (t_near, t_exit) = slab8(self.avx2(), ray, n, t_max);
+    fn slab_rows(self, ray: &WideRay, n: &WideNode, t_max: f32, rows: Rows) -> ([f32; WIDTH], u32) {
+        let (t_near, t_exit) = slab8(self.avx2(), ray, n, t_max, rows);
         (self.avx2().store(t_near), self.le_mask(t_near, t_exit))
+    }
+    #[inline(always)]
+    fn per_octant<Q: OctantQuery>(self, octant: usize, query: Q) -> Q::Output {
+        octant::dispatch(self, octant, query)
     }
     #[inline(always)]
     fn closest_tris(

@@ -9,6 +9,7 @@ use rayon::prelude::*;
 
 use super::build::{build, Built, PrimBox, PrimRef};
 use super::isa::Isa;
+use super::octant::OctantQuery;
 use super::traverse::{traverse, Entry, LeafVisitor};
 use super::wide::{collapse, Wide, WideNode, WideRay, WIDTH};
 use super::MeshRef;
@@ -278,14 +279,15 @@ impl MeshBvh {
         // over narrow stores just made (a failed store forward, ~5% of a primary ray's time
         // in `perf` on the Xeon).
         let pre = T::prepare(ray);
-        let mut leaf = ClosestInLeaf::<T, I> {
-            isa,
+        let query = ClosestQuery::<T> {
             bvh: self,
+            ray: &wr,
             pre: &pre,
-            best: None,
+            t_max,
+            stack,
         };
-        traverse(isa, &self.tree, &wr, t_max, &mut leaf, stack);
-        leaf.best.map(|(slot, u, v)| {
+        let best = isa.per_octant(wr.octant(), query);
+        best.map(|(slot, u, v)| {
             let (part, prim) = self.locate(self.ids[slot]);
             MeshHit { part, prim, u, v }
         })
@@ -302,14 +304,15 @@ impl MeshBvh {
         stack: &mut [Entry],
     ) -> bool {
         let wr = WideRay::new(ray);
-        let mut t = t_max;
         let pre = T::prepare(ray);
-        let leaf = AnyInLeaf::<T, I> {
-            isa,
+        let query = AnyQuery::<T> {
             bvh: self,
+            ray: &wr,
             pre: &pre,
+            t_max,
+            stack,
         };
-        traverse(isa, &self.tree, &wr, &mut t, leaf, stack)
+        isa.per_octant(wr.octant(), query)
     }
 
     /// The packets of the leaf whose slots are `first..first + count` (`first` a multiple of 4),
@@ -326,6 +329,61 @@ impl MeshBvh {
     fn packets(&self, first: u32, count: u32) -> &[Tri4] {
         let p = first as usize / LANES;
         &self.tris[p..p + (count as usize).div_ceil(LANES)]
+    }
+}
+
+/// A closest-hit traversal of one bottom level, to run on an instruction set specialised per
+/// octant: the nearest hit as (slot, u, v).
+struct ClosestQuery<'a, T: TriTest> {
+    bvh: &'a MeshBvh,
+    ray: &'a WideRay,
+    pre: &'a T::Prepared,
+    t_max: &'a mut f32,
+    stack: &'a mut [Entry],
+}
+
+impl<T: TriTest> OctantQuery for ClosestQuery<'_, T> {
+    type Output = Option<(usize, f32, f32)>;
+    #[inline(always)]
+    fn run<I: Isa>(self, isa: I) -> Self::Output {
+        let mut leaf = ClosestInLeaf::<T, I> {
+            isa,
+            bvh: self.bvh,
+            pre: self.pre,
+            best: None,
+        };
+        traverse(
+            isa,
+            &self.bvh.tree,
+            self.ray,
+            self.t_max,
+            &mut leaf,
+            self.stack,
+        );
+        leaf.best
+    }
+}
+
+/// An any-hit traversal of one bottom level, as [`ClosestQuery`].
+struct AnyQuery<'a, T: TriTest> {
+    bvh: &'a MeshBvh,
+    ray: &'a WideRay,
+    pre: &'a T::Prepared,
+    t_max: f32,
+    stack: &'a mut [Entry],
+}
+
+impl<T: TriTest> OctantQuery for AnyQuery<'_, T> {
+    type Output = bool;
+    #[inline(always)]
+    fn run<I: Isa>(self, isa: I) -> bool {
+        let leaf = AnyInLeaf::<T, I> {
+            isa,
+            bvh: self.bvh,
+            pre: self.pre,
+        };
+        let mut t = self.t_max;
+        traverse(isa, &self.bvh.tree, self.ray, &mut t, leaf, self.stack)
     }
 }
 

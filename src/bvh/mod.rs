@@ -16,6 +16,7 @@ mod check;
 mod isa;
 mod mesh_bvh;
 mod node;
+mod octant;
 mod query;
 pub mod tally;
 mod traverse;

@@ -162,6 +162,22 @@ pub struct WideRay {
     pub(super) near_row: [usize; 3],
     /// Per axis, the bounds row of the far plane.
     pub(super) far_row: [usize; 3],
+    /// The direction's octant: bit `axis` set when its coordinate's sign bit is (−0 too).
+    octant: u8,
+}
+
+/// The bounds rows of the near planes and of the far planes, per axis.
+pub type Rows = ([usize; 3], [usize; 3]);
+
+/// The [`Rows`] of a direction in `octant` (bit `axis` set for a negative coordinate: its near
+/// plane is then the max row `axis + 3`, its far plane the min row).
+pub const fn octant_rows(octant: usize) -> Rows {
+    let (x, y, z) = (
+        3 * (octant & 1),
+        3 * ((octant >> 1) & 1),
+        3 * ((octant >> 2) & 1),
+    );
+    ([x, 1 + y, 2 + z], [3 - x, 4 - y, 5 - z])
 }
 
 /// Slack on the exit distance for three roundings (Ize 2013); see `node.rs`.
@@ -185,9 +201,10 @@ impl WideRay {
         let inv = finite_or_huge(Vec4::ONE / d);
         let inv_far = finite_or_huge(inv * EXIT_SLACK);
         // Bit `axis` set when the direction's sign bit is (−0 included): the near plane is
-        // then the max row (`axis + 3`) and the far plane the min row.
+        // then the max row (`axis + 3`) and the far plane the min row. (The fourth lane is
+        // +1, so bit 3 is clear.)
         let negative = d.is_negative_bitmask() as usize;
-        let flip = |axis: usize| 3 * ((negative >> axis) & 1);
+        let (near_row, far_row) = octant_rows(negative);
         let o = ray.origin;
         WideRay {
             org: [Vec4::splat(o.x), Vec4::splat(o.y), Vec4::splat(o.z)],
@@ -197,9 +214,22 @@ impl WideRay {
                 Vec4::splat(inv_far.y),
                 Vec4::splat(inv_far.z),
             ],
-            near_row: [flip(0), 1 + flip(1), 2 + flip(2)],
-            far_row: [3 - flip(0), 4 - flip(1), 5 - flip(2)],
+            near_row,
+            far_row,
+            octant: negative as u8,
         }
+    }
+
+    /// The direction's octant (0–7): bit `axis` set when its coordinate is negative (−0 too).
+    #[inline(always)]
+    pub(super) fn octant(&self) -> usize {
+        usize::from(self.octant)
+    }
+
+    /// The near and far bounds rows per axis, as chosen for this ray.
+    #[inline(always)]
+    pub(super) fn rows(&self) -> Rows {
+        (self.near_row, self.far_row)
     }
 
     /// The origin's coordinate on `axis`.
@@ -228,6 +258,13 @@ impl WideRay {
     /// entry distances (which order the children) are unchanged.
     #[inline(always)]
     pub fn hit(&self, n: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
+        self.hit_rows(n, t_max, self.rows())
+    }
+
+    /// [`Self::hit`] with the near and far rows given (this ray's own, or its octant's as
+    /// constants in a kernel specialised per octant).
+    #[inline(always)]
+    pub fn hit_rows(&self, n: &WideNode, t_max: f32, rows: Rows) -> ([f32; WIDTH], u32) {
         let mut entry = [0.0f32; WIDTH];
         let mut mask = 0u32;
         for half in 0..WIDTH / 4 {
@@ -235,7 +272,7 @@ impl WideRay {
             let mut tn = [Vec4::ZERO; 3];
             let mut tf = [Vec4::ZERO; 3];
             for axis in 0..3 {
-                let (near, far) = (self.near_row[axis], self.far_row[axis]);
+                let (near, far) = (rows.0[axis], rows.1[axis]);
                 let row = |r: usize| Vec4::from_slice(&n.bounds[r][lanes.clone()]);
                 tn[axis] = (row(near) - self.org[axis]) * self.inv[axis];
                 tf[axis] = (row(far) - self.org[axis]) * self.inv_far[axis];
@@ -376,6 +413,11 @@ mod tests {
                 );
                 assert_eq!(w.near_row[axis], row(da, axis), "case {case} d {d}");
                 assert_eq!(w.far_row[axis], row(-da, axis), "case {case} d {d}");
+                assert_eq!(
+                    (w.octant() >> axis) & 1 == 1,
+                    da.is_sign_negative(),
+                    "case {case} d {d}"
+                );
                 for lane in 1..4 {
                     assert_eq!(w.inv[axis][lane].to_bits(), inv(da).to_bits());
                     assert_eq!(w.inv_far[axis][lane].to_bits(), inv_far(da).to_bits());
