@@ -109,14 +109,19 @@ mod tests {
         // Replicate means ±10% about the mean: relative replicate variance (per sample) about
         // 4 · 4 · 0.01 / 3 / 1 ≈ 0.053, over 20 samples 0.0027 ≤ 0.01.
         let steady = pixel(0.5, [0.1, -0.1, 0.1, -0.1]);
-        let (own, dof) = steady.relative_replicate_variance().expect("every replicate");
+        let (own, dof) = steady
+            .relative_replicate_variance()
+            .expect("every replicate");
         assert_eq!(dof, 3.0);
         let block = ReplicatePool::pool([(own, dof); 9]);
         let e = pooled_error(&steady, &block, target).expect("within the target");
         // It reports the posterior mean of the pooled variance: 27/25 of it.
         let n = 20.0;
         let expected = (own * 27.0 / 25.0 / n).sqrt();
-        assert!((e - expected).abs() < 1e-3 * expected, "{e} against {expected}");
+        assert!(
+            (e - expected).abs() < 1e-3 * expected,
+            "{e} against {expected}"
+        );
         // Too few degrees of freedom (the pixel and two neighbours): no decision here.
         let thin = ReplicatePool::pool([(own, dof); 3]);
         assert_eq!(pooled_error(&steady, &thin, target), None);
