@@ -281,7 +281,7 @@ const WHOLE_BLOCK_DOF: f64 = ((2 * RADIUS + 1) * (2 * RADIUS + 1) - 3) as f64;
 /// itself under-states the error of the pixels that stop (the early stops reported 0.6× their
 /// measured error, docs/quality.md); conditioning on the estimate, as the posterior does,
 /// accounts for that selection.
-fn posterior_mean(var: f64, dof: f64) -> f64 {
+pub(super) fn posterior_mean(var: f64, dof: f64) -> f64 {
     if dof > 2.0 {
         var * dof / (dof - 2.0)
     } else {

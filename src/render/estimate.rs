@@ -21,7 +21,9 @@
 //! ([`Accumulator::stopping_error`]; it reports the uncapped one). Relative error is
 //! that of the luminance, divided by the mean luminance floored at [`REL_FLOOR`]; a term
 //! `REL_FLOOR / n` keeps pixels whose samples all agree so far sampling until `n ≥ 1/target`,
-//! a pixel whose samples are all black takes at least `3/target` ([`black_min_samples`]), and
+//! a pixel whose samples are all black takes at least `3/target` ([`black_min_samples`]), a
+//! pixel darker than [`DIM_LUMINANCE`] (after exposure) stops when its error relative to that
+//! luminance is within the target ([`dim_scale`]), and
 //! one an area light's outline crosses samples until it has seen the light or could not miss
 //! it (`render::emitter_coverage`).
 //!
@@ -133,6 +135,28 @@ pub const REL_FLOOR: f64 = 1e-3;
 /// relative error is dominated by the [`REL_FLOOR`] and says little about the image.
 pub const RMS_MIN_LUMINANCE: f64 = 0.01;
 
+/// The displayed luminance (after the scene's exposure) below which a pixel's error is judged
+/// against this value rather than against its own mean when it decides to stop
+/// ([`dim_floor`]): the same threshold the reported RMS ([`RMS_MIN_LUMINANCE`]), the issue's
+/// calibration and `scnc bench quality`'s relative MSE (`(x − r)² / (r² + 10⁻⁴)`) use. Against
+/// their own mean (floored at [`REL_FLOOR`] only), soft_shadows' dim penumbra pixels (luminance
+/// 0.002–0.01, half of the pixels still sampling after 20 samples at 10%) took most of the
+/// 10% render's samples for no measurable gain in RMSE (docs/quality.md).
+pub const DIM_LUMINANCE: f64 = RMS_MIN_LUMINANCE;
+
+/// [`DIM_LUMINANCE`] in radiance, for a scene shown at `exposure` stops.
+pub fn dim_floor(exposure: f32) -> f64 {
+    DIM_LUMINANCE * (-f64::from(exposure)).exp2()
+}
+
+/// How much larger an error a pixel of mean luminance `mean` may stop with than its relative
+/// target says: `max(mean, floor) / max(mean, REL_FLOOR)`, never below 1 (a floor under
+/// [`REL_FLOOR`], at a high exposure, does not tighten the rule). 1 for pixels brighter than the
+/// floor; a pixel darker than it stops when its absolute error is the target times the floor.
+pub fn dim_scale(mean: f64, floor: f64) -> f64 {
+    (mean.abs().max(floor) / mean.abs().max(REL_FLOOR)).max(1.0)
+}
+
 /// Running sums of one pixel's samples and of its replicates' luminance.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Accumulator {
@@ -233,6 +257,22 @@ impl Accumulator {
         let mean = self.luma_sum / n;
         let var = ((self.luma_sum_sq - self.luma_sum * mean) / (n - 1.0)).max(0.0);
         Some((var / mean.abs().max(REL_FLOOR).powi(2), n - 1.0))
+    }
+
+    /// The between-replicate variance of the luminance, per sample (a mean of `n` samples has
+    /// `1/n` of it), relative to the squared mean (floored at [`REL_FLOOR`]), with its degrees of
+    /// freedom: what one pixel's replicates tell its neighbours at the pooled stop
+    /// (`render::pooled_stop`). `None` until every replicate has a sample, or while every sample
+    /// is black.
+    pub fn relative_replicate_variance(&self) -> Option<(f64, f64)> {
+        if self.is_black() {
+            return None;
+        }
+        let (ss, dof) = self.between_replicates()?;
+        Some((
+            ss / dof / self.mean_luminance().abs().max(REL_FLOOR).powi(2),
+            dof,
+        ))
     }
 
     /// Relative standard error of the mean luminance (0 with fewer than two samples): the
@@ -524,6 +564,22 @@ mod tests {
             b.add_replicate(Vec3::splat(if r < 2 { 0.5 } else { 1.5 }), Some(r));
         }
         assert_eq!(b.stopping_error(), b.relative_error());
+    }
+
+    #[test]
+    fn dim_pixels_are_judged_against_the_floor() {
+        let floor = dim_floor(0.0);
+        assert_eq!(floor, DIM_LUMINANCE);
+        // Two stops of exposure: the floor is a quarter in radiance.
+        assert!((dim_floor(2.0) - DIM_LUMINANCE / 4.0).abs() < 1e-15);
+        // Brighter than the floor: the relative target as it is.
+        assert_eq!(dim_scale(0.5, floor), 1.0);
+        // A quarter of the floor: four times the relative error, the same absolute one.
+        assert!((dim_scale(0.25 * floor, floor) - 4.0).abs() < 1e-12);
+        // Under REL_FLOOR the relative error is already measured against it.
+        assert!((dim_scale(0.0, floor) - floor / REL_FLOOR).abs() < 1e-9);
+        // A floor under REL_FLOOR (high exposure) never tightens the rule.
+        assert_eq!(dim_scale(1e-4, 1e-4), 1.0);
     }
 
     #[test]

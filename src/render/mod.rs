@@ -9,8 +9,10 @@
 //! `render { noise 0.01  max_samples 4096 }` samples each pixel adaptively, in batches, until
 //! the relative standard error of its mean is below the target (see [`estimate`]); every render
 //! also estimates each pixel's standard error ([`render_with_error`]) for `--variance-out`. An
-//! adaptive render runs in two passes: every pixel's first batch, then each pixel on to its
-//! stop, which may come early on what its neighbours' first batches say ([`early_stop`]).
+//! adaptive render runs in three passes per band of rows: every pixel's first batch; every
+//! pixel to its first whole batch (20 samples), unless it stops before on what its neighbours'
+//! first batches say ([`early_stop`]); then each pixel on to its stop, the first of which pools
+//! its neighbours' replicate spreads ([`pooled_stop`]).
 //!
 //! [`render_window`] renders only a rectangle of the image ([`window`]; `--tile K/N`), each of
 //! its pixels with exactly the bits of the full render.
@@ -25,7 +27,9 @@ mod first_pass;
 pub mod integrator;
 mod mis;
 pub mod pattern;
+pub mod pooled_stop;
 pub mod rng;
+mod second_pass;
 pub mod window;
 
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -35,11 +39,14 @@ use glam::Vec2;
 use rayon::prelude::*;
 
 use self::camera::PinholeCamera;
+use self::early_stop::{FirstBatchSpread, NeighbourPrior};
 use self::emitter_coverage::{EmitterCoverage, SliverRule};
 use self::emitter_pixels::EmitterPixels;
 use self::estimate::{Accumulator, NoiseStats, PixelEstimate};
 use self::first_pass::{FirstBatches, FirstTileResult};
 use self::integrator::{radiance_scaled, RayCounts};
+use self::pooled_stop::{ReplicatePool, POOL_BATCH};
+use self::second_pass::{PixelState, SecondPass, SecondTileResult};
 pub use self::window::PixelWindow;
 use crate::film::Film;
 use crate::scene::Scene;
@@ -191,6 +198,7 @@ pub fn render_window(
         emitter_min: estimate::emitter_min_samples(target as f64),
         min: estimate::min_samples(target as f64),
         black_min: estimate::black_min_samples(target as f64),
+        dim_floor: estimate::dim_floor(settings.exposure),
     });
     let boosted_offsets = match emitter_pixels.factor() {
         _ if adaptive.is_some() => Vec::new(),
@@ -213,50 +221,60 @@ pub fn render_window(
         .build()
         .ok();
     let used_threads = pool.as_ref().map_or(1, |p| p.current_num_threads());
-    // An adaptive render goes band by band (a row of tiles): first the first batches of the
-    // band's rows and of a margin of `early_stop::RADIUS` rows and columns around them (the
-    // rows above kept from the band before), then the band's pixels, which pool their
-    // neighbours' first batches (`early_stop`). A `--tile` window's pixels so decide as in the
-    // full render, and only about a band's first batches are held at a time.
+    // An adaptive render goes band by band (a row of tiles), in three passes: the first
+    // batches of the band's rows and of a margin of twice `early_stop::RADIUS` rows and
+    // columns around them (the rows above kept from the band before); then every pixel of the
+    // band and a margin of `RADIUS` to its first whole batch, which may stop early on its
+    // neighbours' first batches (`early_stop`); then the band's pixels, which pool their
+    // neighbours' replicate spreads there (`pooled_stop`) and go on. A `--tile` window's pixels
+    // so decide as in the full render, and only about a band's pixels are held at a time.
     let (width, height) = (settings.width, settings.height);
     let bands = bands(window);
-    let mut fresh = Vec::new();
-    let mut covered = None::<PixelWindow>;
-    for band in &bands {
-        let area = band.grow(early_stop::RADIUS, width, height);
-        let y0 = covered.map_or(area.y0, |c| c.y1.max(area.y0));
-        fresh.push(PixelWindow { y0, ..area });
-        covered = Some(area);
-    }
-    let fresh_tiles: Vec<Vec<Tile>> = match job.adaptive {
-        Some(_) => fresh.iter().map(|w| self::tiles(*w)).collect(),
-        None => Vec::new(),
+    let (first_fresh, second_fresh) = match job.adaptive {
+        Some(_) => (
+            fresh_tiles(&bands, 2 * early_stop::RADIUS, width, height),
+            fresh_tiles(&bands, early_stop::RADIUS, width, height),
+        ),
+        None => (Vec::new(), Vec::new()),
     };
     let progress = Progress {
         report: progress,
         done: AtomicUsize::new(0),
-        total: tiles.len() + fresh_tiles.iter().map(Vec::len).sum::<usize>(),
+        total: tiles.len()
+            + first_fresh
+                .iter()
+                .chain(&second_fresh)
+                .map(Vec::len)
+                .sum::<usize>(),
     };
-    let mut first_counts = RayCounts::default();
+    let mut pass_counts = RayCounts::default();
     let results = match job.adaptive {
-        None => job.run(&tiles, pool.as_ref(), &progress, cancel, |t| {
-            job.tile(t, None)
-        }),
-        Some(_) => {
+        None => job.run(&tiles, pool.as_ref(), &progress, cancel, |t| job.tile(t)),
+        Some(ref a) => {
             let mut results = Vec::with_capacity(tiles.len());
             let mut first: Option<FirstBatches> = None;
-            for (band, fresh_tiles) in bands.iter().zip(&fresh_tiles) {
-                let got = job.run(fresh_tiles, pool.as_ref(), &progress, cancel, |t| {
+            let mut second: Option<SecondPass> = None;
+            for ((band, first_fresh), second_fresh) in
+                bands.iter().zip(&first_fresh).zip(&second_fresh)
+            {
+                let got = job.run(first_fresh, pool.as_ref(), &progress, cancel, |t| {
                     job.first_batches(t)
                 });
+                let area = band.grow(2 * early_stop::RADIUS, width, height);
+                let now = FirstBatches::assemble(area, first.as_ref(), first_fresh, got)?;
+                pass_counts.add(&now.counts);
+                let got = job.run(second_fresh, pool.as_ref(), &progress, cancel, |t| {
+                    job.tile_to_pool(a, t, &now)
+                });
                 let area = band.grow(early_stop::RADIUS, width, height);
-                let now = FirstBatches::assemble(area, first.as_ref(), fresh_tiles, got)?;
-                first_counts.add(&now.counts);
+                let pooling = SecondPass::assemble(area, second.as_ref(), second_fresh, got)?;
+                pass_counts.add(&pooling.counts);
                 let band_tiles = self::tiles(*band);
                 results.extend(job.run(&band_tiles, pool.as_ref(), &progress, cancel, |t| {
-                    job.tile(t, Some(&now))
+                    job.tile_from_pool(a, t, &now, &pooling)
                 }));
                 first = Some(now);
+                second = Some(pooling);
             }
             results
         }
@@ -265,10 +283,10 @@ pub fn render_window(
         return Err(Cancelled);
     }
     let mut rendered = job.assemble(window, &tiles, results, side)?;
-    rendered.stats.counts.add(&first_counts);
-    rendered.stats.camera_rays += first_counts.camera;
-    rendered.stats.shadow_rays += first_counts.shadow;
-    rendered.stats.brdf_rays += first_counts.brdf;
+    rendered.stats.counts.add(&pass_counts);
+    rendered.stats.camera_rays += pass_counts.camera;
+    rendered.stats.shadow_rays += pass_counts.shadow;
+    rendered.stats.brdf_rays += pass_counts.brdf;
     rendered.stats.wall = start.elapsed();
     rendered.stats.cpu = cpu_start.and_then(|t| t.try_elapsed().ok());
     rendered.stats.threads = used_threads;
@@ -293,6 +311,21 @@ fn bands(window: PixelWindow) -> Vec<PixelWindow> {
             y0,
             y1: (y0 + TILE_SIZE).min(window.y1),
             ..window
+        })
+        .collect()
+}
+
+/// For each band, the tiles of its area grown by `margin` that the bands before did not
+/// cover (their rows are kept from the band before).
+fn fresh_tiles(bands: &[PixelWindow], margin: u32, width: u32, height: u32) -> Vec<Vec<Tile>> {
+    let mut covered = None::<PixelWindow>;
+    bands
+        .iter()
+        .map(|band| {
+            let area = band.grow(margin, width, height);
+            let y0 = covered.map_or(area.y0, |c| c.y1.max(area.y0));
+            covered = Some(area);
+            tiles(PixelWindow { y0, ..area })
         })
         .collect()
 }
@@ -327,6 +360,21 @@ struct Adaptive {
     black_min: u32,
     /// How much of each pixel area lights can cover ([`SliverRule`]).
     coverage: EmitterCoverage,
+    /// The luminance below which a pixel's error is judged against it
+    /// (`estimate::dim_floor`).
+    dim_floor: f64,
+}
+
+/// What decides an adaptive pixel's stops besides its own samples.
+struct PixelRules {
+    /// The fewest samples it takes (the emitter minimum, or 0).
+    min: u32,
+    /// The sliver rule, where an area light's outline crosses it.
+    sliver: Option<SliverRule>,
+    /// Its neighbours' first batches (`early_stop`).
+    prior: NeighbourPrior,
+    /// The scatter of its block's first-batch means (`early_stop`).
+    spread: FirstBatchSpread,
 }
 
 struct Job<'a> {
@@ -427,12 +475,12 @@ impl Job<'_> {
         })
     }
 
-    fn tile(&self, t: Tile, first: Option<&FirstBatches>) -> (Vec<PixelEstimate>, RayCounts) {
+    fn tile(&self, t: Tile) -> (Vec<PixelEstimate>, RayCounts) {
         let mut counts = RayCounts::default();
         let mut pixels = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
         for y in t.y0..t.y1 {
             for x in t.x0..t.x1 {
-                pixels.push(self.pixel(x, y, first, &mut counts));
+                pixels.push(self.fixed_pixel(x, y, &mut counts));
             }
         }
         (pixels, counts)
@@ -457,77 +505,213 @@ impl Job<'_> {
         (pixels, counts)
     }
 
-    /// Box filter: the plain mean of the pixel's samples; adaptive batches, from the pixel's
-    /// first batch in `first`, until its relative error reaches the target (decided from this
-    /// pixel's samples, and before `1/target` samples from its neighbours' first batches).
-    fn pixel(
+    /// Every pixel of the tile to its first whole batch, unless it stops before
+    /// ([`PixelState`]), taken before any pixel decides on it (`pooled_stop`).
+    fn tile_to_pool(&self, a: &Adaptive, t: Tile, first: &FirstBatches) -> SecondTileResult {
+        let mut counts = RayCounts::default();
+        let mut pixels = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
+        for y in t.y0..t.y1 {
+            for x in t.x0..t.x1 {
+                pixels.push(self.pixel_to_pool(a, x, y, first, &mut counts));
+            }
+        }
+        (pixels, counts)
+    }
+
+    /// The tile's pixels from their first whole batch on to their stop.
+    fn tile_from_pool(
         &self,
+        a: &Adaptive,
+        t: Tile,
+        first: &FirstBatches,
+        pooling: &SecondPass,
+    ) -> (Vec<PixelEstimate>, RayCounts) {
+        let mut counts = RayCounts::default();
+        let mut pixels = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
+        for y in t.y0..t.y1 {
+            for x in t.x0..t.x1 {
+                pixels.push(self.pixel_from_pool(a, x, y, first, pooling, &mut counts));
+            }
+        }
+        (pixels, counts)
+    }
+
+    /// Box filter: the plain mean of a fixed count of samples.
+    fn fixed_pixel(&self, x: u32, y: u32, counts: &mut RayCounts) -> PixelEstimate {
+        let mut acc = Accumulator::default();
+        let offsets = match self.emitter_pixels.factor_at(x, y) {
+            1 => self.offsets,
+            _ => self.boosted_offsets,
+        };
+        let scale = footprint_scale(offsets.len() as u32);
+        self.batch(x, y, 0, (offsets, scale), &mut acc, counts);
+        acc.finish(offsets.len() as u32, false)
+    }
+
+    /// What decides an adaptive pixel's stops besides its own samples.
+    fn rules(&self, a: &Adaptive, x: u32, y: u32, first: &FirstBatches) -> PixelRules {
+        PixelRules {
+            // Emitter pixels' minimum is never cut short; `a.min` may be (`early_stop`).
+            min: match self.emitter_pixels.factor_at(x, y) {
+                1 => 0,
+                _ => a.emitter_min.max(a.min),
+            },
+            sliver: a.coverage.at(x, y).map(|(share, luminance)| SliverRule {
+                share: share as f64,
+                luminance: luminance as f64,
+            }),
+            prior: first.prior(x, y),
+            spread: first.spread(x, y),
+        }
+    }
+
+    /// Batch `batch` of an adaptive pixel (`size` samples, `taken` before it): the first from
+    /// the first pass, the others sampled.
+    #[allow(clippy::too_many_arguments)] // reason: the pixel, its batch and the sinks
+    fn adaptive_batch(
+        &self,
+        (x, y): (u32, u32),
+        sequences: &rng::PixelSequences,
+        first: &FirstBatches,
+        (batch, size): (usize, u32),
+        taken: &mut u32,
+        acc: &mut Accumulator,
+        counts: &mut RayCounts,
+    ) {
+        if batch == 0 {
+            // Taken in the first pass, for every pixel.
+            *acc = first.at(x, y).copied().unwrap_or_default();
+        } else {
+            // Textures are filtered for the samples the pixel will have by this batch's end.
+            let scale = footprint_scale(*taken + size);
+            let samples = *taken..*taken + size;
+            self.progressive_batch(x, y, sequences, samples, scale, acc, counts);
+        }
+        *taken += size;
+    }
+
+    /// An adaptive pixel up to its first whole batch ([`POOL_BATCH`]), or to its stop if it
+    /// comes before (decided from this pixel's samples and its neighbours' first batches).
+    fn pixel_to_pool(
+        &self,
+        a: &Adaptive,
         x: u32,
         y: u32,
-        first: Option<&FirstBatches>,
+        first: &FirstBatches,
+        counts: &mut RayCounts,
+    ) -> PixelState {
+        let sequences = rng::PixelSequences::new(self.scene.settings.seed, x, y);
+        let rules = self.rules(a, x, y, first);
+        let mut acc = Accumulator::default();
+        let mut taken = 0;
+        for (batch, &size) in a.batch_sizes.iter().enumerate().take(POOL_BATCH + 1) {
+            let at = (x, y);
+            self.adaptive_batch(
+                at,
+                &sequences,
+                first,
+                (batch, size),
+                &mut taken,
+                &mut acc,
+                counts,
+            );
+            if batch == POOL_BATCH {
+                return PixelState::Pooling { acc, taken };
+            }
+            if let Some(e) = self.decide(a, &rules, &acc, taken, None) {
+                return PixelState::Done(e);
+            }
+        }
+        PixelState::Done(acc.finish(taken, true))
+    }
+
+    /// An adaptive pixel from its first whole batch (`pooling`) on: the pooled stop there, then
+    /// batches until its relative error reaches the target (decided from this pixel's samples,
+    /// and before `1/target` samples from its neighbours' first batches).
+    fn pixel_from_pool(
+        &self,
+        a: &Adaptive,
+        x: u32,
+        y: u32,
+        first: &FirstBatches,
+        pooling: &SecondPass,
         counts: &mut RayCounts,
     ) -> PixelEstimate {
-        let mut acc = Accumulator::default();
-        debug_assert_eq!(self.adaptive.is_some(), first.is_some());
-        let (Some(a), Some(first)) = (&self.adaptive, first) else {
-            let offsets = match self.emitter_pixels.factor_at(x, y) {
-                1 => self.offsets,
-                _ => self.boosted_offsets,
-            };
-            let scale = footprint_scale(offsets.len() as u32);
-            self.batch(x, y, 0, (offsets, scale), &mut acc, counts);
-            return acc.finish(offsets.len() as u32, false);
+        // Every band pixel is in the second pass; taking it again would give the same bits.
+        let state = match pooling.at(x, y) {
+            Some(state) => *state,
+            None => self.pixel_to_pool(a, x, y, first, counts),
         };
+        let (mut acc, mut taken) = match state {
+            PixelState::Done(estimate) => return estimate,
+            PixelState::Pooling { acc, taken } => (acc, taken),
+        };
+        let rules = self.rules(a, x, y, first);
+        let pool = pooling.pool(x, y);
+        if let Some(e) = self.decide(a, &rules, &acc, taken, Some(&pool)) {
+            return e;
+        }
         let sequences = rng::PixelSequences::new(self.scene.settings.seed, x, y);
-        // Emitter pixels' minimum is never cut short; `a.min` may be (`early_stop`).
-        let min = match self.emitter_pixels.factor_at(x, y) {
-            1 => 0,
-            _ => a.emitter_min.max(a.min),
-        };
-        let sliver = a.coverage.at(x, y).map(|(share, luminance)| SliverRule {
-            share: share as f64,
-            luminance: luminance as f64,
-        });
-        let prior = first.prior(x, y);
-        let spread = first.spread(x, y);
-        let mut taken = 0;
-        for (batch, &size) in a.batch_sizes.iter().enumerate() {
-            if batch == 0 {
-                // Taken in the first pass, for every pixel.
-                acc = first.at(x, y).copied().unwrap_or_default();
-            } else {
-                // Textures are filtered for the samples the pixel will have by this batch's end.
-                let scale = footprint_scale(taken + size);
-                let samples = taken..taken + size;
-                self.progressive_batch(x, y, &sequences, samples, scale, &mut acc, counts);
-            }
-            taken += size;
-            let black = acc.is_black() && taken < a.black_min;
-            let unseen = sliver
-                .is_some_and(|r| r.holds(taken, acc.mean_luminance(), acc.brightest(), a.target));
-            if taken < min || black || unseen {
-                continue;
-            }
-            if taken < a.min && taken <= early_stop::LAST_EARLY {
-                if let Some(e) = early_stop::confident_error(&acc, &prior, &spread, a.target) {
-                    return acc.finish_with(taken, false, e);
-                }
-            } else if prior.seen(taken) >= a.min {
-                // `1/target` samples counted over the pixel and its neighbours' first batches
-                // (the rule of three, as for the early stop). The per-sample prior is capped
-                // only once the pixel alone has taken them: before, it leans on its
-                // neighbours' count, and the prior at full weight keeps soft_shadows' bright
-                // walls at 2% sampling on (docs/quality.md).
-                let error = match taken >= a.min {
-                    true => acc.stopping_error(),
-                    false => acc.relative_error(),
-                };
-                if error <= a.target {
-                    return acc.finish(taken, false);
-                }
+        for (batch, &size) in a.batch_sizes.iter().enumerate().skip(POOL_BATCH + 1) {
+            let at = (x, y);
+            self.adaptive_batch(
+                at,
+                &sequences,
+                first,
+                (batch, size),
+                &mut taken,
+                &mut acc,
+                counts,
+            );
+            if let Some(e) = self.decide(a, &rules, &acc, taken, None) {
+                return e;
             }
         }
         acc.finish(taken, true)
+    }
+
+    /// The pixel's estimate if it may stop after `taken` samples; `None` if it goes on. `pool`:
+    /// its block's replicate spreads, after its first whole batch (`pooled_stop`).
+    fn decide(
+        &self,
+        a: &Adaptive,
+        rules: &PixelRules,
+        acc: &Accumulator,
+        taken: u32,
+        pool: Option<&ReplicatePool>,
+    ) -> Option<PixelEstimate> {
+        let black = acc.is_black() && taken < a.black_min;
+        let unseen = rules
+            .sliver
+            .is_some_and(|r| r.holds(taken, acc.mean_luminance(), acc.brightest(), a.target));
+        if taken < rules.min || black || unseen {
+            return None;
+        }
+        if taken < a.min && taken <= early_stop::LAST_EARLY {
+            let (prior, spread) = (&rules.prior, &rules.spread);
+            let e = early_stop::confident_error(acc, prior, spread, a.target)?;
+            return Some(acc.finish_with(taken, false, e));
+        }
+        if rules.prior.seen(taken) < a.min {
+            return None;
+        }
+        // `1/target` samples counted over the pixel and its neighbours' first batches (the
+        // rule of three, as for the early stop). The pooled stop and the cap on the per-sample
+        // prior only once the pixel alone has taken them: before, it leans on its neighbours'
+        // count, and the prior at full weight keeps soft_shadows' bright walls at 2% sampling
+        // on (docs/quality.md).
+        // Pixels darker than the dim floor judged against it (`estimate::dim_scale`).
+        let target = a.target * estimate::dim_scale(acc.mean_luminance(), a.dim_floor);
+        if taken >= a.min {
+            if let Some(e) = pool.and_then(|p| pooled_stop::pooled_error(acc, p, target)) {
+                return Some(acc.finish_with(taken, false, e));
+            }
+        }
+        let error = match taken >= a.min {
+            true => acc.stopping_error(),
+            false => acc.relative_error(),
+        };
+        (error <= target).then(|| acc.finish(taken, false))
     }
 
     /// Samples `samples` (counted over all the pixel's batches) of an adaptive pixel: each
