@@ -528,7 +528,9 @@ fn is_cascade(code: Code) -> bool {
 
 /// UTF-8 text without NUL bytes, or why not.
 fn decode(bytes: &[u8]) -> Result<&str, String> {
-    if bytes.contains(&0) {
+    // memchr's search, not `contains`: a fifth of the time on an 8.8 MB scene (every edit in
+    // `scnc watch` decodes the whole file).
+    if memchr::memchr(0, bytes).is_some() {
         return Err("it contains NUL bytes (binary data)".into());
     }
     match std::str::from_utf8(bytes) {

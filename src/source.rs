@@ -135,6 +135,40 @@ impl SourceMap {
         map
     }
 
+    /// [`SourceMap::with_text`] for an edit that `shift` describes (the old and new texts agree
+    /// before `shift.start` and after its ends): when the old text's line index was made, the
+    /// new one is made from it (the lines before the edit kept, those after it moved, the
+    /// edited bytes searched), not from the whole text again: 1.6 ms for an 8.8 MB file, which
+    /// every edit's diagnostics paid (2026-11-26, seventh session).
+    pub fn with_edit(&self, shift: &Shift, text: impl Into<Arc<str>>) -> SourceMap {
+        let mut map = self.with_text(shift.file, text);
+        let (Some(old), Some(new)) = (
+            self.files.get(shift.file.0 as usize),
+            map.files.get_mut(shift.file.0 as usize),
+        ) else {
+            return map;
+        };
+        let Some(starts) = old.line_starts.get() else {
+            return map;
+        };
+        let (start, old_end, new_end) = (shift.start, shift.old_end, shift.new_end);
+        let old_tail = old.text.len().checked_sub(old_end as usize);
+        let agree = start <= old_end && old_tail.is_some();
+        let new_tail = new.text.len().checked_sub(new_end as usize);
+        let edited = new.text.as_bytes().get(start as usize..new_end as usize);
+        let Some(edited) = edited.filter(|_| agree && old_tail == new_tail) else {
+            return map;
+        };
+        let kept = starts.partition_point(|&s| s <= start);
+        let after = starts.partition_point(|&s| s <= old_end);
+        let mut moved = Vec::with_capacity(starts.len() - after + kept + 16);
+        moved.extend_from_slice(&starts[..kept]);
+        moved.extend(memchr::memchr_iter(b'\n', edited).map(|i| start + i as u32 + 1));
+        moved.extend(starts[after..].iter().map(|&s| s - old_end + new_end));
+        new.line_starts = Arc::new(std::sync::OnceLock::from(moved));
+        map
+    }
+
     /// The file `id` names. `id` must come from this map's [`SourceMap::add`].
     pub fn get(&self, id: FileId) -> &SourceFile {
         // ok: FileIds are only minted by `add` on this map.
@@ -227,5 +261,61 @@ impl Shift {
         span.start = span.start - self.old_end + self.new_end;
         span.end = span.end - self.old_end + self.new_end;
         true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Seeded edits (lines and characters inserted, deleted, replaced) of a text whose line
+    /// index was made: the index made from the old one places every offset as a fresh map's.
+    #[test]
+    fn a_line_index_made_from_the_old_one_is_a_fresh_ones() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = |n: usize| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % n as u64) as usize
+        };
+        let pieces = ["a", "\n", "bc\n", "\n\n", "é", "xyz", ""];
+        let mut text: String = (0..40).map(|_| pieces[next(pieces.len())]).collect();
+        for _ in 0..500 {
+            let mut map = SourceMap::new();
+            let file = map.add("t.scn", "t.scn", text.as_str());
+            map.line_col(file, 0);
+            let mut start = next(text.len() + 1);
+            while !text.is_char_boundary(start) {
+                start -= 1;
+            }
+            let mut old_end = (start + next(6)).min(text.len());
+            while !text.is_char_boundary(old_end) {
+                old_end += 1;
+            }
+            let inserted: String = (0..next(4)).map(|_| pieces[next(pieces.len())]).collect();
+            let new_text = format!("{}{inserted}{}", &text[..start], &text[old_end..]);
+            let shift = Shift {
+                file,
+                start: start as u32,
+                old_end: old_end as u32,
+                new_end: (start + inserted.len()) as u32,
+            };
+            let edited = map.with_edit(&shift, new_text.as_str());
+            assert!(
+                edited.get(file).line_starts.get().is_some(),
+                "made from the old"
+            );
+            let mut fresh = SourceMap::new();
+            fresh.add("t.scn", "t.scn", new_text.as_str());
+            for offset in 0..=new_text.len() + 1 {
+                assert_eq!(
+                    edited.line_col(file, offset),
+                    fresh.line_col(file, offset),
+                    "{text:?} -> {new_text:?} at {offset}"
+                );
+            }
+            text = new_text;
+        }
     }
 }

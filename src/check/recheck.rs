@@ -34,6 +34,7 @@ mod lets;
 mod redo;
 mod reevaluate;
 mod renamed;
+mod runs;
 mod settings;
 mod splice_decls;
 

@@ -137,13 +137,16 @@ fn at_line_start(a: &[u8], b: &[u8], prefix: usize, suffix: usize) -> (usize, us
     (prefix, suffix)
 }
 
-/// Length of the common prefix, compared in 64-byte blocks (memcmp) before the tail.
+/// Length of the common prefix, compared in 4 KiB blocks, then 64-byte ones (memcmp), before
+/// the tail: 64-byte blocks alone were one memcmp call each, 0.7 ms for the common suffix of
+/// an 8.8 MB scene (2026-11-26, seventh session).
 fn common_prefix(a: &[u8], b: &[u8]) -> usize {
-    const BLOCK: usize = 64;
     let n = a.len().min(b.len());
     let mut i = 0;
-    while i + BLOCK <= n && a[i..i + BLOCK] == b[i..i + BLOCK] {
-        i += BLOCK;
+    for block in [4096, 64] {
+        while i + block <= n && a[i..i + block] == b[i..i + block] {
+            i += block;
+        }
     }
     while i < n && a[i] == b[i] {
         i += 1;
@@ -151,15 +154,16 @@ fn common_prefix(a: &[u8], b: &[u8]) -> usize {
     i
 }
 
-/// Length of the common suffix of two slices of equal length.
+/// Length of the common suffix of two slices of equal length (blocks as [`common_prefix`]).
 fn common_suffix(a: &[u8], b: &[u8]) -> usize {
-    const BLOCK: usize = 64;
     let n = a.len().min(b.len());
     let mut k = 0;
-    while k + BLOCK <= n
-        && a[a.len() - k - BLOCK..a.len() - k] == b[b.len() - k - BLOCK..b.len() - k]
-    {
-        k += BLOCK;
+    for block in [4096, 64] {
+        while k + block <= n
+            && a[a.len() - k - block..a.len() - k] == b[b.len() - k - block..b.len() - k]
+        {
+            k += block;
+        }
     }
     while k < n && a[a.len() - k - 1] == b[b.len() - k - 1] {
         k += 1;

@@ -314,7 +314,7 @@ impl Memo {
             Some(view) => view.list_range(file_range.clone())?,
             None => file_range.clone(),
         };
-        let sources = self.new_sources(file, text);
+        let sources = self.sources.with_edit(&region.shift, text);
         if self.chunks_whole == Some(true) {
             let whole = |s: &Stmt| {
                 let span = s.span();

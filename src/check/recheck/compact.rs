@@ -209,27 +209,11 @@ impl CheckMemo {
         let inv_mesh = inverse(&self.mesh_map, scene.meshes.len());
         let mut unresolved = std::mem::take(&mut self.dropped.unresolved);
         unresolved.sort_unstable_by_key(|(span, _, _)| (span.file, span.start, span.end));
+        // The objects are remapped after `finish` (which is given none), in one pass: table
+        // indices through the new maps (two passes over the 100,000 objects before, back to
+        // table indices and then `finish`'s remap: 2026-11-26, seventh session).
         let mut objects = std::mem::take(&mut scene.objects);
-        let mut placed = objects.iter_mut();
         let back = |inv: &[Option<u32>], k: u32| inv.get(k as usize).copied().flatten();
-        for r in &self.records {
-            for o in placed.by_ref().take(r.objects as usize) {
-                let key = (o.span.file, o.span.start, o.span.end);
-                if r.object {
-                    (o.mesh, o.material) = (r.mesh?, r.material?);
-                } else if let Ok(at) =
-                    unresolved.binary_search_by_key(&key, |(s, _, _)| (s.file, s.start, s.end))
-                {
-                    (o.mesh, o.material) = (unresolved[at].1, unresolved[at].2);
-                } else {
-                    o.mesh = back(&inv_mesh, o.mesh)?;
-                    o.material = back(&inv_material, o.material)?;
-                }
-            }
-        }
-        if placed.next().is_some() {
-            return None;
-        }
         let mut lights = std::mem::take(&mut scene.lights);
         for l in &mut lights {
             if let ir::Light::Area(a) = l {
@@ -297,7 +281,6 @@ impl CheckMemo {
         cx.textures = textures;
         cx.materials = materials;
         cx.meshes = meshes;
-        cx.objects = objects;
         cx.lights = lights;
         cx.cameras = std::mem::take(&mut scene.cameras);
         cx.active_camera = scene.active_camera;
@@ -312,11 +295,42 @@ impl CheckMemo {
         self.mesh_map = std::mem::take(&mut cx.mesh_map);
         self.mesh_overrides = std::mem::take(&mut cx.mesh_overrides);
         self.dropped = std::mem::take(&mut cx.dropped);
+        // `finish`'s remap of the objects, from their table indices: a top-level object's from
+        // its statement record (exact where the IR's was a placeholder), one in a group's
+        // from the objects `finish` noted or through the inverse maps.
+        let (mesh_map, material_map) = (&self.mesh_map, &self.material_map);
+        let mut placed = objects.iter_mut();
+        for r in &self.records {
+            for o in placed.by_ref().take(r.objects as usize) {
+                let key = (o.span.file, o.span.start, o.span.end);
+                let (mesh, material) = if r.object {
+                    (r.mesh?, r.material?)
+                } else if let Ok(at) =
+                    unresolved.binary_search_by_key(&key, |(s, _, _)| (s.file, s.start, s.end))
+                {
+                    (unresolved[at].1, unresolved[at].2)
+                } else {
+                    (back(&inv_mesh, o.mesh)?, back(&inv_material, o.material)?)
+                };
+                let in_ir = mesh_map.get(mesh as usize).copied()?;
+                let material_in_ir = material_map.get(material as usize).copied()?;
+                if in_ir.is_none() || material_in_ir.is_none() {
+                    // A declaration that failed to lower (an error): 0 stands in for it.
+                    self.dropped.unresolved.push((o.span, mesh, material));
+                }
+                o.mesh = in_ir.unwrap_or(0);
+                o.material = material_in_ir.unwrap_or(0);
+            }
+        }
+        if placed.next().is_some() {
+            return None;
+        }
         let kept = self.diagnostics.len().checked_sub(self.finish_diags)?;
         self.diagnostics.truncate(kept);
         self.finish_diags = cx.diags.len();
         self.diagnostics.append(&mut cx.diags);
         *scene = finished?;
+        scene.objects = objects;
         self.scene = Some(shared);
         Some(())
     }

@@ -7,9 +7,9 @@
 
 use std::sync::Arc;
 
-use super::super::StmtRecord;
 use super::compact::Relowered;
 use super::decls::Redone;
+use super::runs::{merge_runs, merge_runs_in_place};
 use super::CheckMemo;
 use crate::diag::Diagnostic;
 use crate::ir;
@@ -124,7 +124,7 @@ impl CheckMemo {
         let aside = renamed.and_then(|(ns, at)| self.set_aside(ns, at));
         if let Some(scene) = &mut self.scene {
             let scene = std::sync::Arc::make_mut(scene);
-            let old_objects = std::mem::take(&mut scene.objects);
+            let mut objects_in_ir = std::mem::take(&mut scene.objects);
             ok &= scene.shift_spans(shift);
             let (material_map, mesh_map) = (&self.material_map, &self.mesh_map);
             let new_objects = objects.iter().map(|(&i, (_, _, objects))| {
@@ -140,13 +140,21 @@ impl CheckMemo {
                 }
                 (i, objects)
             });
-            scene.objects = merge_runs(
-                old_objects,
+            let filler = ir::Object {
+                mesh: 0,
+                material: 0,
+                world_from_object: glam::DMat4::IDENTITY,
+                span: Span::new(shift.file, 0, 0),
+            };
+            merge_runs_in_place(
+                &mut objects_in_ir,
                 &self.records,
                 |r| r.objects,
                 new_objects,
                 |o| shift.apply(&mut o.span),
+                filler,
             )?;
+            scene.objects = objects_in_ir;
         }
         ok &= self.dropped.shift_spans(shift);
         if let Some(aside) = aside {
@@ -236,45 +244,4 @@ fn entry<'a, T>(
             .find(|(k, _)| *k as usize == i)
             .map(|(_, t)| t),
     }
-}
-
-/// `items`, one run per statement (`count` of its record long, in statement order), with the
-/// runs of the statements in `new` (index → run) put in place of theirs and every other item
-/// kept where `keep` (which moves its spans) allows; `None` when the counts do not add up or
-/// `keep` refuses one.
-fn merge_runs<T>(
-    items: Vec<T>,
-    records: &[StmtRecord],
-    count: fn(&StmtRecord) -> u32,
-    new: impl Iterator<Item = (usize, Vec<T>)>,
-    mut keep: impl FnMut(&mut T) -> bool,
-) -> Option<Vec<T>> {
-    let mut out = Vec::with_capacity(items.len());
-    let mut items = items.into_iter();
-    let mut ok = true;
-    let mut next = 0;
-    let mut take = |n: usize, out: &mut Vec<T>, items: &mut std::vec::IntoIter<T>| {
-        for mut item in items.by_ref().take(n) {
-            ok &= keep(&mut item);
-            out.push(item);
-        }
-    };
-    for (i, run) in new {
-        let before: usize = records
-            .get(next..i)?
-            .iter()
-            .map(|r| count(r) as usize)
-            .sum();
-        let old = count(records.get(i)?) as usize;
-        if items.len() < before + old {
-            return None;
-        }
-        take(before, &mut out, &mut items);
-        items.by_ref().take(old).for_each(drop);
-        out.extend(run);
-        next = i + 1;
-    }
-    let rest = items.len();
-    take(rest, &mut out, &mut items);
-    ok.then_some(out)
 }

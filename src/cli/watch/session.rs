@@ -59,7 +59,7 @@ impl Loader for RecordingLoader {
             }
             return Ok(bytes);
         }
-        let result = settled::read(path).map(Arc::<[u8]>::from);
+        let result = settled::read(path);
         if let Ok(mut read) = self.read.lock() {
             read.insert(
                 path.to_path_buf(),

@@ -98,7 +98,7 @@ impl FileWatcher {
             let Some(old) = self.files.get_mut(path) else {
                 continue;
             };
-            let bytes = settled::read(path).ok().map(Arc::<[u8]>::from);
+            let bytes = settled::read(path).ok();
             let now = bytes.as_ref().map(|b| content_hash(b));
             if now != *old {
                 *old = now;
