@@ -128,6 +128,65 @@ pub struct MeshHit {
     pub v: f32,
 }
 
+/// A closest hit inside one bottom-level BVH as its kernel returns it: the hit's `t`, its
+/// barycentrics and its slot in the leaf order. Sixteen bytes, so a kernel function returns
+/// it in registers (an `Option<Hit>` of 24 bytes went through memory: six 4-byte stores that
+/// the caller read back with one 16-byte load, a failed store forward per query).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SlotHit {
+    /// Ray parameter of the hit.
+    pub t: f32,
+    /// Barycentric weight of the triangle's second vertex.
+    pub u: f32,
+    /// Barycentric weight of the triangle's third vertex.
+    pub v: f32,
+    /// Slot in the leaf order (`MeshBvh::ids`); `u32::MAX` for no hit ([`SlotHit::MISS`]),
+    /// which is never a slot (`pack_leaves` numbers slots in `u32`, padding included).
+    pub slot: u32,
+}
+
+/// A [`SlotHit`] as two `u64`s (`t` and `u` bits, `v` bits and the slot): a pair of scalars,
+/// which the Rust ABI returns in two registers, where the four-field struct went through
+/// memory and the caller read `u` and `v` with one 8-byte load over the kernel's two 4-byte
+/// stores (a failed store forward).
+#[derive(Debug, Clone, Copy)]
+pub struct PackedSlotHit {
+    t_u: u64,
+    v_slot: u64,
+}
+
+impl PackedSlotHit {
+    /// The hit's fields, bit for bit.
+    #[inline(always)]
+    pub fn unpack(self) -> SlotHit {
+        SlotHit {
+            t: f32::from_bits(self.t_u as u32),
+            u: f32::from_bits((self.t_u >> 32) as u32),
+            v: f32::from_bits(self.v_slot as u32),
+            slot: (self.v_slot >> 32) as u32,
+        }
+    }
+}
+
+impl SlotHit {
+    /// The hit as two `u64`s, bit for bit.
+    #[inline(always)]
+    pub fn pack(self) -> PackedSlotHit {
+        PackedSlotHit {
+            t_u: u64::from(self.t.to_bits()) | u64::from(self.u.to_bits()) << 32,
+            v_slot: u64::from(self.v.to_bits()) | u64::from(self.slot) << 32,
+        }
+    }
+
+    /// No hit.
+    pub const MISS: SlotHit = SlotHit {
+        t: f32::INFINITY,
+        u: 0.0,
+        v: 0.0,
+        slot: u32::MAX,
+    };
+}
+
 /// A bottom-level BVH over the triangles of one or more meshes, in their object space.
 #[derive(Debug, Default)]
 pub struct MeshBvh {
@@ -273,6 +332,21 @@ impl MeshBvh {
         t_max: &mut f32,
         stack: &mut [Entry],
     ) -> Option<MeshHit> {
+        let h = self.closest_slot::<T, I>(isa, ray, t_max, stack);
+        self.mesh_hit(h)
+    }
+
+    /// [`Self::closest`] as the kernel leaves it: the hit's slot, not yet its triangle (the
+    /// `ids` read and the part's binary search are left to [`Self::mesh_hit`], after the
+    /// kernel has returned).
+    #[inline(always)]
+    pub fn closest_slot<T: TriTest, I: Isa>(
+        &self,
+        isa: I,
+        ray: &Ray,
+        t_max: &mut f32,
+        stack: &mut [Entry],
+    ) -> SlotHit {
         let wr = WideRay::new(ray);
         // Prepared in place and borrowed: moving it into the visitor was a copy of wide loads
         // over narrow stores just made (a failed store forward, ~5% of a primary ray's time
@@ -285,9 +359,27 @@ impl MeshBvh {
             best: None,
         };
         traverse(isa, &self.tree, &wr, t_max, &mut leaf, stack);
-        leaf.best.map(|(slot, u, v)| {
-            let (part, prim) = self.locate(self.ids[slot]);
-            MeshHit { part, prim, u, v }
+        match leaf.best {
+            Some((slot, u, v)) => SlotHit {
+                t: *t_max,
+                u,
+                v,
+                slot,
+            },
+            None => SlotHit::MISS,
+        }
+    }
+
+    /// The triangle of a [`SlotHit`]; `None` for [`SlotHit::MISS`].
+    #[inline(always)]
+    pub fn mesh_hit(&self, h: SlotHit) -> Option<MeshHit> {
+        let id = *self.ids.get(h.slot as usize)?;
+        let (part, prim) = self.locate(id);
+        Some(MeshHit {
+            part,
+            prim,
+            u: h.u,
+            v: h.v,
         })
     }
 
@@ -334,7 +426,7 @@ struct ClosestInLeaf<'a, T: TriTest, I: Isa> {
     isa: I,
     bvh: &'a MeshBvh,
     pre: &'a T::Prepared,
-    best: Option<(usize, f32, f32)>,
+    best: Option<(u32, f32, f32)>,
 }
 
 impl<T: TriTest, I: Isa> LeafVisitor for &mut ClosestInLeaf<'_, T, I> {
@@ -343,7 +435,7 @@ impl<T: TriTest, I: Isa> LeafVisitor for &mut ClosestInLeaf<'_, T, I> {
         let tris = self.bvh.leaf_packets(first, count);
         if let Some((k, h)) = T::closest(self.isa, self.pre, t_max, tris) {
             // The slot, not the id: `ids` is read once, for the final hit only.
-            self.best = Some((first as usize + k, h.u, h.v));
+            self.best = Some((first + k as u32, h.u, h.v));
         }
         false
     }

@@ -13,6 +13,7 @@
 mod brute_force;
 mod build;
 mod check;
+mod dispatch;
 mod isa;
 mod mesh_bvh;
 mod node;
@@ -23,6 +24,7 @@ mod two_level;
 mod wide;
 
 pub use brute_force::BruteForce;
+pub use dispatch::Scratch;
 pub use isa::Simd;
 pub use node::{MAX_DEPTH, MAX_LEAF};
 pub use two_level::TwoLevel;
@@ -151,6 +153,7 @@ impl Accel {
     }
 
     /// The nearest hit with `0 < t < ray.t_max` (`ray` in world space), if any.
+    #[inline]
     pub fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
         match self {
             Accel::None(b) => b.closest_hit(ray),
@@ -158,11 +161,31 @@ impl Accel {
         }
     }
 
+    /// [`Accel::closest_hit`] on the caller's traversal stacks (the same hit; no thread-local
+    /// lookup per query): for callers that make many queries on one thread.
+    #[inline]
+    pub fn closest_hit_with(&self, ray: &Ray, scratch: &mut Scratch) -> Option<Hit> {
+        match self {
+            Accel::None(b) => b.closest_hit(ray),
+            Accel::Bvh(b) => b.closest_hit_with(ray, scratch),
+        }
+    }
+
     /// Whether anything is hit with `0 < t < ray.t_max`; stops at the first hit found.
+    #[inline]
     pub fn any_hit(&self, ray: &Ray) -> bool {
         match self {
             Accel::None(b) => b.any_hit(ray),
             Accel::Bvh(b) => b.any_hit(ray),
+        }
+    }
+
+    /// [`Accel::any_hit`] on the caller's traversal stacks.
+    #[inline]
+    pub fn any_hit_with(&self, ray: &Ray, scratch: &mut Scratch) -> bool {
+        match self {
+            Accel::None(b) => b.any_hit(ray),
+            Accel::Bvh(b) => b.any_hit_with(ray, scratch),
         }
     }
 
