@@ -9,8 +9,9 @@
 //! Stage: queries, for `two_level.rs`.
 
 use super::isa::{Isa, Portable, Simd};
-use super::mesh_bvh::{MollerTrumbore, PackedSlotHit, Watertight};
+use super::mesh_bvh::{MollerTrumbore, Watertight};
 use super::query::{AnyOn, ClosestOn, ClosestOneOn};
+use super::slot_hit::PackedSlotHit;
 use super::traverse::{with_stacks, Entry, SCRATCH};
 use super::two_level::{Placed, TwoLevel};
 use super::{Hit, TriangleTest};

@@ -5,9 +5,10 @@
 //! of every instance (the brute-force oracle that accelerated results are tested against);
 //! [`AccelKind::Bvh`] is the fast path: a two-level BVH (one binned-SAH BVH per mesh in object
 //! space, a top-level BVH over instances), collapsed into flat 8-wide nodes, traversed nearest
-//! child first with a reused per-thread stack, leaves tested with the watertight ray–triangle
-//! test four or eight triangles at a time. The instruction set (portable SSE or AVX2) is chosen
-//! at run time, per CPU ([`Simd`]); both give the same bits. See `docs/bvh.md` for the design
+//! child first with a reused stack (the caller's [`Scratch`], or a per-thread one), leaves
+//! tested with the watertight ray–triangle test four or eight triangles at a time. The
+//! instruction set (portable SSE or AVX2) is chosen at run time, per CPU ([`Simd`]); both give
+//! the same bits. See `docs/bvh.md` for the design
 //! and measured figures.
 
 mod brute_force;
@@ -18,6 +19,7 @@ mod isa;
 mod mesh_bvh;
 mod node;
 mod query;
+mod slot_hit;
 pub mod tally;
 mod traverse;
 mod two_level;

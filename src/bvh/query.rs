@@ -8,7 +8,8 @@
 use std::marker::PhantomData;
 
 use super::isa::Isa;
-use super::mesh_bvh::{PackedSlotHit, TriTest};
+use super::mesh_bvh::TriTest;
+use super::slot_hit::PackedSlotHit;
 use super::traverse::{Entry, LeafVisitor, STACK_MAX};
 use super::two_level::{Placed, TwoLevel};
 use super::Hit;
