@@ -5,6 +5,7 @@
 //! ```text
 //! cargo bench --bench rays -- [SCENES_DIR] [--scenes dense-L5,dense-L6] [--reps 3]
 //!                             [--embree a.csv:b.csv] [--tests both|watertight|mt]
+//!                             [--stacks caller|thread]
 //! ```
 //! `SCENES_DIR` (or `$SCNC_BENCH_SCENES`) holds the directories made by `bench/scenes/gen.py`;
 //! without it the benchmark says so and exits 0. `--embree` (or `$SCNC_BENCH_EMBREE`) names a CSV
@@ -14,6 +15,10 @@
 //! Each ray set's hits are also summarised on stderr as a digest of their bits (hit or miss,
 //! `t`, `u`, `v`, instance, triangle of every ray, in order): a kernel change that claims the same
 //! bits shows the same digests, whatever the instruction set (`SCNC_SIMD`).
+//!
+//! Queries run on traversal stacks the benchmark holds (`Accel::closest_hit_with`, as Embree's
+//! harness holds an intersect context per chunk of rays); `--stacks thread` makes them reach
+//! the thread-local stacks on every query instead (`Accel::closest_hit`, as the renderer does).
 //!
 //! With `--features bvh-counters`, each ray set also reports the wide nodes tested, leaves
 //! entered and packets of four triangles tested per ray (on stderr).
@@ -26,7 +31,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use glam::{Affine3A, DVec3, Vec3};
-use scnc::bvh::{Accel, AccelKind, Hit, Instance, MeshRef, TriangleTest};
+use scnc::bvh::{Accel, AccelKind, Hit, Instance, MeshRef, Scratch, TriangleTest};
 use scnc::geom::Ray;
 use scnc::testing::SplitMix64;
 
@@ -214,9 +219,13 @@ fn trace(
     rays: &[Ray],
     any: bool,
     reps: usize,
+    thread_stacks: bool,
     out: &mut Vec<Option<Hit>>,
 ) -> (f64, Check) {
     let mut best = f64::INFINITY;
+    // The traversal stacks held across the run, as Embree's harness holds one intersect
+    // context per chunk of rays.
+    let mut scratch = Scratch::new();
     #[cfg(feature = "bvh-counters")]
     let before = scnc::bvh::tally::counters::read();
     for _ in 0..reps {
@@ -225,7 +234,12 @@ fn trace(
         let c0 = thread_cpu_s(wall);
         if any {
             out.extend(rays.iter().map(|r| {
-                accel.any_hit(r).then_some(Hit {
+                let blocked = if thread_stacks {
+                    accel.any_hit(r)
+                } else {
+                    accel.any_hit_with(r, &mut scratch)
+                };
+                blocked.then_some(Hit {
                     t: 0.0,
                     u: 0.0,
                     v: 0.0,
@@ -234,7 +248,13 @@ fn trace(
                 })
             }));
         } else {
-            out.extend(rays.iter().map(|r| accel.closest_hit(r)));
+            out.extend(rays.iter().map(|r| {
+                if thread_stacks {
+                    accel.closest_hit(r)
+                } else {
+                    accel.closest_hit_with(r, &mut scratch)
+                }
+            }));
         }
         best = best.min(thread_cpu_s(wall) - c0);
     }
@@ -330,6 +350,8 @@ struct Args {
     reps: usize,
     embree: Option<PathBuf>,
     tests: Vec<TriangleTest>,
+    /// `--stacks thread`: every query reaches the thread-local stacks.
+    thread_stacks: bool,
 }
 
 fn parse_args() -> Args {
@@ -341,6 +363,7 @@ fn parse_args() -> Args {
         reps: 3,
         embree: std::env::var_os("SCNC_BENCH_EMBREE").map(PathBuf::from),
         tests: vec![TriangleTest::Watertight, TriangleTest::MollerTrumbore],
+        thread_stacks: false,
     };
     let mut it = std::env::args().skip(1);
     while let Some(s) = it.next() {
@@ -355,6 +378,7 @@ fn parse_args() -> Args {
             }
             "--reps" => a.reps = it.next().and_then(|r| r.parse().ok()).unwrap_or(3).max(1),
             "--embree" => a.embree = it.next().map(PathBuf::from),
+            "--stacks" => a.thread_stacks = it.next().as_deref() == Some("thread"),
             "--tests" => {
                 a.tests = match it.next().as_deref() {
                     Some("mt") => vec![TriangleTest::MollerTrumbore],
@@ -454,10 +478,31 @@ fn main() {
                 st.bytes as f64 / tris as f64
             ));
             let mut hits = Vec::new();
-            let (mp, cp) = trace(&accel, &scene.primary, false, args.reps, &mut hits);
+            let (mp, cp) = trace(
+                &accel,
+                &scene.primary,
+                false,
+                args.reps,
+                args.thread_stacks,
+                &mut hits,
+            );
             let (shadow, incoherent) = secondary(&scene, &hits);
-            let (ms, cs) = trace(&accel, &shadow, true, args.reps, &mut hits);
-            let (mi, ci) = trace(&accel, &incoherent, false, args.reps, &mut hits);
+            let (ms, cs) = trace(
+                &accel,
+                &shadow,
+                true,
+                args.reps,
+                args.thread_stacks,
+                &mut hits,
+            );
+            let (mi, ci) = trace(
+                &accel,
+                &incoherent,
+                false,
+                args.reps,
+                args.thread_stacks,
+                &mut hits,
+            );
             for (kind, n, m, c) in [
                 ("primary", scene.primary.len(), mp, cp),
                 ("shadow", shadow.len(), ms, cs),

@@ -8,7 +8,7 @@
 //! rare.
 
 use glam::{Affine3A, Quat, Vec3};
-use scnc::bvh::{Accel, AccelKind, Hit, Instance, MeshRef, Simd, TriangleTest};
+use scnc::bvh::{Accel, AccelKind, Hit, Instance, MeshRef, Scratch, Simd, TriangleTest};
 use scnc::geom::Ray;
 
 use scnc::testing::SplitMix64 as Rng;
@@ -197,11 +197,23 @@ fn compare_on(
     let mut rng = Rng(seed);
     let mut excused = 0;
     let mut hits = 0;
+    let mut scratch = Scratch::new();
     for i in 0..rays {
         let aim = random_surface_point(&mut rng, meshes, instances);
         let ray = random_ray(&mut rng, 4.0, i % 2 == 1, aim);
         let want = oracle.closest_hit(&ray);
         let got = bvh.closest_hit(&ray);
+        // The caller's stacks give the same answers, bit for bit.
+        assert_eq!(
+            hit_bits(bvh.closest_hit_with(&ray, &mut scratch)),
+            hit_bits(got),
+            "{simd:?}, ray {i}: closest_hit_with"
+        );
+        assert_eq!(
+            bvh.any_hit_with(&ray, &mut scratch),
+            bvh.any_hit(&ray),
+            "{simd:?}, ray {i}: any_hit_with"
+        );
         hits += want.is_some() as usize;
         assert_eq!(
             bvh.any_hit(&ray),

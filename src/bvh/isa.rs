@@ -4,8 +4,8 @@
 //! test, two packets of four triangles at once), which the AVX-512 path runs compiled for
 //! AVX-512 (32 registers, the node's compare straight into a mask register).
 //!
-//! Stage: queries. `two_level.rs` picks the path once per query ([`Simd`], from CPU detection
-//! at build) and enters it; `traverse.rs` and `mesh_bvh.rs` are generic over [`Isa`], so each
+//! Stage: queries. `dispatch.rs` enters the path chosen at build ([`Simd`], from CPU
+//! detection); `traverse.rs` and `mesh_bvh.rs` are generic over [`Isa`], so each
 //! path is one monomorphic loop. Both forms compute the same bits (same operations, same
 //! order, no fused multiply-adds), so which path runs never changes a hit or an image.
 

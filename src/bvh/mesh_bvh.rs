@@ -10,6 +10,7 @@ use rayon::prelude::*;
 use super::build::{build, Built, PrimBox, PrimRef};
 use super::isa::Isa;
 use super::octant::OctantQuery;
+use super::slot_hit::SlotHit;
 use super::traverse::{traverse, Entry, LeafVisitor};
 use super::wide::{collapse, Wide, WideNode, WideRay, WIDTH};
 use super::MeshRef;
@@ -274,6 +275,21 @@ impl MeshBvh {
         t_max: &mut f32,
         stack: &mut [Entry],
     ) -> Option<MeshHit> {
+        let h = self.closest_slot::<T, I>(isa, ray, t_max, stack);
+        self.mesh_hit(h)
+    }
+
+    /// [`Self::closest`] as the kernel leaves it: the hit's slot, not yet its triangle (the
+    /// `ids` read and the part's binary search are left to [`Self::mesh_hit`], after the
+    /// kernel has returned).
+    #[inline(always)]
+    pub fn closest_slot<T: TriTest, I: Isa>(
+        &self,
+        isa: I,
+        ray: &Ray,
+        t_max: &mut f32,
+        stack: &mut [Entry],
+    ) -> SlotHit {
         let wr = WideRay::new(ray);
         // Prepared in place and borrowed: moving it into the visitor was a copy of wide loads
         // over narrow stores just made (a failed store forward, ~5% of a primary ray's time
@@ -286,10 +302,27 @@ impl MeshBvh {
             t_max,
             stack,
         };
-        let best = isa.per_octant(wr.octant(), query);
-        best.map(|(slot, u, v)| {
-            let (part, prim) = self.locate(self.ids[slot]);
-            MeshHit { part, prim, u, v }
+        match isa.per_octant(wr.octant(), query) {
+            Some((slot, u, v)) => SlotHit {
+                t: *t_max,
+                u,
+                v,
+                slot,
+            },
+            None => SlotHit::MISS,
+        }
+    }
+
+    /// The triangle of a [`SlotHit`]; `None` for [`SlotHit::MISS`].
+    #[inline(always)]
+    pub fn mesh_hit(&self, h: SlotHit) -> Option<MeshHit> {
+        let id = *self.ids.get(h.slot as usize)?;
+        let (part, prim) = self.locate(id);
+        Some(MeshHit {
+            part,
+            prim,
+            u: h.u,
+            v: h.v,
         })
     }
 
@@ -343,7 +376,7 @@ struct ClosestQuery<'a, T: TriTest> {
 }
 
 impl<T: TriTest> OctantQuery for ClosestQuery<'_, T> {
-    type Output = Option<(usize, f32, f32)>;
+    type Output = Option<(u32, f32, f32)>;
     #[inline(always)]
     fn run<I: Isa>(self, isa: I) -> Self::Output {
         let mut leaf = ClosestInLeaf::<T, I> {
@@ -392,7 +425,7 @@ struct ClosestInLeaf<'a, T: TriTest, I: Isa> {
     isa: I,
     bvh: &'a MeshBvh,
     pre: &'a T::Prepared,
-    best: Option<(usize, f32, f32)>,
+    best: Option<(u32, f32, f32)>,
 }
 
 impl<T: TriTest, I: Isa> LeafVisitor for &mut ClosestInLeaf<'_, T, I> {
@@ -401,7 +434,7 @@ impl<T: TriTest, I: Isa> LeafVisitor for &mut ClosestInLeaf<'_, T, I> {
         let tris = self.bvh.leaf_packets(first, count);
         if let Some((k, h)) = T::closest(self.isa, self.pre, t_max, tris) {
             // The slot, not the id: `ids` is read once, for the final hit only.
-            self.best = Some((first as usize + k, h.u, h.v));
+            self.best = Some((first + k as u32, h.u, h.v));
         }
         false
     }

@@ -5,25 +5,29 @@
 //! of every instance (the brute-force oracle that accelerated results are tested against);
 //! [`AccelKind::Bvh`] is the fast path: a two-level BVH (one binned-SAH BVH per mesh in object
 //! space, a top-level BVH over instances), collapsed into flat 8-wide nodes, traversed nearest
-//! child first with a reused per-thread stack, leaves tested with the watertight ray–triangle
-//! test four or eight triangles at a time. The instruction set (portable SSE or AVX2) is chosen
-//! at run time, per CPU ([`Simd`]); both give the same bits. See `docs/bvh.md` for the design
+//! child first with a reused stack (the caller's [`Scratch`], or a per-thread one), leaves
+//! tested with the watertight ray–triangle test four or eight triangles at a time. The
+//! instruction set (portable SSE or AVX2) is chosen at run time, per CPU ([`Simd`]); both give
+//! the same bits. See `docs/bvh.md` for the design
 //! and measured figures.
 
 mod brute_force;
 mod build;
 mod check;
+mod dispatch;
 mod isa;
 mod mesh_bvh;
 mod node;
 mod octant;
 mod query;
+mod slot_hit;
 pub mod tally;
 mod traverse;
 mod two_level;
 mod wide;
 
 pub use brute_force::BruteForce;
+pub use dispatch::Scratch;
 pub use isa::Simd;
 pub use node::{MAX_DEPTH, MAX_LEAF};
 pub use two_level::TwoLevel;
@@ -152,6 +156,7 @@ impl Accel {
     }
 
     /// The nearest hit with `0 < t < ray.t_max` (`ray` in world space), if any.
+    #[inline]
     pub fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
         match self {
             Accel::None(b) => b.closest_hit(ray),
@@ -159,11 +164,31 @@ impl Accel {
         }
     }
 
+    /// [`Accel::closest_hit`] on the caller's traversal stacks (the same hit; no thread-local
+    /// lookup per query): for callers that make many queries on one thread.
+    #[inline]
+    pub fn closest_hit_with(&self, ray: &Ray, scratch: &mut Scratch) -> Option<Hit> {
+        match self {
+            Accel::None(b) => b.closest_hit(ray),
+            Accel::Bvh(b) => b.closest_hit_with(ray, scratch),
+        }
+    }
+
     /// Whether anything is hit with `0 < t < ray.t_max`; stops at the first hit found.
+    #[inline]
     pub fn any_hit(&self, ray: &Ray) -> bool {
         match self {
             Accel::None(b) => b.any_hit(ray),
             Accel::Bvh(b) => b.any_hit(ray),
+        }
+    }
+
+    /// [`Accel::any_hit`] on the caller's traversal stacks.
+    #[inline]
+    pub fn any_hit_with(&self, ray: &Ray, scratch: &mut Scratch) -> bool {
+        match self {
+            Accel::None(b) => b.any_hit(ray),
+            Accel::Bvh(b) => b.any_hit_with(ray, scratch),
         }
     }
 

@@ -9,8 +9,9 @@ use std::marker::PhantomData;
 
 use super::isa::Isa;
 use super::mesh_bvh::TriTest;
-use super::traverse::{Entry, LeafVisitor};
-use super::two_level::TwoLevel;
+use super::slot_hit::PackedSlotHit;
+use super::traverse::{Entry, LeafVisitor, STACK_MAX};
+use super::two_level::{Placed, TwoLevel};
 use super::Hit;
 use crate::geom::avx2::Kernel;
 use crate::geom::Ray;
@@ -98,5 +99,46 @@ impl<T: TriTest, I: Isa> Kernel<I> for AnyOn<'_, T> {
     #[inline(always)]
     fn call(self, isa: I) -> bool {
         self.accel.any_with::<T, I>(isa, self.ray, self.stacks)
+    }
+}
+
+/// The closest-hit query of a structure with one placement `p` (no top level), run inside the
+/// kernel: it returns the hit's slot, packed into two registers ([`PackedSlotHit`]), and the
+/// caller resolves the triangle and instance after the kernel has returned.
+pub(super) struct ClosestOneOn<'a, T> {
+    accel: &'a TwoLevel,
+    p: &'a Placed,
+    ray: &'a Ray,
+    stacks: &'a mut [Entry],
+    test: PhantomData<T>,
+}
+
+impl<'a, T> ClosestOneOn<'a, T> {
+    pub(super) fn new(
+        accel: &'a TwoLevel,
+        p: &'a Placed,
+        ray: &'a Ray,
+        stacks: &'a mut [Entry],
+    ) -> Self {
+        ClosestOneOn {
+            accel,
+            p,
+            ray,
+            stacks,
+            test: PhantomData,
+        }
+    }
+}
+
+impl<T: TriTest, I: Isa> Kernel<I> for ClosestOneOn<'_, T> {
+    type Output = PackedSlotHit;
+    #[inline(always)]
+    fn call(self, isa: I) -> PackedSlotHit {
+        // The bottom level's half, as `TwoLevel::closest_with` splits them.
+        let (_, mesh_stack) = self.stacks.split_at_mut(STACK_MAX);
+        let mut t_max = self.ray.t_max;
+        self.accel
+            .closest_slot_in::<T, I>(isa, self.p, self.ray, &mut t_max, mesh_stack)
+            .pack()
     }
 }

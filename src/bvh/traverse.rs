@@ -42,7 +42,7 @@ pub const STACK_MAX: usize = (WIDTH - 1) * MAX_DEPTH + 2;
 pub type Entry = (u32, u32, f32);
 
 /// Room for one top-level and one bottom-level traversal.
-const SCRATCH: usize = 2 * STACK_MAX;
+pub(super) const SCRATCH: usize = 2 * STACK_MAX;
 
 thread_local! {
     /// Each thread's traversal stacks, reused by every query (a fresh array per query has to

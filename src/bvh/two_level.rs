@@ -10,13 +10,14 @@ use glam::{Affine3A, Vec3A};
 use rayon::prelude::*;
 
 use super::build::{build, PrimBox, PrimRef};
-use super::isa::{Isa, Portable, Simd};
-use super::mesh_bvh::{MeshBvh, MollerTrumbore, TriTest, Watertight};
-use super::query::{AnyOn, ClosestOn, TopAny, TopClosest};
-use super::traverse::{traverse, with_stacks, Entry, STACK_MAX};
+use super::dispatch::Path;
+use super::isa::Isa;
+use super::mesh_bvh::{MeshBvh, TriTest};
+use super::query::{TopAny, TopClosest};
+use super::slot_hit::SlotHit;
+use super::traverse::{traverse, Entry, STACK_MAX};
 use super::wide::{collapse, Wide, WideNode, WideRay};
 use super::{AccelStats, Hit, Instance, MeshRef, TriangleTest};
-use crate::geom::avx2::{Avx2, Avx512};
 use crate::geom::{Aabb, Ray};
 
 /// An instance that survived validation (its mesh exists and has triangles, its transform is
@@ -49,30 +50,8 @@ pub struct TwoLevel {
     pub(super) top: Wide,
     /// Leaf order of the top level: indices into `placed`.
     pub(super) top_order: Vec<u32>,
-    test: TriangleTest,
-    /// The kernels queries run on.
-    kernels: Kernels,
-}
-
-/// The kernels a query runs on, with the token that proves the CPU has them.
-#[derive(Debug, Clone, Copy)]
-enum Kernels {
-    Portable,
-    Avx2(Avx2),
-    Avx512(Avx512),
-}
-
-impl Kernels {
-    /// The widest this CPU has (and `SCNC_SIMD` allows).
-    fn detect() -> Kernels {
-        if let Some(avx) = Avx512::detect() {
-            Kernels::Avx512(avx)
-        } else if let Some(avx) = Avx2::detect() {
-            Kernels::Avx2(avx)
-        } else {
-            Kernels::Portable
-        }
-    }
+    /// The kernels and triangle test queries run on (`dispatch.rs`).
+    pub(super) path: Path,
 }
 
 fn finite_affine(m: &Affine3A) -> bool {
@@ -214,8 +193,7 @@ impl TwoLevel {
             placed,
             top: collapse(&top.nodes),
             top_order: top.order,
-            test,
-            kernels: Kernels::detect(),
+            path: Path::detect(test),
         }
     }
 
@@ -255,6 +233,20 @@ impl TwoLevel {
             instance,
             prim: h.prim,
         })
+    }
+
+    /// [`Self::closest_in`] as the kernel leaves it (see [`SlotHit`]).
+    #[inline(always)]
+    pub(super) fn closest_slot_in<T: TriTest, I: Isa>(
+        &self,
+        isa: I,
+        p: &Placed,
+        ray: &Ray,
+        t_max: &mut f32,
+        stack: &mut [Entry],
+    ) -> SlotHit {
+        let obj = Self::object_ray(p, ray);
+        self.meshes[p.group as usize].closest_slot::<T, I>(isa, &obj, t_max, stack)
     }
 
     /// The closest hit, on `isa`'s kernels, with `stacks` (two `STACK_MAX` halves: the top
@@ -322,68 +314,6 @@ impl TwoLevel {
             test: PhantomData,
         };
         traverse(isa, &self.top, &wr, &mut t_max, leaf, top_stack)
-    }
-
-    /// The nearest hit along `ray` before its `t_max` (none for a non-finite ray).
-    pub fn closest_hit(&self, ray: &Ray) -> Option<Hit> {
-        if !(ray.origin.is_finite() && ray.dir.is_finite()) || ray.t_max.is_nan() {
-            return None;
-        }
-        match self.test {
-            TriangleTest::MollerTrumbore => self.closest_on::<MollerTrumbore>(ray),
-            TriangleTest::Watertight => self.closest_on::<Watertight>(ray),
-        }
-    }
-
-    /// The closest-hit query with triangle test `T` on this structure's kernels: one small
-    /// closure per path, which fetches the stacks and enters the kernel.
-    #[inline(always)]
-    fn closest_on<T: TriTest>(&self, ray: &Ray) -> Option<Hit> {
-        match self.kernels {
-            Kernels::Portable => with_stacks(|s| self.closest_with::<T, _>(Portable, ray, s)),
-            Kernels::Avx2(avx) => with_stacks(|s| avx.run(ClosestOn::<T>::new(self, ray, s))),
-            Kernels::Avx512(avx) => with_stacks(|s| avx.run(ClosestOn::<T>::new(self, ray, s))),
-        }
-    }
-
-    /// Whether anything blocks `ray` before its `t_max` (shadow rays).
-    pub fn any_hit(&self, ray: &Ray) -> bool {
-        if !(ray.origin.is_finite() && ray.dir.is_finite()) || ray.t_max.is_nan() {
-            return false;
-        }
-        match self.test {
-            TriangleTest::MollerTrumbore => self.any_on::<MollerTrumbore>(ray),
-            TriangleTest::Watertight => self.any_on::<Watertight>(ray),
-        }
-    }
-
-    /// The any-hit query, as [`Self::closest_on`].
-    #[inline(always)]
-    fn any_on<T: TriTest>(&self, ray: &Ray) -> bool {
-        match self.kernels {
-            Kernels::Portable => with_stacks(|s| self.any_with::<T, _>(Portable, ray, s)),
-            Kernels::Avx2(avx) => with_stacks(|s| avx.run(AnyOn::<T>::new(self, ray, s))),
-            Kernels::Avx512(avx) => with_stacks(|s| avx.run(AnyOn::<T>::new(self, ray, s))),
-        }
-    }
-
-    /// The instruction set queries run on.
-    pub fn simd(&self) -> Simd {
-        match self.kernels {
-            Kernels::Portable => Simd::Portable,
-            Kernels::Avx2(_) => Simd::Avx2,
-            Kernels::Avx512(_) => Simd::Avx512,
-        }
-    }
-
-    /// Makes queries run on `simd`; `false` (and no change) if this CPU cannot run it.
-    pub fn force_simd(&mut self, simd: Simd) -> bool {
-        let kernels = match simd {
-            Simd::Portable => Some(Kernels::Portable),
-            Simd::Avx2 => Avx2::detect_cpu().map(Kernels::Avx2),
-            Simd::Avx512 => Avx512::detect_cpu().map(Kernels::Avx512),
-        };
-        kernels.map(|k| self.kernels = k).is_some()
     }
 
     /// Node, leaf and triangle counts and memory, for `--stats`.
