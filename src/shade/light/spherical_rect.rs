@@ -18,7 +18,7 @@
 //! [`spherical::MIN_SOLID_ANGLE`](super::spherical::MIN_SOLID_ANGLE) a caller samples by area
 //! (as `area` does for triangles).
 
-use glam::{DVec2, Vec2, Vec3};
+use glam::{DVec2, Vec2, Vec3, Vec4};
 
 use super::complex_arg::arg;
 
@@ -65,6 +65,25 @@ pub struct RectSample {
 #[inline]
 fn corner_turn(cos_numerator: f64, z0: f64, corner_length: f64) -> DVec2 {
     DVec2::new(cos_numerator, z0.abs() * corner_length)
+}
+
+/// The largest light-frame coordinate the set-up takes unscaled: its product then stays under
+/// `(2⁶¹)⁸·2¹¹ = 2⁴⁹⁹`, far inside f64's range.
+const MAX_UNSCALED: f32 = (1u64 << 60) as f32;
+/// The smallest: the product stays over `2⁻⁴⁸⁰`, far from f64's subnormals (smaller coordinates
+/// of the same configuration lose their digits in f32 already).
+const MIN_UNSCALED: f32 = 1.0 / MAX_UNSCALED;
+
+/// The power of two that brings `largest` (a positive f32) into [1, 2): exact to multiply by.
+/// `None` for an infinite or NaN figure (the set-up has no finite angles then).
+fn power_of_two_scale(largest: f32) -> Option<f64> {
+    if !largest.is_finite() || largest <= 0.0 {
+        return None;
+    }
+    // An f32 is a normal f64 (subnormals included): its exponent is in [−149, 127], so 2^−e is
+    // a normal f64 too.
+    let exponent = ((f64::from(largest).to_bits() >> 52) & 0x7ff) as i64 - 1023;
+    Some(f64::from_bits(((1023 - exponent) as u64) << 52))
 }
 
 /// The complex product `a · b`.
@@ -143,6 +162,19 @@ impl SphericalRect {
         // The set-up in f64 (see the module doc): the closed-form normals n₀ ∝ (0, z₀, −y₀),
         // n₁ ∝ (−z₀, 0, x₁), n₂ ∝ (0, −z₀, y₁), n₃ ∝ (z₀, 0, −x₀); n₀ and n₂ have lengths…
         let (dx0, dx1, dy0, dy1, dz0) = (x0 as f64, x1 as f64, y0 as f64, y1 as f64, z0 as f64);
+        // The product below is of eighth powers of these coordinates: near f32's largest
+        // (≈ 3e38) it overflows f64 (its argument would be NaN), among f32's subnormals it
+        // underflows. Every figure taken from the set-up is homogeneous of degree 0 in them, so
+        // an exact power-of-two scale changes no bit; only such coordinates pay for it.
+        // (Four lanes and two range tests: `f32::max`'s NaN rules cost 30 instructions a call.)
+        let in_plane = Vec4::new(x0, x1, y0, y1).abs().max_element();
+        let unscaled = MIN_UNSCALED..=MAX_UNSCALED;
+        let (dx0, dx1, dy0, dy1, dz0) = if unscaled.contains(&in_plane) && unscaled.contains(&-z0) {
+            (dx0, dx1, dy0, dy1, dz0)
+        } else {
+            let s = power_of_two_scale(in_plane.max(-z0))?;
+            (dx0 * s, dx1 * s, dy0 * s, dy1 * s, dz0 * s)
+        };
         let zz = dz0 * dz0;
         let (l0, l2) = ((zz + dy0 * dy0).sqrt(), (zz + dy1 * dy1).sqrt());
         let corner_len = |a: f64, b: f64| (a * a + b * b + zz).sqrt();
@@ -307,6 +339,63 @@ mod tests {
             Vec3::Z,
         );
         assert!(flat.is_none());
+    }
+
+    /// Light-frame coordinates near f32's largest (where the corners' product overflowed f64
+    /// and its argument was NaN) and among its subnormals (where it underflowed): the same
+    /// configuration scaled by a power of two, every coordinate exact, gives the same angles to
+    /// the bit as at scale 1 (the set-up is homogeneous of degree 0).
+    #[test]
+    fn extreme_coordinates_give_the_angles_of_scale_one() {
+        // Few mantissa bits, so every coordinate is exact as a subnormal too; p at the origin
+        // and axis-aligned edges, so the frame's dot products are exact. At 2¹²⁷ the
+        // coordinates are 3.2e38 and the unscaled product 2¹⁰²⁵.
+        let frame = RectFrame::new(
+            Vec3::new(-1.875, 1.875, -1.875),
+            Vec3::new(1.875, 0.0, 0.0),
+            Vec3::new(0.0, 0.0, 1.875),
+        )
+        .expect("not degenerate");
+        let base = SphericalRect::seen_from(Vec3::ZERO, &frame).expect("seen");
+        let angles = |r: &SphericalRect| {
+            [
+                r.solid_angle,
+                r.b0,
+                r.b1,
+                r.one_minus_b0_sq,
+                r.cos_k,
+                r.sin_k,
+            ]
+            .map(f32::to_bits)
+        };
+        // A square whose corner is straight above p, as high as it is wide: Ω = π/6.
+        assert!((base.solid_angle - std::f32::consts::FRAC_PI_6).abs() < 1e-6);
+        for k in [127, 100, 61, 60, -60, -61, -100, -126, -133] {
+            let s = 2f64.powi(k) as f32;
+            let scaled = RectFrame {
+                corner: frame.corner * s,
+                exl: frame.exl * s,
+                eyl: frame.eyl * s,
+                ..frame
+            };
+            let r = SphericalRect::seen_from(Vec3::ZERO, &scaled)
+                .unwrap_or_else(|| panic!("at scale 2^{k}: not seen"));
+            assert_eq!(angles(&r), angles(&base), "at scale 2^{k}");
+            assert_eq!(
+                [r.x0, r.x1, r.y0, r.y1, r.z0],
+                [base.x0, base.x1, base.y0, base.y1, base.z0].map(|c| c * s)
+            );
+        }
+        // A coordinate beyond f32's range (a point at infinity) has no angles.
+        let far = Vec3::new(f32::MAX, 0.0, 0.0);
+        assert!(SphericalRect::seen_from(
+            -far,
+            &RectFrame {
+                corner: far,
+                ..frame
+            }
+        )
+        .is_none());
     }
 
     /// Samples on a 64×64 grid of `u` land on the rectangle, and the share falling in each of
