@@ -33,6 +33,7 @@ mod let_renamed;
 mod lets;
 mod redo;
 mod reevaluate;
+mod removed;
 mod renamed;
 mod settings;
 mod splice_decls;
