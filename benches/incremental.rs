@@ -573,9 +573,10 @@ fn parts() -> usize {
     at.and_then(|i| args.get(i + 1)?.parse().ok()).unwrap_or(0)
 }
 
-/// Whether `kind` keeps the scene's lines in place and its syntax whole: the kinds `--split`
-/// runs (an edit of included files' text is cut at fixed object lines; a syntax error in a
-/// scene with includes is a full compile, not answered from the memo).
+/// Whether `kind` keeps the scene's lines in place: the kinds `--split` runs (an edit of
+/// included files' text is cut at fixed object lines). A syntax error in an object line of an
+/// included file is answered from the memo (seventh session); one that loses a declaration
+/// (`LetLost`, `MaterialLost`) is a full compile in a scene with includes.
 fn splits(kind: Kind) -> bool {
     !matches!(
         kind,
@@ -584,8 +585,6 @@ fn splits(kind: Kind) -> bool {
             | Kind::UnusedLet
             | Kind::NewMaterial
             | Kind::GroupAdded
-            | Kind::Stray
-            | Kind::Cut
             | Kind::LetLost
             | Kind::MaterialLost
             | Kind::Removed
