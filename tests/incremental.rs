@@ -2425,6 +2425,7 @@ fn declarations_pasted_with_objects_are_checked_in_place() {
     // A texture, the material naming it, and an object with a misspelt material (an error).
     let typo = "texture t7 = checker { even #fff  odd #000 }\n\
                 material m7 = phong { diffuse t7 }\nobject ball { material m77 }\n";
+    let hot = "material hot = phong { diffuse rgb(1.5, 0.1, 0.1) }\nobject bal { material hot }\n";
     let edits = [
         ("light sun", &*format!("{block}light sun"), true),
         (block, "", true),
@@ -2434,6 +2435,10 @@ fn declarations_pasted_with_objects_are_checked_in_place() {
         (before, "", true),
         ("material m0", &*format!("{typo}material m0"), true),
         (typo, "", true),
+        // A material with an error (an albedo above 1) and an object with one (an unknown
+        // mesh), pasted and deleted (their diagnostics cut out where they are).
+        ("light sun", &*format!("{hot}light sun"), true),
+        (hot, "", true),
         // With a `let`, or a name taken: a full compile.
         ("light sun", "let q = 3\nmaterial mq = phong { diffuse #111 }\nobject ball { material mq }\nlight sun", false),
         ("let q = 3\n", "", true),

@@ -16,13 +16,16 @@
 //! what names either name or has an unknown-name diagnostic. `let`s added or removed that nothing else names, in a scene without
 //! a diagnostic, are checked alone ([`CheckMemo::add_or_remove_lets`]); so is a value edit of a
 //! camera, a light or the render block, or a camera's or light's rename ([`CheckMemo::recheck_setting`]), and `material`s,
-//! `mesh`es and `texture`s added (a pasted block) or removed ([`CheckMemo::add_or_remove_decl`]); the version header edited alone
+//! `mesh`es and `texture`s added (a pasted block, `object`s with them) or removed (what names
+//! them checked again; [`CheckMemo::add_or_remove_decl`]); the version header edited alone
 //! (still `scnc 1`) only moves the spans. An edit that breaks the
 //! syntax gets the full compile's diagnostics from the memo of the last text that parsed
 //! ([`super::broken`]), which stays for the edit that fixes it (diffed against that text). Anything
 //! else is a full compile, which is always correct: a file-level diagnostic (an include that
 //! cannot be read or closes a cycle), an include added, removed or edited, a syntax error in a
-//! scene with includes or one [`super::broken`] declines, another statement added, removed or renamed among declarations, an edit of a
+//! scene with includes that loses a declaration or breaks two files (a syntax error in one
+//! file of several is answered from that file's statements, seventh session) or one
+//! [`super::broken`] declines, a `let` or `group` added or removed among declarations, an edit of a
 //! light, a camera or the render block that gives or takes away a diagnostic, or made while the
 //! scene has an error (or of a constant one of them names), a `let` that fails (or failed) while another error
 //! stands, and any edit where a kept span

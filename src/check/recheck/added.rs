@@ -102,8 +102,6 @@ impl CheckMemo {
         let mut naming = BTreeMap::new();
         // The groups among them, whose uses are counted again.
         let mut fresh = Vec::new();
-        // Where the removed `object`s' diagnostics and IR objects are.
-        let mut outputs = (0..0, 0..0);
         if added {
             for d in &decls {
                 let ns = namespace(d)?;
@@ -123,7 +121,7 @@ impl CheckMemo {
             naming.extend(pasted.map(|(i, s)| (i, s.clone())));
         } else {
             // `object`s removed with them: their uses and output go.
-            outputs = self.forget_removed_objects(&old)?;
+            self.forget_removed_objects(&old)?;
             // What names a removed one: checked again once they are out (src/check/recheck/
             // removed.rs), its uses taken out first.
             for d in &decls {
@@ -162,6 +160,12 @@ impl CheckMemo {
             self.finish_diags = kept.len();
             self.diagnostics.extend(kept);
         }
+        // Where the removed `object`s' diagnostics and IR objects are (after the declarations'
+        // own diagnostics, out now).
+        let outputs = match added {
+            true => (0..0, 0..0),
+            false => self.output_ranges(&old),
+        };
         let records = (new.iter())
             .map(|s| StmtRecord {
                 object: matches!(s, Stmt::Object(_)),

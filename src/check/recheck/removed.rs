@@ -37,11 +37,9 @@ use crate::syntax::Stmt;
 
 impl CheckMemo {
     /// The `object`s among the removed statements `old` (the rest declarations): their uses
-    /// out of the counts; where their diagnostics and IR objects are, for the splice to cut.
-    pub(super) fn forget_removed_objects(
-        &mut self,
-        old: &Range<usize>,
-    ) -> Option<(Range<usize>, Range<usize>)> {
+    /// out of the counts (where their output is, [`CheckMemo::output_ranges`], is asked once
+    /// the removed declarations' own diagnostics are out: they come before it).
+    pub(super) fn forget_removed_objects(&mut self, old: &Range<usize>) -> Option<()> {
         let records = self.records.get(old.clone())?.to_vec();
         for r in records.iter().filter(|r| r.object) {
             for (uses, at) in [
@@ -54,7 +52,7 @@ impl CheckMemo {
                 }
             }
         }
-        Some(self.output_ranges(old))
+        Some(())
     }
 
     /// Whether declarations may be removed with what names them: no name declared twice.
