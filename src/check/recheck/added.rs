@@ -201,11 +201,18 @@ impl CheckMemo {
             }
         }
         // Removed ones that something names: the objects naming them hold no index until
-        // checked again, and the re-compaction comes after that.
+        // checked again, and the re-compaction comes after that. Pasted `object`s: they are
+        // checked again anyway, so the IR is compacted once, after them, with the added
+        // declarations' IR.
         let named_removed = !added && !naming.is_empty();
-        if !named_removed {
-            self.recompact(sources, relowered)?;
-        }
+        let pasted_objects = added && own.len() < new.len();
+        let compact = match named_removed || pasted_objects {
+            true => Some(relowered),
+            false => {
+                self.recompact(sources, relowered)?;
+                None
+            }
+        };
         let rechecked = self.recheck_unknown_names(
             sources,
             &namespaces,
@@ -213,7 +220,7 @@ impl CheckMemo {
             &own,
             &fresh,
             dependents,
-            named_removed,
+            compact,
         )?;
         Some(own.len() + rechecked)
     }
@@ -225,8 +232,9 @@ impl CheckMemo {
     /// them, [`CheckMemo::rename_dependents`]), but the statements `own`, checked again in
     /// place ([`super::redo`], [`CheckMemo::splice_decls`]). How many, or `None` when one of
     /// them is a setting (an area light naming an unknown mesh) or the re-check declines.
-    /// With `compact` the IR is compacted again whatever changed (removed declarations that
-    /// something named: [`super::removed`]).
+    /// With `compact` the IR is compacted again whatever changed, with those declarations
+    /// lowered (removed declarations that something named, [`super::removed`]; added ones
+    /// pasted with `object`s).
     #[allow(clippy::too_many_arguments)] // the edit's parts, as the caller found them
     fn recheck_unknown_names(
         &mut self,
@@ -236,7 +244,7 @@ impl CheckMemo {
         own: &[usize],
         fresh: &[usize],
         dependents: &mut Dependents,
-        compact: bool,
+        compact: Option<Relowered>,
     ) -> Option<usize> {
         let unmoved = Shift {
             file: crate::source::FileId(0),
@@ -249,8 +257,10 @@ impl CheckMemo {
         }
         naming.retain(|i, _| !own.contains(i));
         if naming.is_empty() {
-            return (!compact || self.recompact(sources, Relowered::default()).is_some())
-                .then_some(0);
+            return match compact {
+                Some(relowered) => self.recompact(sources, relowered).map(|()| 0),
+                None => Some(0),
+            };
         }
         let was_used = (self.used_meshes(), self.used_materials());
         let mut cx = self.lend(sources);
@@ -260,13 +270,20 @@ impl CheckMemo {
             &mut cx, naming, records, textures, failing, dependents, None, fresh,
         );
         self.take_back(&mut cx);
-        let redone = redone?;
+        let mut redone = redone?;
         if !redone.settings.is_empty() {
             return None;
         }
         self.normal_maps_unchanged(&redone.relowered.textures, dependents)?;
         let used_changed = was_used != (self.used_meshes(), self.used_materials());
-        self.splice_decls(sources, redone, &unmoved, used_changed || compact)
+        let force = compact.is_some();
+        if let Some(r) = compact {
+            let into = &mut redone.relowered;
+            into.textures.extend(r.textures);
+            into.materials.extend(r.materials);
+            into.meshes.extend(r.meshes);
+        }
+        self.splice_decls(sources, redone, &unmoved, used_changed || force)
     }
 
     /// Lowers the added declaration `d` (table index `at` of `ns`): its IR into `relowered`, its
