@@ -4,7 +4,7 @@
 //!
 //! The scene of issue 22: 100,000 `object` statements, each with a rotate and a translate, over
 //! three meshes, an OBJ mesh and an image texture (placed by the group) and 100 materials that
-//! name one constant, `gloss`, and one `group` (about 9 MB). Thirty-one kinds
+//! name one constant, `gloss`, and one `group` (about 9 MB). Thirty-three kinds
 //! of edit, one line each: one object's translate in the middle of the file (a person nudging one
 //! object), one material's colour, the value of `gloss` (its 100 materials re-checked), an
 //! `object` line inserted, one deleted, an object's material misspelt then put back (every
@@ -24,7 +24,9 @@
 //! (named by the group and 1,000 objects) renamed and named back; (sixth session) `let gloss`
 //! renamed (its 100 materials fail) and named back, a block of three declarations pasted and
 //! deleted, the OBJ mesh's material override changed, and a material the group names added
-//! after the group named it.
+//! after the group named it; (seventh session) material `m5`'s line deleted (its 1,000 objects
+//! then name an unknown material) and put back, and a material pasted with two objects that
+//! name it, then deleted.
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
 //!    each edit (the text served from memory; diagnostics are ready when it returns).
@@ -280,9 +282,15 @@ enum Kind {
     /// 1, 3, 5, …: that material's line added before the last `let` (the group resolves; the
     /// one it named before stays, unused).
     GroupNamesAdded,
+    /// (Seventh session.) Edits 0, 2, 4, …: material `m5`'s line deleted (the 1,000 objects
+    /// that name it get an unknown-name error with a did-you-mean); 1, 3, 5, …: put back.
+    Removed,
+    /// (Seventh session.) Edits 0, 2, 4, …: a material and two objects naming it pasted after
+    /// the first material (every later material's table index moves); 1, 3, 5, …: deleted.
+    PasteObjects,
 }
 
-const KINDS: [Kind; 31] = [
+const KINDS: [Kind; 33] = [
     Kind::Object,
     Kind::Material,
     Kind::Let,
@@ -303,6 +311,7 @@ const KINDS: [Kind; 31] = [
     Kind::GroupAdded,
     Kind::Paste,
     Kind::Override,
+    Kind::PasteObjects,
     // Last: each error is taken out again (an even number of edits).
     Kind::BadValue,
     Kind::LetError,
@@ -314,6 +323,7 @@ const KINDS: [Kind; 31] = [
     Kind::MaterialLost,
     Kind::GroupedRename,
     Kind::LetRenamed,
+    Kind::Removed,
     // Last: it leaves a material line per pair before the last `let`.
     Kind::GroupNamesAdded,
 ];
@@ -334,6 +344,7 @@ fn errs(kind: Kind) -> bool {
             | Kind::GroupedRename
             | Kind::LetRenamed
             | Kind::GroupNamesAdded
+            | Kind::Removed
     )
 }
 
@@ -500,6 +511,24 @@ fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String
             let line = format!("material later{} = phong {{ diffuse #345 }}", k - 1);
             lines.insert(at, line);
         }
+        Kind::Removed if k.is_multiple_of(2) => {
+            lines.remove(FIRST_MATERIAL + 5);
+        }
+        Kind::Removed => lines.insert(FIRST_MATERIAL + 5, material_line(5, 5)),
+        Kind::PasteObjects if k.is_multiple_of(2) => {
+            let block = [
+                format!("material pasted{k} = phong {{ diffuse #345 }}"),
+                format!("object tree {{ material pasted{k} }}"),
+                format!(
+                    "object rock {{ material pasted{k}  transform {{ translate ({k}, 0, 1) }} }}"
+                ),
+            ];
+            let at = FIRST_MATERIAL + 1;
+            lines.splice(at..at, block);
+        }
+        Kind::PasteObjects => {
+            lines.drain(FIRST_MATERIAL + 1..FIRST_MATERIAL + 4);
+        }
         Kind::Rename => {
             let (name, renamed) = ("material m5 =", "material m5x =");
             let (from, to) = if k.is_multiple_of(2) {
@@ -523,7 +552,7 @@ fn checked(kind: Kind, k: usize) -> usize {
         Kind::Let => 101,
         Kind::SettingLet => 2,
         Kind::UnusedLet | Kind::NewMaterial | Kind::GroupAdded => 1 - k % 2,
-        Kind::Paste => 3 * (1 - k % 2),
+        Kind::Paste | Kind::PasteObjects => 3 * (1 - k % 2),
         Kind::Delete => 0,
         _ => 1,
     }
@@ -544,9 +573,10 @@ fn parts() -> usize {
     at.and_then(|i| args.get(i + 1)?.parse().ok()).unwrap_or(0)
 }
 
-/// Whether `kind` keeps the scene's lines in place and its syntax whole: the kinds `--split`
-/// runs (an edit of included files' text is cut at fixed object lines; a syntax error in a
-/// scene with includes is a full compile, not answered from the memo).
+/// Whether `kind` keeps the scene's lines in place: the kinds `--split` runs (an edit of
+/// included files' text is cut at fixed object lines). A syntax error in an object line of an
+/// included file is answered from the memo (seventh session); one that loses a declaration
+/// (`LetLost`, `MaterialLost`) is a full compile in a scene with includes.
 fn splits(kind: Kind) -> bool {
     !matches!(
         kind,
@@ -555,10 +585,10 @@ fn splits(kind: Kind) -> bool {
             | Kind::UnusedLet
             | Kind::NewMaterial
             | Kind::GroupAdded
-            | Kind::Stray
-            | Kind::Cut
             | Kind::LetLost
             | Kind::MaterialLost
+            | Kind::Removed
+            | Kind::PasteObjects
     )
 }
 
@@ -664,8 +694,11 @@ fn front_end(objects: usize, edits: usize) {
         let mut build: [Vec<f64>; 3] = Default::default();
         // Pairs of edits for the errors, so that each is taken out before the next kind (and
         // for an inserted material, which would move the material lines of the next kinds).
-        let paired =
-            errs(kind) || matches!(kind, Kind::NewMaterial | Kind::GroupAdded | Kind::Paste);
+        let paired = errs(kind)
+            || matches!(
+                kind,
+                Kind::NewMaterial | Kind::GroupAdded | Kind::Paste | Kind::PasteObjects
+            );
         let count = if paired { edits + edits % 2 } else { edits };
         // A full compile of the first error, for comparison.
         let mut full_error = None;
@@ -702,11 +735,14 @@ fn front_end(objects: usize, edits: usize) {
                         | Kind::GroupedRename
                         | Kind::LetRenamed
                         | Kind::GroupNamesAdded
+                        | Kind::Removed
                 );
                 let checked = match kind {
                     Kind::LetError => checked(Kind::Let, k),
                     // The material and the objects that name `m5` (or `m5x`).
                     Kind::Rename => 1 + objects / 100 + usize::from(objects % 100 > 5),
+                    // The objects that name `m5`; put back, the material too.
+                    Kind::Removed => k % 2 + objects / 100 + usize::from(objects % 100 > 5),
                     // The material, the objects that name `m0` and the group.
                     Kind::GroupedRename => 2 + objects.div_ceil(100),
                     // The `let` and the 100 materials that name it.

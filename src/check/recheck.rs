@@ -8,7 +8,8 @@
 //! value edit of a camera, a light or the render block is checked alone ([`settings`]); an
 //! edit of `group`s that keeps their names is checked as one of `object`s ([`groups`]); a
 //! renamed declaration is checked with what reads either name ([`renamed`]), and so is a
-//! renamed `let` ([`let_renamed`]);
+//! renamed `let` ([`let_renamed`]); declarations added or removed, with `object`s beside them,
+//! are checked with what names them ([`added`], [`removed`]);
 //! everything else is a full check.
 //!
 //! Why the result is the full check's: an `object` is checked in the placement phase, after
@@ -33,6 +34,7 @@ mod let_renamed;
 mod lets;
 mod redo;
 mod reevaluate;
+mod removed;
 mod renamed;
 mod runs;
 mod settings;

@@ -24,13 +24,14 @@ use super::dependents;
 use super::edit::Region;
 use super::{is_cascade, reading_order};
 use crate::diag::Diagnostic;
-use crate::source::FileId;
 use crate::syntax::{self, scan};
 
 /// The diagnostics of a full compile of `text` (which has a syntax error in `region`), or
 /// `None` when they cannot be told from the memo: `old` is the last text that parsed, `spans`
-/// its statements' byte ranges, `old_diags` the check's diagnostics of it, `defines` whether
-/// the compile has a `--define`. Also how many old
+/// its statements' byte ranges (of the edited file, `region`'s), `old_diags` the check's
+/// diagnostics of it, `by_name` whether a lost declaration may be lost quietly by name
+/// ([`lost_quietly_by_name`]; a scene of one file: `Some`, with whether the compile has a
+/// `--define`; `None`, only `object`s and `group`s). Also how many old
 /// statements were parsed again (those of a chunk whose error was told without parsing them
 /// not counted).
 pub(super) fn diagnostics(
@@ -39,7 +40,7 @@ pub(super) fn diagnostics(
     spans: &[(u32, u32)],
     region: &Region,
     old_diags: &[Diagnostic],
-    defines: bool,
+    by_name: Option<bool>,
 ) -> Option<(Vec<Diagnostic>, usize)> {
     if !old_diags.iter().all(|d| is_cascade(d.code)) {
         return None;
@@ -60,7 +61,7 @@ pub(super) fn diagnostics(
         .filter(|&(s, _)| s > new_end)
         .collect();
     let start = region.bytes.start;
-    let recovered = syntax::parse_recovering_from(FileId(0), text, start, &kept)?;
+    let recovered = syntax::parse_recovering_from(shift.file, text, start, &kept)?;
     let (parsed, diags, stop) = (&recovered.statements, recovered.diagnostics, recovered.stop);
     if !diags.iter().any(Diagnostic::is_error) {
         return None;
@@ -78,8 +79,10 @@ pub(super) fn diagnostics(
     // with cascades.
     let lost_quietly = |i: usize| {
         let (s, e) = spans[i];
-        old.get(s as usize..e as usize)
-            .is_some_and(|was| syntax::nests(was) || lost_quietly_by_name(old, spans, i, defines))
+        old.get(s as usize..e as usize).is_some_and(|was| {
+            syntax::nests(was)
+                || by_name.is_some_and(|defines| lost_quietly_by_name(old, spans, i, defines))
+        })
     };
     let mut olds = region.stmts.start..end;
     for stmt in parsed {

@@ -16,13 +16,16 @@
 //! what names either name or has an unknown-name diagnostic. `let`s added or removed that nothing else names, in a scene without
 //! a diagnostic, are checked alone ([`CheckMemo::add_or_remove_lets`]); so is a value edit of a
 //! camera, a light or the render block, or a camera's or light's rename ([`CheckMemo::recheck_setting`]), and `material`s,
-//! `mesh`es and `texture`s added (a pasted block) or removed ([`CheckMemo::add_or_remove_decl`]); the version header edited alone
+//! `mesh`es and `texture`s added (a pasted block, `object`s with them) or removed (what names
+//! them checked again; [`CheckMemo::add_or_remove_decl`]); the version header edited alone
 //! (still `scnc 1`) only moves the spans. An edit that breaks the
 //! syntax gets the full compile's diagnostics from the memo of the last text that parsed
 //! ([`super::broken`]), which stays for the edit that fixes it (diffed against that text). Anything
 //! else is a full compile, which is always correct: a file-level diagnostic (an include that
 //! cannot be read or closes a cycle), an include added, removed or edited, a syntax error in a
-//! scene with includes or one [`super::broken`] declines, another statement added, removed or renamed among declarations, an edit of a
+//! scene with includes that loses a declaration or breaks two files (a syntax error in one
+//! file of several is answered from that file's statements, seventh session) or one
+//! [`super::broken`] declines, a `let` or `group` added or removed among declarations, an edit of a
 //! light, a camera or the render block that gives or takes away a diagnostic, or made while the
 //! scene has an error (or of a constant one of them names), a `let` that fails (or failed) while another error
 //! stands, and any edit where a kept span
@@ -249,11 +252,18 @@ impl Memo {
     /// that changed is an edit ([`Memo::edit`]), in the order read. `None` when only a full
     /// compile can (the memo is then spoiled).
     fn update(&mut self, bytes: &[u8], loader: &dyn Loader) -> Option<Reuse> {
+        self.broken = None;
         let mut reuse = self.edit(FileId(0), bytes)?;
         for id in (1..self.scene_files).map(|i| FileId(i as u32)) {
             let path = self.sources.get(id).path.clone();
             let bytes = loader.read(&path).ok()?;
-            reuse = match (reuse, self.edit(id, &bytes)?) {
+            let after_broken = self.broken.is_some();
+            let edited = self.edit(id, &bytes)?;
+            // A file changed after one with a syntax error: that one's sources miss it.
+            if after_broken && edited != Reuse::Unchanged {
+                return None;
+            }
+            reuse = match (reuse, edited) {
                 (Reuse::Unchanged, r) | (r, Reuse::Unchanged) => r,
                 (
                     Reuse::Statements { parsed, checked },
@@ -274,7 +284,6 @@ impl Memo {
     /// Brings the memo to the new text `bytes` of the scene's file `file`, or `None` when only
     /// a full compile can (the memo is then spoiled).
     fn edit(&mut self, file: FileId, bytes: &[u8]) -> Option<Reuse> {
-        self.broken = None;
         let text = decode(bytes).ok()?;
         if text.trim().is_empty() {
             return None;
@@ -290,12 +299,9 @@ impl Memo {
         let region = edit::region(file, &old, text, spans)?;
         let Some(parsed) = syntax::parse_region(file, text, region.bytes.start, region.bytes.end)
         else {
-            // The recovery's memo reads one file's statements (an included file's diagnostics
-            // would come from a file the scan does not see).
-            return match several {
-                None => self.broken(&old, text, &region),
-                Some(_) => None,
-            };
+            // A scene of several files: that file's statements (seventh session).
+            let view = several.as_ref().map(|v| &v.spans[..]);
+            return self.broken(file, &old, text, &region, view);
         };
         let parsed_count = parsed.len();
         let (file_range, new) = edit::changed(&region, spans, parsed);
@@ -390,22 +396,29 @@ impl Memo {
     /// A syntax error in `text` (edited from the last text that parsed, `old`, in `region`):
     /// the full compile's diagnostics when the memo tells them ([`broken::diagnostics`]),
     /// kept in [`Memo::broken`] while the memo stays that of `old`.
-    fn broken(&mut self, old: &str, text: &str, region: &Region) -> Option<Reuse> {
-        let whole =
-            *(self.chunks_whole).get_or_insert_with(|| broken::no_inner_resync(old, &self.spans));
-        if !whole {
-            return None;
-        }
-        let defines = self.sources.files().count() > 1;
-        let (diags, parsed) = broken::diagnostics(
-            text,
-            old,
-            &self.spans,
-            region,
-            &self.check.diagnostics,
-            defines,
-        )?;
-        self.broken = Some((self.new_sources(FileId(0), text), diags));
+    /// In a scene of several files, `view` is the edited file's statements (`file`): its
+    /// chunks are found afresh, and a declaration lost is declined (what names it, or declares
+    /// its name too, may be in another file).
+    fn broken(
+        &mut self,
+        file: FileId,
+        old: &str,
+        text: &str,
+        region: &Region,
+        view: Option<&[(u32, u32)]>,
+    ) -> Option<Reuse> {
+        let (spans, by_name) = match view {
+            None => {
+                let whole = *(self.chunks_whole)
+                    .get_or_insert_with(|| broken::no_inner_resync(old, &self.spans));
+                let defines = self.sources.files().count() > 1;
+                (whole.then_some(&self.spans[..])?, Some(defines))
+            }
+            Some(spans) => (broken::no_inner_resync(old, spans).then_some(spans)?, None),
+        };
+        let (diags, parsed) =
+            broken::diagnostics(text, old, spans, region, &self.check.diagnostics, by_name)?;
+        self.broken = Some((self.new_sources(file, text), diags));
         Some(Reuse::Statements { parsed, checked: 0 })
     }
 

@@ -36,6 +36,20 @@ use super::{CheckMemo, Dependents, Rechecked};
 use crate::source::{Shift, SourceMap, Span};
 use crate::syntax::{Decl, DeclKind, Stmt};
 
+/// The declarations among `stmts`, when each is a declaration or an `object` (pasted or
+/// deleted with them: 2026-11-26, seventh session).
+fn decls_among(stmts: &[Stmt]) -> Option<Vec<&Decl>> {
+    let mut decls = Vec::new();
+    for s in stmts {
+        match s {
+            Stmt::Decl(d) => decls.push(&**d),
+            Stmt::Object(_) => {}
+            _ => return None,
+        }
+    }
+    (!decls.is_empty()).then_some(decls)
+}
+
 /// The namespace of a declaration the re-check may add or remove.
 fn namespace(d: &Decl) -> Option<Namespace> {
     match d.kind {
@@ -62,15 +76,9 @@ impl CheckMemo {
         shift: &Shift,
         dependents: &mut Dependents,
     ) -> Option<usize> {
-        fn decl(s: &Stmt) -> Option<&Decl> {
-            match s {
-                Stmt::Decl(d) => Some(d),
-                _ => None,
-            }
-        }
         let (added, decls): (bool, Vec<&Decl>) = match (old_stmts, new) {
-            ([], [_, ..]) => (true, new.iter().map(decl).collect::<Option<_>>()?),
-            ([_, ..], []) => (false, old_stmts.iter().map(decl).collect::<Option<_>>()?),
+            ([], [_, ..]) => (true, decls_among(new)?),
+            ([_, ..], []) => (false, decls_among(old_stmts)?),
             _ => return None,
         };
         let mut namespaces = Vec::new();
@@ -83,7 +91,13 @@ impl CheckMemo {
         if old.len() != old_stmts.len() {
             return None;
         }
-        let own = old.start..old.start + new.len();
+        // The added declarations' indices (the `object`s pasted with them are checked again
+        // once they are in, as what names them is).
+        let own: Vec<usize> = (old.start..)
+            .zip(new)
+            .filter(|(_, s)| matches!(s, Stmt::Decl(_)))
+            .map(|(i, _)| i)
+            .collect();
         // What names an added one (it had an unknown name): checked again once it is in.
         let mut naming = BTreeMap::new();
         // The groups among them, whose uses are counted again.
@@ -102,26 +116,30 @@ impl CheckMemo {
             // A group naming an added one counted its objects' uses under the names that
             // resolved: those are taken out now (the tables are the old ones), and its uses
             // counted anew when it is checked again (`redo`'s `fresh`).
-            let groups: Vec<(usize, Stmt)> = (naming.iter())
-                .filter(|(_, s)| matches!(s, Stmt::Group(_)))
-                .map(|(i, s)| (*i, s.clone()))
-                .collect();
-            if !groups.is_empty() {
-                let stmts: Vec<Stmt> = groups.iter().map(|(_, s)| s.clone()).collect();
-                self.forget_uses(sources, &stmts)?;
-                fresh = groups.into_iter().map(|(i, _)| i).collect();
-            }
+            fresh = self.forget_group_uses(sources, &naming)?;
+            let pasted = (old.start..).zip(new).filter(|(i, _)| !own.contains(i));
+            naming.extend(pasted.map(|(i, s)| (i, s.clone())));
         } else {
+            // `object`s removed with them: their uses and output go.
+            self.forget_removed_objects(&old)?;
+            // What names a removed one: checked again once they are out (src/check/recheck/
+            // removed.rs), its uses taken out first.
+            for d in &decls {
+                naming.extend(dependents(&d.name.name)?);
+            }
+            if !naming.is_empty() {
+                self.may_remove_named().then_some(())?;
+                fresh = self.forget_group_uses(sources, &naming)?;
+            }
             // Out of the memo before the spans move (their own lie in the edited bytes).
             for d in &decls {
                 let ns = namespace(d)?;
-                let named = dependents(&d.name.name)?;
-                let table = &mut self.tables[ns as usize];
-                let at = table.get(&d.name.name)?;
-                if table.spans.get(at) != Some(&d.name.span) || !named.is_empty() {
+                let at = self.tables[ns as usize].get(&d.name.name)?;
+                if self.tables[ns as usize].spans.get(at) != Some(&d.name.span) {
                     return None;
                 }
-                table.remove_at(at);
+                self.release_removed(ns, at, &old, &naming)?;
+                self.tables[ns as usize].remove_at(at);
                 self.renumber(ns, at, false)?;
             }
             let spans: Vec<Span> = decls.iter().map(|d| d.span).collect();
@@ -142,13 +160,24 @@ impl CheckMemo {
             self.finish_diags = kept.len();
             self.diagnostics.extend(kept);
         }
-        let records = vec![StmtRecord::default(); new.len()];
+        // Where the removed `object`s' diagnostics and IR objects are (after the declarations'
+        // own diagnostics, out now).
+        let outputs = match added {
+            true => (0..0, 0..0),
+            false => self.output_ranges(&old),
+        };
+        let records = (new.iter())
+            .map(|s| StmtRecord {
+                object: matches!(s, Stmt::Object(_)),
+                ..StmtRecord::default()
+            })
+            .collect();
         let nothing = Rechecked {
             diags: Vec::new(),
             objects: Vec::new(),
             records,
         };
-        if !self.splice(0..0, 0..0, old, nothing, shift) {
+        if !self.splice(outputs.0, outputs.1, old, nothing, shift) {
             return None;
         }
         let mut relowered = Relowered::default();
@@ -171,10 +200,29 @@ impl CheckMemo {
                 }
             }
         }
-        self.recompact(sources, relowered)?;
-        let rechecked =
-            self.recheck_unknown_names(sources, &namespaces, naming, own, &fresh, dependents)?;
-        Some(new.len() + rechecked)
+        // Removed ones that something names: the objects naming them hold no index until
+        // checked again, and the re-compaction comes after that. Pasted `object`s: they are
+        // checked again anyway, so the IR is compacted once, after them, with the added
+        // declarations' IR.
+        let named_removed = !added && !naming.is_empty();
+        let pasted_objects = added && own.len() < new.len();
+        let compact = match named_removed || pasted_objects {
+            true => Some(relowered),
+            false => {
+                self.recompact(sources, relowered)?;
+                None
+            }
+        };
+        let rechecked = self.recheck_unknown_names(
+            sources,
+            &namespaces,
+            naming,
+            &own,
+            &fresh,
+            dependents,
+            compact,
+        )?;
+        Some(own.len() + rechecked)
     }
 
     /// After declarations of `namespaces` were added or removed (every span already the new
@@ -184,14 +232,19 @@ impl CheckMemo {
     /// them, [`CheckMemo::rename_dependents`]), but the statements `own`, checked again in
     /// place ([`super::redo`], [`CheckMemo::splice_decls`]). How many, or `None` when one of
     /// them is a setting (an area light naming an unknown mesh) or the re-check declines.
+    /// With `compact` the IR is compacted again whatever changed, with those declarations
+    /// lowered (removed declarations that something named, [`super::removed`]; added ones
+    /// pasted with `object`s).
+    #[allow(clippy::too_many_arguments)] // the edit's parts, as the caller found them
     fn recheck_unknown_names(
         &mut self,
         sources: &SourceMap,
         namespaces: &[Namespace],
         mut naming: BTreeMap<usize, Stmt>,
-        own: Range<usize>,
+        own: &[usize],
         fresh: &[usize],
         dependents: &mut Dependents,
+        compact: Option<Relowered>,
     ) -> Option<usize> {
         let unmoved = Shift {
             file: crate::source::FileId(0),
@@ -204,7 +257,10 @@ impl CheckMemo {
         }
         naming.retain(|i, _| !own.contains(i));
         if naming.is_empty() {
-            return Some(0);
+            return match compact {
+                Some(relowered) => self.recompact(sources, relowered).map(|()| 0),
+                None => Some(0),
+            };
         }
         let was_used = (self.used_meshes(), self.used_materials());
         let mut cx = self.lend(sources);
@@ -214,13 +270,20 @@ impl CheckMemo {
             &mut cx, naming, records, textures, failing, dependents, None, fresh,
         );
         self.take_back(&mut cx);
-        let redone = redone?;
+        let mut redone = redone?;
         if !redone.settings.is_empty() {
             return None;
         }
         self.normal_maps_unchanged(&redone.relowered.textures, dependents)?;
         let used_changed = was_used != (self.used_meshes(), self.used_materials());
-        self.splice_decls(sources, redone, &unmoved, used_changed)
+        let force = compact.is_some();
+        if let Some(r) = compact {
+            let into = &mut redone.relowered;
+            into.textures.extend(r.textures);
+            into.materials.extend(r.materials);
+            into.meshes.extend(r.meshes);
+        }
+        self.splice_decls(sources, redone, &unmoved, used_changed || force)
     }
 
     /// Lowers the added declaration `d` (table index `at` of `ns`): its IR into `relowered`, its
