@@ -73,7 +73,9 @@ pub struct RenderArgs {
     #[arg(long, value_enum, value_name = "PRESET")]
     pub quality: Option<QualityArg>,
     /// Adaptive sampling: sample each pixel until the relative standard error of its mean is
-    /// below this (e.g. 0.01 for 1%), or `--max-samples` is reached.
+    /// below this (e.g. 0.01 for 1%), or `--max-samples` is reached. A pixel darker than 0.01
+    /// (after exposure) stops at an absolute error of this times 0.01, the brightness below
+    /// which relative error is not measured (docs/quality.md).
     #[arg(long, value_name = "E", value_parser = parse_noise, conflicts_with = "spp")]
     pub noise: Option<f32>,
     /// The cap of adaptive sampling per pixel (16..=1048576; default 4096).
