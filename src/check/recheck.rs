@@ -36,6 +36,7 @@ mod redo;
 mod reevaluate;
 mod removed;
 mod renamed;
+mod renumber;
 mod runs;
 mod settings;
 mod splice_decls;

@@ -3,9 +3,9 @@
 //! 2026-11-26, sixth session; what names them checked again) or removed (the lines of ones
 //! nothing names deleted), checked alone and spliced into the [`CheckMemo`].
 //!
-//! Why the result is the full check's: nothing names a removed declaration (the whole-word
-//! search of the new text through [`Dependents`] finds none), so no other statement checks
-//! differently. What names an added one (it named an unknown one until now: an object whose
+//! Why the result is the full check's: what names a removed declaration (the whole-word
+//! search of the new text through [`Dependents`]) has its uses taken out before the tables
+//! change and is checked again once they have (seventh session, [`super::removed`]). What names an added one (it named an unknown one until now: an object whose
 //! material is typed before the material is) is checked again once it is in, and so is every
 //! statement with an unknown-name diagnostic of its namespace, whose did-you-mean lists the
 //! namespace's names ([`CheckMemo::recheck_unknown_names`], 2026-11-26 fifth session; one of
@@ -17,7 +17,8 @@
 //! changes is the tables: a declaration's table index is its place among those of its kind in
 //! statement order, so each added one is put at its place (in statement order) and every table
 //! index after it (in statement records, use counts, index maps, texture lists, material
-//! overrides, dropped declarations) moves up by one, or down by one after a removed one. The
+//! overrides, dropped declarations) moves up by one, or down by one after a removed one
+//! ([`super::renumber`]). The
 //! added declarations are lowered as the check lowers them, once all are in the tables
 //! (textures, then materials, then meshes; their diagnostics, in their own text, join those
 //! before the placement phase); then the IR is compacted again ([`super::compact`]): a new one
@@ -63,7 +64,7 @@ fn namespace(d: &Decl) -> Option<Namespace> {
 impl CheckMemo {
     /// Replaces the statements `old` (indices into the old list; `old_stmts`, as parsed from the
     /// old text) by `new` when one of the two is empty and the other is `material`, `mesh` or
-    /// `texture` declarations: one removed that nothing else names, or any number added (a
+    /// `texture` declarations: any number removed (what names them checked again), or added (a
     /// pasted block); every other span moves by `shift`, and `sources` holds the new text. The
     /// number of statements checked again, or `None` when the result could differ from a full
     /// check's (the memo is then spoiled).
@@ -328,114 +329,6 @@ impl CheckMemo {
         let n = cx.diags.len();
         self.diagnostics.splice(early..early, cx.diags.drain(..));
         self.used_before.diags += n;
-        Some(())
-    }
-
-    /// Every table index of `ns` from `at` on moved up by one (a declaration `added` at `at`),
-    /// or every one after `at` down by one (the one at `at` removed).
-    fn renumber(&mut self, ns: Namespace, at: usize, added: bool) -> Option<()> {
-        let moved = |i: u32| -> u32 {
-            match (added, i as usize >= at) {
-                (true, true) => i + 1,
-                (false, true) => i - 1,
-                _ => i,
-            }
-        };
-        let (map, uses, used_before) = match ns {
-            Namespace::Material => (
-                &mut self.material_map,
-                Some(&mut self.material_uses),
-                Some(&mut self.used_before.used_materials),
-            ),
-            Namespace::Mesh => (
-                &mut self.mesh_map,
-                Some(&mut self.mesh_uses),
-                Some(&mut self.used_before.used_meshes),
-            ),
-            _ => (&mut self.texture_map, None, None),
-        };
-        if added {
-            (at <= map.len()).then_some(())?;
-            map.insert(at, None);
-            if let Some(uses) = uses {
-                (at <= uses.len()).then(|| uses.insert(at, 0))?;
-            }
-            if let Some(used) = used_before.filter(|u| at <= u.len()) {
-                used.insert(at, false);
-            }
-        } else {
-            // Nothing names a removed declaration: it is neither in the IR nor used.
-            map.get(at)?.is_none().then_some(())?;
-            map.remove(at);
-            if let Some(uses) = uses {
-                (uses.get(at)? == &0).then(|| uses.remove(at))?;
-            }
-            if let Some(used) = used_before.filter(|u| at < u.len()) {
-                used.remove(at);
-            }
-        }
-        let dropped = &mut self.dropped;
-        let key = at as u32;
-        match ns {
-            Namespace::Material => {
-                if !added {
-                    dropped.materials.retain(|(i, _)| *i != key);
-                    self.material_textures.retain(|(m, _)| *m != key);
-                }
-                for r in &mut self.records {
-                    r.material = r.material.map(moved);
-                }
-                for (i, _) in &mut dropped.materials {
-                    *i = moved(*i);
-                }
-                for (_, _, m) in &mut dropped.unresolved {
-                    *m = moved(*m);
-                }
-                for (m, _) in &mut self.material_textures {
-                    *m = moved(*m);
-                }
-                // Material overrides: the kept meshes' list, the dropped meshes' own (table
-                // indices; nothing names a removed one).
-                for m in (self.mesh_overrides.iter_mut()).flat_map(|(_, l)| l) {
-                    *m = moved(*m);
-                }
-                let dropped_overrides = (dropped.meshes.iter_mut())
-                    .flat_map(|(_, m)| m.obj.iter_mut().flat_map(|o| &mut o.materials));
-                for o in dropped_overrides {
-                    o.material = moved(o.material);
-                }
-            }
-            Namespace::Mesh => {
-                if !added {
-                    dropped.meshes.retain(|(i, _)| *i != key);
-                }
-                for r in &mut self.records {
-                    r.mesh = r.mesh.map(moved);
-                }
-                for (i, _) in &mut dropped.meshes {
-                    *i = moved(*i);
-                }
-                for (i, _) in &mut self.mesh_overrides {
-                    *i = moved(*i);
-                }
-                for (_, m, _) in &mut dropped.unresolved {
-                    *m = moved(*m);
-                }
-            }
-            _ => {
-                if !added {
-                    dropped.textures.retain(|(i, _)| *i != key);
-                }
-                for (i, _) in &mut dropped.textures {
-                    *i = moved(*i);
-                }
-                for (_, textures) in &mut self.material_textures {
-                    for t in textures {
-                        *t = moved(*t as u32) as usize;
-                    }
-                }
-            }
-        }
         Some(())
     }
 }
