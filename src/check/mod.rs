@@ -41,7 +41,7 @@ use std::collections::HashMap;
 use crate::diag::{Code, Diagnostic, Staged};
 use crate::ir;
 use crate::source::{SourceMap, Span};
-use crate::syntax::{Decl, DeclKind, Stmt};
+use crate::syntax::{Block, Decl, DeclKind, Ident, Stmt};
 pub use constants::Constants;
 use names::{Namespace, Table};
 
@@ -92,6 +92,9 @@ pub struct Checker<'s> {
     dropped: recheck::Dropped,
     /// How many diagnostics there were when `finish` began (those after are its own).
     finish_from: usize,
+    /// Per light `finish` kept, the mesh table index of an area light (set by `finish`,
+    /// which maps them to IR indices), for the incremental re-compaction to map again.
+    light_meshes: Vec<Option<u32>>,
     /// Which of two spans the check reads first, across included files (set by the
     /// incremental re-check, which compares declarations' places; the full check reads in
     /// order and never asks).
@@ -126,6 +129,7 @@ impl<'s> Checker<'s> {
             active_camera: 0,
             dropped: recheck::Dropped::default(),
             finish_from: 0,
+            light_meshes: Vec::new(),
             order: Default::default(),
         }
     }
@@ -229,11 +233,20 @@ pub fn check_placed(
     Staged::new(scene.filter(|_| !failed), cx.diags)
 }
 
+/// Whether `s` is a scene setting: a `camera`, a `light` or a `render` block.
+pub fn is_setting(s: &Stmt) -> bool {
+    matches!(s, Stmt::Camera { .. } | Stmt::Render { .. })
+        || matches!(s, Stmt::Decl(d) if d.kind == DeclKind::Light)
+}
+
 /// What checking one top-level statement produced (the incremental re-check's bookkeeping).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct StmtRecord {
     /// Whether it is a top-level `object` (the only statement the re-check redoes alone).
     pub object: bool,
+    /// Whether it is a scene setting: a `camera`, a `light` or the `render` block (the
+    /// re-check lowers them all again together: `recheck/settings.rs`).
+    pub setting: bool,
     /// Diagnostics its placement check emitted (0 for statements checked in other phases).
     pub diags: u32,
     /// IR objects it placed.
@@ -280,7 +293,11 @@ impl Checker<'_> {
         let meshes = lowered.meshes.len() + declared(DeclKind::Mesh);
         cx.table(Namespace::Mesh).reserve(meshes);
         let mut undeclared = early::Undeclared::default();
+        let mut settings = Vec::new();
         for (i, stmt) in indices.into_iter().zip(statements) {
+            if is_setting(stmt) {
+                settings.push(i);
+            }
             cx.declare_lowered(&lowered, &mut undeclared, i, &mut decls);
             match stmt {
                 Stmt::Version { .. } | Stmt::Include { .. } => {}
@@ -334,6 +351,11 @@ impl Checker<'_> {
         if let Some((records, start)) = &mut track {
             records.clear();
             records.resize(total, StmtRecord::default());
+            for i in settings {
+                if let Some(r) = records.get_mut(i) {
+                    r.setting = true;
+                }
+            }
             **start = Some(PlacementStart {
                 diags: cx.diags.len(),
                 used_meshes: cx.used_meshes.clone(),
@@ -342,33 +364,48 @@ impl Checker<'_> {
         }
         let records = track.as_mut().map(|(r, _)| &mut **r);
         cx.placements(placements, placed, records);
-        for (name, body, span) in cameras {
-            if let Some(c) = cx.camera(name, body, span) {
-                cx.cameras.push(c);
-            }
-        }
-        if let Some((_, span)) = renders.get(1) {
-            let first = renders[0].1;
-            cx.error(
-                Diagnostic::error(Code::CheckDuplicateRender, "more than one `render` block")
-                    .at(*span, "second `render` block")
-                    .also(first, "first here")
-                    .help("merge them into one"),
-            );
-        }
-        cx.unused_defines();
-        let settings = cx.render(renders.first().map(|(b, s)| (*b, *s)));
+        cx.lower_cameras(cameras);
+        let mut settings = cx.render_blocks(&renders);
         if track.is_none() {
             // Nothing reads them any more (an incremental check's memo keeps them): their
             // room goes to the IR's final lists.
             cx.lets = Constants::default();
             cx.tables[Namespace::Group as usize] = Table::default();
+        } else if settings.is_none() && cx.diags.iter().any(Diagnostic::is_error) {
+            // An incremental check's memo keeps the scene for the edit that mends the render
+            // block (its result is filtered by the error; a failing value is reported, or names
+            // a constant that failed, which was).
+            settings = Some(render::default_settings());
         }
         cx.finish(settings)
     }
 }
 
 impl Checker<'_> {
+    /// Lowers the cameras declared (the first of each name), in statement order.
+    fn lower_cameras(&mut self, cameras: Vec<(&Ident, &Block, Span)>) {
+        for (name, body, span) in cameras {
+            if let Some(c) = self.camera(name, body, span) {
+                self.cameras.push(c);
+            }
+        }
+    }
+
+    /// The `render` blocks, after the cameras: a second one is an error, then each `--define`
+    /// no `let` used, then the first block's settings (`None` when they failed).
+    fn render_blocks(&mut self, renders: &[(&Block, Span)]) -> Option<ir::RenderSettings> {
+        if let [(_, first), (_, second), ..] = renders {
+            self.error(
+                Diagnostic::error(Code::CheckDuplicateRender, "more than one `render` block")
+                    .at(*second, "second `render` block")
+                    .also(*first, "first here")
+                    .help("merge them into one"),
+            );
+        }
+        self.unused_defines();
+        self.render(renders.first().map(|(b, s)| (*b, *s)))
+    }
+
     /// A string literal naming a file, resolved relative to the directory of the `.scn` file
     /// that contains it.
     pub fn asset_path(&mut self, e: &crate::syntax::Expr) -> Option<ir::AssetPath> {

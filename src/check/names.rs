@@ -265,6 +265,12 @@ impl Checker<'_> {
             o.material = material.unwrap_or(0);
         }
         let mut lights = std::mem::take(&mut self.lights);
+        self.light_meshes = (lights.iter())
+            .map(|l| match l {
+                ir::Light::Area(a) => Some(a.mesh),
+                _ => None,
+            })
+            .collect();
         for l in &mut lights {
             if let ir::Light::Area(a) = l {
                 a.mesh = mesh_map[a.mesh as usize].unwrap_or(0);

@@ -26,7 +26,6 @@ use std::ops::Range;
 use std::sync::Arc;
 
 mod added;
-mod area_light;
 mod compact;
 mod decls;
 mod groups;
@@ -79,9 +78,16 @@ pub struct CheckMemo {
     finish_diags: usize,
     /// One per statement, in statement order.
     pub records: Vec<StmtRecord>,
+    /// The indices of the scene settings (cameras, lights, render blocks) among the
+    /// statements, ascending: those whose records say so ([`settings`] lowers them again).
+    settings: Vec<usize>,
+    /// Per light of the IR, the mesh table index of an area light (the IR holds IR indices),
+    /// for the re-compaction.
+    light_meshes: Vec<Option<u32>>,
     /// Every diagnostic of the check, in the order it was found.
     pub diagnostics: Vec<Diagnostic>,
-    /// The scene, also when there were errors (`None` when the render settings failed).
+    /// The scene, also when there were errors (with the default render settings when the
+    /// render block failed: an error stands then, and the result shows no scene).
     /// Shared with the compile's result, so that the memo and the scene a caller holds are
     /// one copy; an edit clones it only while a caller still holds the previous one.
     pub scene: Option<Arc<ir::SceneDesc>>,
@@ -126,6 +132,11 @@ pub fn check_tracked(
         texture_map: std::mem::take(&mut cx.texture_map),
         dropped: std::mem::take(&mut cx.dropped),
         finish_diags: cx.diags.len() - cx.finish_from,
+        settings: (records.iter().enumerate())
+            .filter(|(_, r)| r.setting)
+            .map(|(i, _)| i)
+            .collect(),
+        light_meshes: std::mem::take(&mut cx.light_meshes),
         records,
         diagnostics: std::mem::take(&mut cx.diags),
         scene: scene.map(Arc::new),
@@ -254,7 +265,22 @@ impl CheckMemo {
                 ok &= shift.apply(span);
             }
         }
-        self.records.splice(old, records);
+        let added = records.len();
+        let settings: Vec<usize> = (records.iter().enumerate())
+            .filter(|(_, r)| r.setting)
+            .map(|(i, _)| old.start + i)
+            .collect();
+        self.records.splice(old.clone(), records);
+        // The settings' indices: those of the old statements out, the later ones moved, the
+        // new ones in.
+        self.settings.retain(|i| !old.contains(i));
+        for i in &mut self.settings {
+            if *i >= old.end {
+                *i = *i + added - old.len();
+            }
+        }
+        let at = self.settings.partition_point(|&i| i < old.start);
+        self.settings.splice(at..at, settings);
         ok
     }
 
@@ -270,6 +296,7 @@ impl CheckMemo {
             let (mesh, material) = cx.placement(stmt);
             records.push(StmtRecord {
                 object: matches!(stmt, Stmt::Object(_)),
+                setting: false,
                 diags: (cx.diags.len() - diags) as u32,
                 objects: (cx.objects.len() - objects) as u32,
                 mesh: mesh.map(|m| m as u32),

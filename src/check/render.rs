@@ -23,7 +23,7 @@ use super::vocabulary::RENDER_KEYS as KEYS;
 const EXTENSIONS: &[&str] = &["png", "exr", "hdr", "pfm"];
 
 /// The settings of a scene without a `render` block.
-fn default_settings() -> ir::RenderSettings {
+pub(super) fn default_settings() -> ir::RenderSettings {
     ir::RenderSettings {
         width: 640,
         height: 480,

@@ -23,6 +23,29 @@ pub(super) struct FileText<'a> {
     pub list: Option<Vec<usize>>,
 }
 
+/// The scene's files as the re-check reads them ([`crate::check::Dependents`]): what names a
+/// name, and a statement by its index in the list.
+pub(super) struct SceneStatements<'a>(pub Vec<FileText<'a>>);
+
+impl crate::check::Dependents for SceneStatements<'_> {
+    fn naming(&mut self, name: &str) -> Option<Vec<(usize, Stmt)>> {
+        naming(&self.0, name)
+    }
+
+    fn statement(&mut self, i: usize) -> Option<Stmt> {
+        for f in &self.0 {
+            let at = match &f.list {
+                Some(list) => list.binary_search(&i).ok(),
+                None => Some(i),
+            };
+            if let Some(at) = at {
+                return parse_one(f.file, f.text, &f.spans, at);
+            }
+        }
+        None
+    }
+}
+
 /// The statements of the scene's `files` in which `name` occurs as a word: index in the
 /// statement list and statement, in list order; `None` when one of them does not parse alone
 /// into one statement.

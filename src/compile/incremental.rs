@@ -345,16 +345,14 @@ impl Memo {
             }
             self.move_spans(&region, old_range.clone(), &new)?;
             let files = scene_texts(&self.spans, &self.files, self.scene_files, &sources);
-            let mut naming = |name: &str| dependents::naming(&files, name);
+            let mut naming = dependents::SceneStatements(files);
             let shift = &region.shift;
             let lets = (old_stmts.iter().chain(&new)).all(|s| matches!(s, Stmt::Let { .. }));
-            let setting = match (&old_stmts[..], &new[..]) {
-                ([old], [new]) if CheckMemo::same_setting(old, new) => Some((old, new)),
-                _ => None,
-            };
+            let settings = (old_stmts.iter().chain(&new)).all(crate::check::is_setting);
             let groups = (old_stmts.iter().chain(&new)).any(|s| matches!(s, Stmt::Group(_)));
-            if let Some((old, new)) = setting {
-                (self.check).recheck_setting(&sources, old, new, shift, &mut naming)?
+            if settings {
+                let check = &mut self.check;
+                check.recheck_settings(&sources, old_range, &old_stmts, &new, shift, &mut naming)?
             } else if groups {
                 let old_sources = &self.sources;
                 let check = &mut self.check;

@@ -243,6 +243,7 @@ impl Checker<'_> {
             if let Some(record) = records.as_mut().and_then(|r| r.get_mut(i)) {
                 *record = StmtRecord {
                     object: matches!(stmt, Stmt::Object(_)),
+                    setting: false,
                     diags: (self.diags.len() - diags) as u32,
                     objects: (self.objects.len() - objects) as u32,
                     mesh: mesh.map(|m| m as u32),
@@ -297,6 +298,7 @@ impl Checker<'_> {
             let record = match (s.names, self.objects.get(o)) {
                 (0, Some(object)) => StmtRecord {
                     object: true,
+                    setting: false,
                     diags: 0,
                     objects: 1,
                     mesh: Some(object.mesh),

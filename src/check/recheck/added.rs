@@ -75,7 +75,7 @@ impl CheckMemo {
         old_stmts: &[Stmt],
         new: &[Stmt],
         shift: &Shift,
-        dependents: &mut Dependents,
+        dependents: &mut dyn Dependents,
     ) -> Option<usize> {
         let (added, decls): (bool, Vec<&Decl>) = match (old_stmts, new) {
             ([], [_, ..]) => (true, decls_among(new)?),
@@ -111,7 +111,7 @@ impl CheckMemo {
                 if twice || self.tables[ns as usize].get(&d.name.name).is_some() {
                     return None;
                 }
-                let named = dependents(&d.name.name)?;
+                let named = dependents.naming(&d.name.name)?;
                 naming.extend(named.into_iter().filter(|(i, _)| !own.contains(i)));
             }
             // A group naming an added one counted its objects' uses under the names that
@@ -126,7 +126,7 @@ impl CheckMemo {
             // What names a removed one: checked again once they are out (src/check/recheck/
             // removed.rs), its uses taken out first.
             for d in &decls {
-                naming.extend(dependents(&d.name.name)?);
+                naming.extend(dependents.naming(&d.name.name)?);
             }
             if !naming.is_empty() {
                 self.may_remove_named().then_some(())?;
@@ -244,7 +244,7 @@ impl CheckMemo {
         mut naming: BTreeMap<usize, Stmt>,
         own: &[usize],
         fresh: &[usize],
-        dependents: &mut Dependents,
+        dependents: &mut dyn Dependents,
         compact: Option<Relowered>,
     ) -> Option<usize> {
         let unmoved = Shift {
@@ -272,10 +272,8 @@ impl CheckMemo {
         );
         self.take_back(&mut cx);
         let mut redone = redone?;
-        if !redone.settings.is_empty() {
-            return None;
-        }
         self.normal_maps_unchanged(&redone.relowered.textures, dependents)?;
+        let settings = self.settings_named(sources, &mut redone, false, dependents)?;
         let used_changed = was_used != (self.used_meshes(), self.used_materials());
         let force = compact.is_some();
         if let Some(r) = compact {
@@ -284,7 +282,7 @@ impl CheckMemo {
             into.materials.extend(r.materials);
             into.meshes.extend(r.meshes);
         }
-        self.splice_decls(sources, redone, &unmoved, used_changed || force)
+        self.splice_decls(sources, redone, &unmoved, used_changed || force, settings)
     }
 
     /// Lowers the added declaration `d` (table index `at` of `ns`): its IR into `relowered`, its

@@ -27,7 +27,7 @@
 
 use std::sync::Arc;
 
-use super::super::names::{remap_textures, texture_inputs};
+use super::super::names::{remap_textures, texture_inputs, Namespace};
 use super::CheckMemo;
 use crate::ir;
 use crate::source::{Shift, SourceMap, Span};
@@ -69,6 +69,9 @@ pub(super) struct Relowered {
     pub textures: Vec<(usize, Option<ir::Texture>)>,
     pub materials: Vec<(usize, Option<ir::Material>)>,
     pub meshes: Vec<(usize, Option<ir::Mesh>)>,
+    /// The area lights' own quads, all of them, when the settings lowered again have another
+    /// number of them than the IR holds ([`super::settings`]).
+    pub quads: Option<Vec<ir::Mesh>>,
 }
 
 /// Puts `item` at table index `i` of the sparse, ascending list `list` (`None`: takes it out).
@@ -214,10 +217,15 @@ impl CheckMemo {
         // table indices and then `finish`'s remap: 2026-11-26, seventh session).
         let mut objects = std::mem::take(&mut scene.objects);
         let back = |inv: &[Option<u32>], k: u32| inv.get(k as usize).copied().flatten();
+        // An area light's mesh by table index, as the memo keeps it (exact where the IR's
+        // was a placeholder for a mesh that failed to lower).
         let mut lights = std::mem::take(&mut scene.lights);
-        for l in &mut lights {
+        if lights.len() != self.light_meshes.len() {
+            return None;
+        }
+        for (l, &mesh) in lights.iter_mut().zip(&self.light_meshes) {
             if let ir::Light::Area(a) = l {
-                a.mesh = back(&inv_mesh, a.mesh)?;
+                a.mesh = mesh?;
             }
         }
         let dropped = std::mem::take(&mut self.dropped);
@@ -276,6 +284,12 @@ impl CheckMemo {
         for (i, m) in relowered.meshes {
             *meshes.get_mut(i)? = m;
         }
+        // The area lights' own quads, when the settings were lowered again with another
+        // number of them: past the declared meshes.
+        if let Some(quads) = relowered.quads {
+            meshes.truncate(self.tables[Namespace::Mesh as usize].len());
+            meshes.extend(quads.into_iter().map(Some));
+        }
         let render = scene.render.clone();
         let mut cx = self.lend(sources);
         cx.textures = textures;
@@ -294,6 +308,7 @@ impl CheckMemo {
         self.material_map = std::mem::take(&mut cx.material_map);
         self.mesh_map = std::mem::take(&mut cx.mesh_map);
         self.mesh_overrides = std::mem::take(&mut cx.mesh_overrides);
+        self.light_meshes = std::mem::take(&mut cx.light_meshes);
         self.dropped = std::mem::take(&mut cx.dropped);
         // `finish`'s remap of the objects, from their table indices: a top-level object's from
         // its statement record (exact where the IR's was a placeholder), one in a group's

@@ -61,10 +61,18 @@ use crate::ir;
 use crate::source::{Shift, SourceMap, Span};
 use crate::syntax::{DeclKind, Stmt};
 
-/// The statements of the new text that name `name` (index among all top-level statements, and
-/// the statement parsed), in order; `None` when one cannot be parsed alone. It may give more
-/// than those that name it (a word in a comment or a string): those are checked again too.
-pub type Dependents<'a> = dyn FnMut(&str) -> Option<Vec<(usize, Stmt)>> + 'a;
+/// What the re-check reads of the new text beyond the edited statements, found by the compile
+/// (which keeps the statements' byte ranges): what names a name, and a statement by its place.
+pub trait Dependents {
+    /// The statements of the new text that name `name` (index among all top-level statements,
+    /// and the statement parsed), in order; `None` when one cannot be parsed alone. It may
+    /// give more than those that name it (a word in a comment or a string): those are checked
+    /// again too.
+    fn naming(&mut self, name: &str) -> Option<Vec<(usize, Stmt)>>;
+    /// Top-level statement `i` of the new text (its index among all), parsed alone; `None`
+    /// when it cannot be.
+    fn statement(&mut self, i: usize) -> Option<Stmt>;
+}
 
 /// What a re-check of declarations and objects produced.
 #[derive(Default)]
@@ -103,7 +111,7 @@ impl CheckMemo {
         old_stmts: &[Stmt],
         new: Vec<Stmt>,
         shift: &Shift,
-        dependents: &mut Dependents,
+        dependents: &mut dyn Dependents,
     ) -> Option<usize> {
         let same = old_stmts.len() == new.len() && old.len() == new.len();
         if !same || self.records.len() < old.end {
@@ -168,10 +176,8 @@ impl CheckMemo {
         self.normal_maps_unchanged(&redone.relowered.textures, dependents)?;
         redone.renamed = renamed_at.map(|(ns, at, _)| (ns, at));
         let used_changed = was_used != (self.used_meshes(), self.used_materials());
-        let settings = std::mem::take(&mut redone.settings);
-        let checked = self.splice_decls(sources, redone, shift, used_changed)?;
-        self.recheck_named_settings(sources, &settings)?;
-        Some(checked)
+        let settings = self.settings_named(sources, &mut redone, false, dependents)?;
+        self.splice_decls(sources, redone, shift, used_changed, settings)
     }
 }
 
@@ -183,7 +189,7 @@ impl CheckMemo {
     pub(super) fn normal_maps_unchanged(
         &self,
         relowered: &[(usize, Option<ir::Texture>)],
-        dependents: &mut Dependents,
+        dependents: &mut dyn Dependents,
     ) -> Option<()> {
         let scene = self.scene.as_ref()?;
         for (at, new) in relowered {
@@ -198,7 +204,7 @@ impl CheckMemo {
             }
             let name = self.tables[Namespace::Texture as usize].name(*at);
             let normal_map = |(_, s): &(usize, Stmt)| matches!(s, Stmt::Decl(d) if d.kind == DeclKind::Material && names_a_normal_map(d));
-            if dependents(name)?.iter().any(normal_map) {
+            if dependents.naming(name)?.iter().any(normal_map) {
                 return None;
             }
         }

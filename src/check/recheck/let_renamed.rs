@@ -48,7 +48,7 @@ impl CheckMemo {
         old_stmts: &[Stmt],
         new: &[Stmt],
         shift: &Shift,
-        dependents: &mut Dependents,
+        dependents: &mut dyn Dependents,
     ) -> Option<usize> {
         let (
             [Stmt::Let {
@@ -64,8 +64,8 @@ impl CheckMemo {
             return None;
         };
         let own = old.start;
-        let unread = dependents(&was.name)?.is_empty()
-            && matches!(dependents(&now.name)?.as_slice(), [(i, _)] if *i == own);
+        let unread = dependents.naming(&was.name)?.is_empty()
+            && matches!(dependents.naming(&now.name)?.as_slice(), [(i, _)] if *i == own);
         if unread {
             return self.add_or_remove_lets(sources, old, old_stmts, new, shift, dependents);
         }
@@ -109,10 +109,10 @@ impl CheckMemo {
         redone.checked += 1;
         self.normal_maps_unchanged(&redone.relowered.textures, dependents)?;
         let used_changed = was_used != (self.used_meshes(), self.used_materials());
-        let settings = std::mem::take(&mut redone.settings);
-        let checked = self.splice_decls(sources, redone, shift, used_changed)?;
-        self.recheck_named_settings(sources, &settings)?;
-        Some(checked)
+        // An unused `--define`'s did-you-mean lists the constants, which changed.
+        let defines = !self.defines.is_empty();
+        let settings = self.settings_named(sources, &mut redone, defines, dependents)?;
+        self.splice_decls(sources, redone, shift, used_changed, settings)
     }
 
     /// The statements of the new text (index → statement) that read one of `names` or have an
@@ -124,7 +124,7 @@ impl CheckMemo {
         sources: &SourceMap,
         names: &[&str],
         shift: &Shift,
-        dependents: &mut Dependents,
+        dependents: &mut dyn Dependents,
     ) -> Option<BTreeMap<usize, Stmt>> {
         let unknown = |code| code == Code::CheckUnknownName;
         self.naming_or_listing(sources, names, unknown, shift, dependents)

@@ -37,7 +37,7 @@ impl CheckMemo {
         old_stmts: &[Stmt],
         new: &[Stmt],
         shift: &Shift,
-        dependents: &mut Dependents,
+        dependents: &mut dyn Dependents,
     ) -> Option<usize> {
         let lets = |s: &[Stmt]| s.iter().all(|s| matches!(s, Stmt::Let { .. }));
         let one_side = old_stmts.is_empty() != new.is_empty();
@@ -56,7 +56,7 @@ impl CheckMemo {
             let Stmt::Let { name, .. } = stmt else {
                 return None;
             };
-            let named = dependents(&name.name)?;
+            let named = dependents.naming(&name.name)?;
             if !matches!(named.as_slice(), [(i, _)] if *i == at) {
                 return None;
             }
@@ -67,7 +67,10 @@ impl CheckMemo {
             };
             let declared = self.lets.get(&name.name).map(|(_, at)| *at);
             let overridden = self.defines.contains_key(&name.name);
-            if declared != Some(name.span) || overridden || !dependents(&name.name)?.is_empty() {
+            if declared != Some(name.span)
+                || overridden
+                || !dependents.naming(&name.name)?.is_empty()
+            {
                 return None;
             }
         }

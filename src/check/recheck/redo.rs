@@ -28,7 +28,7 @@ pub(super) fn redo(
     records: &[StmtRecord],
     material_textures: &[(u32, Vec<usize>)],
     failing: Failing,
-    dependents: &mut Dependents,
+    dependents: &mut dyn Dependents,
     renaming: Option<(Namespace, usize, String)>,
     fresh: &[usize],
 ) -> Option<Redone> {
@@ -52,7 +52,7 @@ pub(super) fn redo(
         if !changed {
             continue;
         }
-        for (j, s) in dependents(&name.name)? {
+        for (j, s) in dependents.naming(&name.name)? {
             match s {
                 // A `let` before this one cannot name it (the check would have reported it).
                 Stmt::Let { .. } if j <= i => {}
@@ -80,6 +80,7 @@ pub(super) fn redo(
                 let objects = std::mem::take(&mut cx.objects);
                 let record = StmtRecord {
                     object: true,
+                    setting: false,
                     diags: cx.diags.len() as u32,
                     objects: objects.len() as u32,
                     mesh: mesh.map(|m| m as u32),
@@ -242,6 +243,7 @@ fn group_again(
     let diags = std::mem::take(&mut cx.diags);
     let record = StmtRecord {
         object: false,
+        setting: false,
         diags: diags.len() as u32,
         objects: objects.len() as u32,
         mesh: None,

@@ -31,7 +31,7 @@ pub(super) fn reevaluate(
     name: &crate::syntax::Ident,
     value: &Expr,
     failing: Failing,
-    dependents: &mut Dependents,
+    dependents: &mut dyn Dependents,
 ) -> Option<bool> {
     let clean = failing != Failing::Declined;
     let old = match cx.lets.get(&name.name) {
@@ -102,16 +102,19 @@ fn eval_as_declared(
     cx: &mut Checker,
     e: &Expr,
     before: crate::source::Span,
-    dependents: &mut Dependents,
+    dependents: &mut dyn Dependents,
 ) -> Option<Option<super::super::value::Value>> {
     let mut named = Vec::new();
     names_in(e, &mut named);
     let mut poisoned = std::collections::HashSet::new();
     for n in named.into_iter().filter(|n| cx.poisoned.contains(*n)) {
-        let declared = dependents(n)?.into_iter().find_map(|(_, s)| match s {
-            Stmt::Let { name, .. } if name.name == n => Some(name.span),
-            _ => None,
-        });
+        let declared = dependents
+            .naming(n)?
+            .into_iter()
+            .find_map(|(_, s)| match s {
+                Stmt::Let { name, .. } if name.name == n => Some(name.span),
+                _ => None,
+            });
         if cx.order.before(declared?, before) {
             poisoned.insert(n.to_string());
         }

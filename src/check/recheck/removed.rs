@@ -20,10 +20,14 @@
 //! - a material's list of textures loses a removed texture (the material naming it is checked
 //!   again and its list replaced if its new one differs).
 //!
+//! - a mesh an `area` light names (used before the placements) is named by that light's
+//!   statement, which the search finds: the settings are lowered again (eighth session,
+//!   [`super::settings`]), the light now with an unknown mesh, and their output replaced.
+//!
 //! Declined (a full compile): a name declared twice anywhere (which declaration is the first
-//! could change), a declaration used before the placement phase (an area light's mesh), a use
-//! count left above zero once what names it is taken out (something the search did not find),
-//! and what the re-check declines (an area light, a camera or the render block naming it).
+//! could change), a mesh used before the placements that no light found names, a use count
+//! left above zero once what names it is taken out (something the search did not find), and
+//! what the re-check declines.
 
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -33,7 +37,7 @@ use super::CheckMemo;
 use crate::diag::Code;
 use crate::ir;
 use crate::source::SourceMap;
-use crate::syntax::Stmt;
+use crate::syntax::{DeclKind, Stmt};
 
 impl CheckMemo {
     /// The `object`s among the removed statements `old` (the rest declarations): their uses
@@ -98,7 +102,10 @@ impl CheckMemo {
             _ => None,
         };
         if let Some((uses, before)) = uses {
-            if before.get(at).copied().unwrap_or(false) {
+            // Used before the placements: an area light names it, found among what names it
+            // and lowered again with the other settings (`super::settings`).
+            let light = |s: &Stmt| matches!(s, Stmt::Decl(d) if d.kind == DeclKind::Light);
+            if before.get(at).copied().unwrap_or(false) && !naming.values().any(light) {
                 return None;
             }
             for (&j, s) in naming {

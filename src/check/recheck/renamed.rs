@@ -83,7 +83,7 @@ impl CheckMemo {
         ns: Namespace,
         names: &[&str],
         shift: &Shift,
-        dependents: &mut Dependents,
+        dependents: &mut dyn Dependents,
     ) -> Option<BTreeMap<usize, Stmt>> {
         let lists = |code| lists_names_of(ns, code);
         self.naming_or_listing(sources, names, lists, shift, dependents)
@@ -99,7 +99,7 @@ impl CheckMemo {
         names: &[&str],
         lists: impl Fn(Code) -> bool,
         shift: &Shift,
-        dependents: &mut Dependents,
+        dependents: &mut dyn Dependents,
     ) -> Option<BTreeMap<usize, Stmt>> {
         let mut words: Vec<String> = names.iter().map(|n| n.to_string()).collect();
         for d in self.diagnostics.iter().filter(|d| lists(d.code)) {
@@ -113,7 +113,7 @@ impl CheckMemo {
         words.dedup();
         let mut found = BTreeMap::new();
         for w in words {
-            found.extend(dependents(&w)?);
+            found.extend(dependents.naming(&w)?);
         }
         Some(found)
     }

@@ -89,6 +89,10 @@ impl CheckMemo {
                 for r in &mut self.records {
                     r.mesh = r.mesh.map(moved);
                 }
+                // An area light naming a removed mesh is lowered again (`super::settings`).
+                for m in &mut self.light_meshes {
+                    *m = m.filter(|&i| added || i as usize != at).map(moved);
+                }
                 for (i, _) in &mut dropped.meshes {
                     *i = moved(*i);
                 }

@@ -135,6 +135,7 @@ mod tests {
             .iter()
             .map(|&objects| StmtRecord {
                 object: true,
+                setting: false,
                 diags: 0,
                 objects,
                 mesh: None,

@@ -1,260 +1,275 @@
-//! Stage 2, check, incrementally: a value edit (or a rename) of one scene setting — a
-//! `camera`, a `point` or `environment` `light`, or the `render` block (`fov 40deg` → `fov
-//! 45deg`) — checked again alone, its IR entry replaced in place in the [`CheckMemo`].
+//! Stage 2, check, incrementally: the scene settings — every `camera`, `light` and `render`
+//! block — checked again together (2026-11-28, eighth session), whenever an edit changes one
+//! of them (a value, a name, one added or removed: [`CheckMemo::recheck_settings`]) or
+//! something they may read: a constant one names, a mesh an `area` light names, a name an
+//! unknown-name diagnostic of theirs lists, the constants an unused `--define`'s did-you-mean
+//! lists. Until the seventh session each setting was checked alone, and only while the scene
+//! had no error and the setting kept its diagnostics; everything else was a full compile.
 //!
-//! Why the result is the full check's: these statements are checked after every constant and
-//! declaration, reading constants, the `frame` and (the render block's `camera NAME`) the
-//! camera table and the cameras lowered, and writing only their own IR entry and diagnostics.
-//! It declines unless the scene has no error (so every camera and light lowered, and no
-//! duplicate `render`), the old statement had no diagnostic in its text, and the new one
-//! gives none: then no diagnostic is added or removed, and every other one only moves by the
-//! edit. The statement keeps its kind and its table place (the first of its name). An
-//! `area` light is declined (it names a mesh, or lowers its `quad` to one: the meshes' use and
-//! the IR's indices could change), and so is any `--define` (its unused warning depends on
-//! what names it). A camera or light renamed (`light sun` → `light key`) keeps its table place
-//! under the new name (declined when the name is taken, any name is declared twice, or, for a
-//! camera, the render block names either name: nothing else names a camera or a light). A
-//! `let` a setting names, edited ([`super::decls`]), checks the setting again
-//! here once the rest of the edit is in place ([`CheckMemo::recheck_named_settings`]), under
-//! the same conditions: the statement is unchanged but its value is not.
+//! Why the result is the full check's: the check declares the cameras and lights in
+//! statement order (their own tables: nothing else declares into them), lowers the lights
+//! after the meshes (an area light's `mesh NAME` marks that mesh used before the placements;
+//! its `quad` is a mesh of its own, past the declared ones), and the cameras, a second render
+//! block's error, the unused `--define`s and the render block after the placements. What
+//! they read is the constants, the `frame`, the `--define`s (and whether a `let` used each),
+//! the mesh table and their own two tables; nothing else reads what they write but the
+//! check's last pass (`finish`: whether there is a camera, which meshes are used, the area
+//! lights' and quads' IR indices). They are few, so all of them are lowered again from their
+//! statements (found by their statement records) against the memo's state once the rest of
+//! the edit is in place, and their output replaces the old: the camera and light tables,
+//! their diagnostics before the placements (each lies in its statement's text) and after them
+//! (all the diagnostics between the placements' and `finish`'s), the IR's cameras, lights,
+//! quads and render settings. When which meshes the lights use, how many quads there are, or
+//! whether the scene has a camera changes, the IR is compacted again ([`super::compact`]),
+//! which gives `finish`'s warnings and indices again. A render block that fails leaves the
+//! IR's render settings as they were: the scene then has an error, so no one sees them.
 
 use std::sync::Arc;
 
-use super::super::names::Namespace;
-use super::super::vocabulary::{LightKind, Word};
-use super::area_light::lower_area;
-use super::{CheckMemo, Dependents};
-use crate::diag::Diagnostic;
+use super::super::names::{Namespace, Table};
+use super::compact::Relowered;
+use super::{CheckMemo, Dependents, Rechecked};
+use crate::diag::{Code, Diagnostic};
 use crate::ir;
 use crate::source::{Shift, SourceMap, Span};
-use crate::syntax::{Decl, DeclKind, Ident, Stmt};
+use crate::syntax::{DeclKind, Stmt};
 
-/// A scene setting checked again: its new IR entry.
-enum Setting {
-    Camera(ir::Camera),
-    /// A light, and an area light's own quad (its IR index and mesh).
-    Light(ir::Light, Option<(u32, ir::Mesh)>),
-    Render(ir::RenderSettings, usize),
+/// The settings of the new text lowered again: what replaces their old output.
+pub(super) struct Settings {
+    /// Every setting statement's span.
+    spans: Vec<Span>,
+    /// Their diagnostics before the placements (names declared twice, the lights').
+    early: Vec<Diagnostic>,
+    /// The cameras', a second render block's, the unused `--define`s' and the render block's.
+    late: Vec<Diagnostic>,
+    /// The lights, an area light's mesh by table index.
+    lights: Vec<ir::Light>,
+    /// The area lights' own quads, in order (table indices past the declared meshes).
+    quads: Vec<ir::Mesh>,
+    /// Which meshes the area lights named (used before the placements).
+    marks: Vec<bool>,
+    cameras: Vec<ir::Camera>,
+    render: Option<ir::RenderSettings>,
+    active_camera: usize,
+}
+
+impl Settings {
+    /// How many statements were checked again.
+    pub(super) fn checked(&self) -> usize {
+        self.spans.len()
+    }
 }
 
 impl CheckMemo {
-    /// Whether `old` → `new` is the edit [`CheckMemo::recheck_setting`] takes: a camera, a
-    /// (not `area`) light (renamed or not) or the render block.
-    pub fn same_setting(old: &Stmt, new: &Stmt) -> bool {
-        match (old, new) {
-            (Stmt::Camera { .. }, Stmt::Camera { .. }) => true,
-            (Stmt::Decl(a), Stmt::Decl(b)) => {
-                let (x, y) = (light_kind(a), light_kind(b));
-                x.is_some() && x == y
-            }
-            (Stmt::Render { .. }, Stmt::Render { .. }) => true,
-            _ => false,
-        }
-    }
-
-    /// A camera or light renamed from `old` to `new` (their idents): its table entry takes the
-    /// new name at its place (as a renamed declaration's does: [`CheckMemo::rename_entry`];
-    /// declined when the new name is taken or any name is declared twice), with the new span
-    /// once every other span has moved. Only the render block names a camera (`camera NAME`;
-    /// nothing names a light): declined when one names either name (the whole-word search of
-    /// the new text). No diagnostic lists camera or light names but an unknown camera's, an
-    /// error, which the caller declines.
-    fn rename_setting(
-        &mut self,
-        ns: Namespace,
-        (old, new): (&Ident, &Ident),
-        dependents: &mut Dependents,
-    ) -> Option<usize> {
-        if ns == Namespace::Camera {
-            let render = |found: Vec<(usize, Stmt)>| {
-                (found.iter()).any(|(_, s)| matches!(s, Stmt::Render { .. }))
-            };
-            if render(dependents(&old.name)?) || render(dependents(&new.name)?) {
-                return None;
-            }
-        }
-        self.rename_entry(ns, old, new)
-    }
-
-    /// Replaces the check of the setting `old` (as parsed from the old text) by that of `new`
-    /// ([`CheckMemo::same_setting`]), every other span moving by `shift`; `sources` holds the
-    /// new text. The number of statements checked again (1), or `None` when the result could
-    /// differ from a full check's: the memo is then spoiled, and the caller checks in full.
-    pub fn recheck_setting(
+    /// Replaces the settings `old` (indices into the old list; `old_stmts`, as parsed from the
+    /// old text) by `new` (any number of each, every one a `camera`, `light` or `render`),
+    /// every other span moving by `shift`, and checks every setting again; `sources` holds
+    /// the new text. The number of statements checked again, or `None` when the result could
+    /// differ from a full check's (the memo is then spoiled).
+    pub fn recheck_settings(
         &mut self,
         sources: &SourceMap,
-        old: &Stmt,
-        new: &Stmt,
+        old: std::ops::Range<usize>,
+        old_stmts: &[Stmt],
+        new: &[Stmt],
         shift: &Shift,
-        dependents: &mut Dependents,
+        statements: &mut dyn Dependents,
     ) -> Option<usize> {
-        let old_span = old.span();
-        let in_old = |d: &Diagnostic| {
-            d.primary.as_ref().is_some_and(|l| {
-                l.span.file == old_span.file
-                    && (old_span.start..old_span.end).contains(&l.span.start)
+        let all = |s: &[Stmt]| s.iter().all(super::super::is_setting);
+        if old.len() != old_stmts.len() || !all(old_stmts) || !all(new) {
+            return None;
+        }
+        // Their output goes before the spans move (the edited ones' lie in the edited
+        // bytes); all of it is made again below.
+        let old_spans: Vec<Span> = old_stmts.iter().map(Stmt::span).collect();
+        self.drop_early(&old_spans);
+        let late = self.late_range()?;
+        self.diagnostics.drain(late);
+        self.tables[Namespace::Camera as usize] = Table::default();
+        self.tables[Namespace::Light as usize] = Table::default();
+        let declared = self.tables[Namespace::Mesh as usize].len();
+        let scene = Arc::make_mut(self.scene.as_mut()?);
+        scene.cameras.clear();
+        scene.lights.clear();
+        scene.render.outputs.clear();
+        self.light_meshes.clear();
+        for k in self.mesh_map.get(declared..)?.iter().flatten() {
+            let quad = scene.meshes.get_mut(*k as usize)?;
+            quad.span = Span::new(shift.file, 0, 0);
+        }
+        let records = new
+            .iter()
+            .map(|_| super::StmtRecord {
+                setting: true,
+                ..Default::default()
+            })
+            .collect();
+        let nothing = Rechecked {
+            diags: Vec::new(),
+            objects: Vec::new(),
+            records,
+        };
+        if !self.splice(0..0, 0..0, old, nothing, shift) {
+            return None;
+        }
+        let settings = self.lower_settings(sources, statements)?;
+        let checked = settings.checked();
+        let mut relowered = Relowered::default();
+        if self.put_settings(settings, &mut relowered)? {
+            self.recompact(sources, relowered)?;
+        }
+        Some(checked)
+    }
+
+    /// Lowers every setting of the new text again, as the check does, against the memo's
+    /// constants, `--define`s and mesh table (the rest of the edit in place); the camera and
+    /// light tables are made again here. `None` when a setting cannot be parsed alone.
+    pub(super) fn lower_settings(
+        &mut self,
+        sources: &SourceMap,
+        statements: &mut dyn Dependents,
+    ) -> Option<Settings> {
+        let stmts: Vec<Stmt> = (self.settings.iter())
+            .map(|&i| statements.statement(i))
+            .collect::<Option<_>>()?;
+        let mut cx = self.lend(sources);
+        cx.tables[Namespace::Camera as usize] = Table::default();
+        cx.tables[Namespace::Light as usize] = Table::default();
+        // The quads take the table places after the declared meshes.
+        let declared = cx.tables[Namespace::Mesh as usize].len();
+        cx.meshes = std::iter::repeat_with(|| None).take(declared).collect();
+        let (mut cameras, mut lights, mut renders) = (Vec::new(), Vec::new(), Vec::new());
+        let mut known = true;
+        for s in &stmts {
+            match s {
+                Stmt::Camera { name, body, span } => {
+                    if cx.declare(Namespace::Camera, &name.name, name.span) {
+                        cameras.push((name, body, *span));
+                    }
+                }
+                Stmt::Decl(d) if d.kind == DeclKind::Light => {
+                    if cx.declare(Namespace::Light, &d.name.name, d.name.span) {
+                        lights.push(&**d);
+                    }
+                }
+                Stmt::Render { body, span } => renders.push((body, *span)),
+                _ => known = false,
+            }
+        }
+        for d in lights {
+            cx.light(d);
+        }
+        let early = std::mem::take(&mut cx.diags);
+        cx.lower_cameras(cameras);
+        let render = cx.render_blocks(&renders);
+        self.take_back(&mut cx);
+        let quads = cx.meshes.split_off(declared);
+        Some(Settings {
+            spans: stmts.iter().map(Stmt::span).collect(),
+            early,
+            late: std::mem::take(&mut cx.diags),
+            lights: std::mem::take(&mut cx.lights),
+            quads: quads.into_iter().collect::<Option<_>>()?,
+            marks: std::mem::take(&mut cx.used_meshes),
+            cameras: std::mem::take(&mut cx.cameras),
+            render,
+            active_camera: cx.active_camera,
+        })
+        .filter(|_| known)
+    }
+
+    /// The settings lowered again ([`CheckMemo::lower_settings`]) when a re-check found some
+    /// among what names a changed name (`redone`'s, counted among its statements checked
+    /// again: the others are added), or `always`; `None` inside when none need to be, `None`
+    /// when the re-check must decline.
+    pub(super) fn settings_named(
+        &mut self,
+        sources: &SourceMap,
+        redone: &mut super::decls::Redone,
+        always: bool,
+        statements: &mut dyn Dependents,
+    ) -> Option<Option<Settings>> {
+        let found = std::mem::take(&mut redone.settings).len();
+        if found == 0 && !always {
+            return Some(None);
+        }
+        let settings = self.lower_settings(sources, statements)?;
+        redone.checked += settings.checked().checked_sub(found)?;
+        Some(Some(settings))
+    }
+
+    /// Puts the settings lowered again in place of the old ones' output (every span already
+    /// the new text's). `true` when the IR must be compacted again (which meshes the lights
+    /// use, how many quads there are or whether the scene has a camera changed), with the
+    /// quads put in `relowered`; else the lights and quads are in the IR already.
+    pub(super) fn put_settings(&mut self, s: Settings, relowered: &mut Relowered) -> Option<bool> {
+        let inside = |d: &Diagnostic| {
+            let at = d.primary.as_ref().map(|l| l.span);
+            at.is_some_and(|at| {
+                (s.spans.iter()).any(|s| s.file == at.file && (s.start..s.end).contains(&at.start))
             })
         };
-        let clean = !self.diagnostics.iter().any(|d| d.is_error() || in_old(d));
-        if !Self::same_setting(old, new) || !clean || !self.defines.is_empty() {
+        // The next edit finds them by their statements' spans.
+        if !s.early.iter().all(inside) {
             return None;
         }
-        let renamed = match (old, new) {
-            (Stmt::Camera { name: a, .. }, Stmt::Camera { name: b, .. }) => {
-                Some((Namespace::Camera, a, b))
-            }
-            (Stmt::Decl(a), Stmt::Decl(b)) => Some((Namespace::Light, &a.name, &b.name)),
-            _ => None,
-        }
-        .filter(|(_, a, b)| a.name != b.name);
-        let at = match renamed {
-            Some((ns, a, b)) => Some((ns, self.rename_setting(ns, (a, b), dependents)?, b.span)),
-            None => None,
-        };
-        let area = match old {
-            Stmt::Decl(d) if light_kind(d) == Some(LightKind::Area) => {
-                Some(self.area_mesh(old_span)?)
-            }
-            _ => None,
-        };
-        let cameras = self.scene.as_ref()?.cameras.clone();
-        if !self.shift_names(shift) {
+        self.drop_early(&s.spans);
+        let at = self.used_before.diags;
+        self.used_before.diags += s.early.len();
+        self.diagnostics.splice(at..at, s.early);
+        let late = self.late_range()?;
+        self.diagnostics.splice(late, s.late);
+        let finish = self.diagnostics.len() - self.finish_diags;
+        let had_no_camera =
+            (self.diagnostics[finish..].iter()).any(|d| d.code == Code::CheckNoCamera);
+        let no_camera = s.cameras.is_empty() && self.tables[Namespace::Camera as usize].is_empty();
+        if s.marks.len() != self.used_before.used_meshes.len() {
             return None;
         }
-        if let Some((ns, at, span)) = at {
-            *self.tables[ns as usize].spans.get_mut(at)? = span;
+        let marks_changed = s.marks != self.used_before.used_meshes;
+        self.used_before.used_meshes = s.marks;
+        self.light_meshes = (s.lights.iter())
+            .map(|l| match l {
+                ir::Light::Area(a) => Some(a.mesh),
+                _ => None,
+            })
+            .collect();
+        let declared = self.tables[Namespace::Mesh as usize].len();
+        let quads_kept = self.mesh_map.len().checked_sub(declared)? == s.quads.len();
+        let scene = Arc::make_mut(self.scene.as_mut()?);
+        scene.cameras = s.cameras;
+        scene.active_camera = s.active_camera;
+        match s.render {
+            Some(render) => scene.render = render,
+            // Unseen: an error stands (a failing value is reported, or names a constant
+            // that failed, which was).
+            None if self.diagnostics.iter().any(Diagnostic::is_error) => {}
+            None => return None,
         }
-        let mut cx = self.lend(sources);
-        let setting = match new {
-            Stmt::Camera { name, body, span } => {
-                let first = cx.tables[Namespace::Camera as usize].get(&name.name);
-                let spans = &cx.tables[Namespace::Camera as usize].spans;
-                let first = first.is_some_and(|at| spans.get(at) == Some(&name.span));
-                first.then(|| cx.camera(name, body, *span).map(Setting::Camera))
+        scene.lights = s.lights;
+        if marks_changed || !quads_kept || had_no_camera != no_camera {
+            relowered.quads = Some(s.quads);
+            return Some(true);
+        }
+        for (l, &mesh) in scene.lights.iter_mut().zip(&self.light_meshes) {
+            if let (ir::Light::Area(a), Some(mesh)) = (l, mesh) {
+                // As `finish` maps it (0 for a mesh that failed to lower).
+                a.mesh = self.mesh_map.get(mesh as usize)?.unwrap_or(0);
             }
-            Stmt::Decl(d) if d.kind == DeclKind::Light => {
-                let first = cx.tables[Namespace::Light as usize].get(&d.name.name);
-                let spans = &cx.tables[Namespace::Light as usize].spans;
-                let first = first.is_some_and(|at| spans.get(at) == Some(&d.name.span));
-                first.then(|| match &area {
-                    Some(area) => {
-                        let (light, mesh) = lower_area(&mut cx, d, area)?;
-                        Some(Setting::Light(light, mesh.map(|m| (area.ir, m))))
-                    }
-                    None => {
-                        cx.light(d);
-                        cx.lights.pop().map(|l| Setting::Light(l, None))
-                    }
-                })
-            }
-            Stmt::Render { body, span } => {
-                cx.cameras = cameras;
-                let settings = cx.render(Some((body, *span)));
-                Some(settings.map(|s| Setting::Render(s, cx.active_camera)))
-            }
-            _ => None,
-        };
-        self.take_back(&mut cx);
-        let setting = setting.flatten().filter(|_| cx.diags.is_empty())?;
-        self.put_setting(old_span, setting, shift).then_some(1)
+        }
+        let quad_places = self.mesh_map.get(declared..)?;
+        for (k, quad) in quad_places.iter().zip(s.quads) {
+            *scene.meshes.get_mut((*k)? as usize)? = quad;
+        }
+        Some(false)
     }
 
-    /// Checks again the settings `settings` (statements of the new text, whose spans the memo
-    /// already holds) that name a constant whose value a declaration edit changed: each as
-    /// [`CheckMemo::recheck_setting`] checks an edited one (its spans unmoved), cameras and
-    /// lights before the render block (it reads the cameras lowered). `None`: decline.
-    pub(super) fn recheck_named_settings(
-        &mut self,
-        sources: &SourceMap,
-        settings: &[Stmt],
-    ) -> Option<()> {
-        let (render, others): (Vec<&Stmt>, Vec<&Stmt>) = settings
-            .iter()
-            .partition(|s| matches!(s, Stmt::Render { .. }));
-        for s in others.into_iter().chain(render) {
-            let unmoved = Shift {
-                file: s.span().file,
-                start: u32::MAX,
-                old_end: u32::MAX,
-                new_end: u32::MAX,
-            };
-            self.recheck_setting(sources, s, s, &unmoved, &mut |_| Some(Vec::new()))?;
-        }
-        Some(())
+    /// Where the diagnostics after the placements and before `finish`'s lie: the cameras', a
+    /// second render block's, the unused `--define`s' and the render block's.
+    fn late_range(&self) -> Option<std::ops::Range<usize>> {
+        let placed: usize = self.records.iter().map(|r| r.diags as usize).sum();
+        let start = self.used_before.diags + placed;
+        let end = self.diagnostics.len().checked_sub(self.finish_diags)?;
+        (start <= end).then_some(start..end)
     }
-
-    /// Moves every span by `shift` but those of the setting whose old statement is `old`,
-    /// whose IR entry `setting` replaces.
-    fn put_setting(&mut self, old: Span, setting: Setting, shift: &Shift) -> bool {
-        let Some(scene) = &mut self.scene else {
-            return false;
-        };
-        let scene = Arc::make_mut(scene);
-        let inside = |s: Span| s.file == old.file && (old.start..old.end).contains(&s.start);
-        // The old entry is taken out before the spans move (its own lie in the edited text).
-        let place = match &setting {
-            Setting::Camera(_) => {
-                let at = scene.cameras.iter().position(|c| inside(c.span));
-                at.inspect(|&at| drop(scene.cameras.remove(at)))
-            }
-            Setting::Light(..) => {
-                let at = scene.lights.iter().position(|l| inside(light_span(l)));
-                at.inspect(|&at| drop(scene.lights.remove(at)))
-            }
-            Setting::Render(..) => {
-                scene.render.outputs.clear();
-                Some(0)
-            }
-        };
-        let Some(at) = place else {
-            return false;
-        };
-        // An area light's own quad: its old mesh (a span in the edited text) replaced before
-        // the spans move, the new one's span (the new text's) set after.
-        let quad = match &setting {
-            Setting::Light(_, Some((k, mesh))) => {
-                let Some(slot) = scene.meshes.get_mut(*k as usize) else {
-                    return false;
-                };
-                *slot = ir::Mesh {
-                    span: Span::new(old.file, 0, 0),
-                    ..mesh.clone()
-                };
-                Some((*k as usize, mesh.span))
-            }
-            _ => None,
-        };
-        let mut ok = scene.shift_spans(shift);
-        if let Some((k, span)) = quad {
-            scene.meshes[k].span = span;
-        }
-        match setting {
-            Setting::Camera(c) => scene.cameras.insert(at, c),
-            Setting::Light(l, _) => scene.lights.insert(at, l),
-            Setting::Render(r, active_camera) => {
-                scene.render = r;
-                scene.active_camera = active_camera;
-            }
-        }
-        for d in &mut self.diagnostics {
-            ok &= d.shift_spans(shift);
-        }
-        ok & self.dropped.shift_spans(shift)
-    }
-}
-
-/// The span a light's IR entry keeps (its name's).
-fn light_span(l: &ir::Light) -> Span {
-    match l {
-        ir::Light::Point(p) => p.span,
-        ir::Light::Area(a) => a.span,
-        ir::Light::Environment(e) => e.span,
-    }
-}
-
-/// The kind of the light declaration `d` (`None`: not a light, or an unknown kind).
-fn light_kind(d: &Decl) -> Option<LightKind> {
-    (d.kind == DeclKind::Light)
-        .then(|| LightKind::from_word(&d.ctor.name.name))
-        .flatten()
 }

@@ -10,6 +10,7 @@ use std::sync::Arc;
 use super::compact::Relowered;
 use super::decls::Redone;
 use super::runs::{merge_runs, merge_runs_in_place};
+use super::settings::Settings;
 use super::CheckMemo;
 use crate::diag::Diagnostic;
 use crate::ir;
@@ -52,6 +53,7 @@ impl CheckMemo {
         redone: Redone,
         shift: &Shift,
         used_changed: bool,
+        settings: Option<Settings>,
     ) -> Option<usize> {
         let Redone {
             objects,
@@ -172,10 +174,16 @@ impl CheckMemo {
         for (i, (record, _, _)) in objects {
             *self.records.get_mut(i)? = record;
         }
+        // The settings lowered again (they named something that changed), in place of theirs.
+        let settings_changed = match settings {
+            Some(s) => self.put_settings(s, &mut relowered)?,
+            None => false,
+        };
         // Declarations now used or unused, lowered or not, textures now used or not: the IR's
         // indices change.
         if used_changed
             || textures_changed
+            || settings_changed
             || renamed.is_some()
             || !self.put_in_place(&mut relowered)
         {
