@@ -14,8 +14,9 @@
 //! or `texture` renamed is checked with what names either name and what has an unknown-name
 //! diagnostic of its kind (in [`CheckMemo::recheck_decls`]), and so is a `let` renamed, with
 //! what names either name or has an unknown-name diagnostic. `let`s added or removed that nothing else names, in a scene without
-//! a diagnostic, are checked alone ([`CheckMemo::add_or_remove_lets`]); so is a value edit of a
-//! camera, a light or the render block, or a camera's or light's rename ([`CheckMemo::recheck_setting`]), and `material`s,
+//! a diagnostic, are checked alone ([`CheckMemo::add_or_remove_lets`]); so are the
+//! settings edited, renamed, added or removed (every camera, light and render block lowered
+//! again together: [`CheckMemo::recheck_settings`]), and `material`s,
 //! `mesh`es and `texture`s added (a pasted block, `object`s with them) or removed (what names
 //! them checked again; [`CheckMemo::add_or_remove_decl`]); the version header edited alone
 //! (still `scnc 1`) only moves the spans. An edit that breaks the

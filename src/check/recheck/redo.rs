@@ -127,7 +127,7 @@ pub(super) fn redo(
                 redone.group_spans.push(stmt.span());
             }
             // Checked after every declaration, once the rest is in place
-            // (`CheckMemo::recheck_named_settings`).
+            // with the other settings (`CheckMemo::settings_named`).
             Stmt::Camera { .. } | Stmt::Render { .. } => {
                 redone.settings.push(stmt);
                 continue;
