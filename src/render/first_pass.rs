@@ -11,6 +11,10 @@ use super::estimate::Accumulator;
 use super::integrator::RayCounts;
 use super::{Cancelled, PixelWindow, Tile};
 
+/// Side of the block of pixels a pixel pools ([`early_stop::RADIUS`] each way), and its pixels.
+const BLOCK_SIDE: usize = 2 * early_stop::RADIUS as usize + 1;
+const BLOCK_PIXELS: usize = BLOCK_SIDE * BLOCK_SIDE;
+
 /// One tile's first batches and ray counts.
 pub(super) type FirstTileResult = (Vec<Accumulator>, RayCounts);
 
@@ -79,17 +83,33 @@ impl FirstBatches {
     }
 
     /// The summaries of the block within [`early_stop::RADIUS`] of (`x`, `y`) that lie in
-    /// `area`, row by row, each with its offset from (`x`, `y`).
+    /// `area`, row by row, each with its offset from (`x`, `y`). A block inside the area (every
+    /// pixel's but at the area's border) is read at fixed offsets from its centre, without a
+    /// test per pixel: the same summaries in the same order.
     fn block(&self, x: u32, y: u32) -> impl Iterator<Item = (i64, i64, &FirstBatchSummary)> {
-        let r = early_stop::RADIUS as i64;
-        let (x, y) = (i64::from(x), i64::from(y));
-        (-r..=r)
-            .flat_map(move |dy| (-r..=r).map(move |dx| (dx, dy)))
-            .filter_map(move |(dx, dy)| {
-                let (nx, ny) = (u32::try_from(x + dx).ok()?, u32::try_from(y + dy).ok()?);
-                let summary = self.summaries.get(self.index(nx, ny)?)?;
-                Some((dx, dy, summary))
-            })
+        let r = early_stop::RADIUS;
+        let a = &self.area;
+        let inside = x >= a.x0 + r && x + r < a.x1 && y >= a.y0 + r && y + r < a.y1;
+        let mut block = [None; BLOCK_PIXELS];
+        let (width, centre) = (a.width() as i64, self.index(x, y));
+        for (k, slot) in block.iter_mut().enumerate() {
+            let (dx, dy) = ((k % BLOCK_SIDE) as i64 - r as i64, (k / BLOCK_SIDE) as i64 - r as i64);
+            let index = match (inside, centre) {
+                (true, Some(centre)) => usize::try_from(centre as i64 + dy * width + dx).ok(),
+                _ => self.neighbour_index(x, y, dx, dy),
+            };
+            *slot = index
+                .and_then(|i| self.summaries.get(i))
+                .map(|summary| (dx, dy, summary));
+        }
+        block.into_iter().flatten()
+    }
+
+    /// Where the pixel at (`dx`, `dy`) from (`x`, `y`) is in `summaries`; `None` outside `area`.
+    fn neighbour_index(&self, x: u32, y: u32, dx: i64, dy: i64) -> Option<usize> {
+        let nx = u32::try_from(i64::from(x) + dx).ok()?;
+        let ny = u32::try_from(i64::from(y) + dy).ok()?;
+        self.index(nx, ny)
     }
 
     /// What the neighbours of (`x`, `y`) within [`early_stop::RADIUS`] say, in a fixed order.

@@ -26,6 +26,7 @@ pub mod estimate;
 mod first_pass;
 pub mod integrator;
 mod mis;
+mod owen_sobol;
 pub mod pattern;
 pub mod pooled_stop;
 pub mod rng;

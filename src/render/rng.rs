@@ -2,9 +2,8 @@
 //! index, dimension): never of the thread, the tile order or the time, so renders are
 //! bit-identical whatever the thread count (`render { seed 0 }` changes every value).
 //!
-//! [`Sampler::point_2d`]: per-stream Owen-scrambled Sobol' (0,2)-sequences per pixel (pbrt-v4's
-//! padded Owen-scrambled Sobol', with the hash-based nested uniform scramble of Laine–Karras /
-//! Burley 2020), whose point `j` does not depend on the pixel's sample count. Adaptive renders
+//! [`Sampler::point_2d`]: per-stream Owen-scrambled Sobol' (0,2)-sequences per pixel
+//! (`render::owen_sobol`), whose point `j` does not depend on the pixel's sample count. Adaptive renders
 //! use them ([`PixelSequences`]: a few independently scrambled replicates, each continued from
 //! batch to batch); fixed-count renders keep the Hammersley sets above, which measured as good
 //! for a known count (docs/speed.md), each stream visiting its set in its own per-pixel order
@@ -19,6 +18,8 @@
 use std::cell::OnceCell;
 
 use glam::Vec2;
+
+use super::owen_sobol::OwenSobol;
 
 /// The samplers of one batch of one pixel: what their keys share is hashed once per pixel, not
 /// once per sample (the same values as [`Sampler::for_batch_sample`], bit for bit).
@@ -192,7 +193,7 @@ impl PixelSequences {
 
 /// murmur3's 64-bit finaliser: a bijective avalanche mix.
 #[inline]
-fn mix64(mut x: u64) -> u64 {
+pub(super) fn mix64(mut x: u64) -> u64 {
     x ^= x >> 33;
     x = x.wrapping_mul(0xff51_afd7_ed55_8ccd);
     x ^= x >> 33;
@@ -307,35 +308,6 @@ impl Sampler {
     }
 }
 
-/// The scramble of one stream of one sequence ([`Sampler::point_2d`]): the two hashes of the
-/// sequence's key and the stream that every point of it shares, derived once where a loop
-/// takes several points of the same sequence ([`PixelSequences::points_2d`]).
-#[derive(Debug, Clone, Copy)]
-struct OwenSobol {
-    bits: u64,
-    seeds: u64,
-}
-
-impl OwenSobol {
-    #[inline]
-    fn of(pixel_key: u64, stream: u64) -> OwenSobol {
-        let bits = mix64(pixel_key ^ stream.wrapping_mul(0x9e37_79b9_7f4a_7c15));
-        OwenSobol {
-            bits,
-            seeds: mix64(bits ^ 0x2545_f491_4f6c_dd1d),
-        }
-    }
-
-    /// Point `j` of the sequence.
-    #[inline]
-    fn point(self, j: u32) -> Vec2 {
-        let i = owen_scramble(j, (self.bits >> 32) as u32);
-        let x = owen_scramble(i.reverse_bits(), self.seeds as u32);
-        let y = owen_scramble(sobol_dim1(i), (self.seeds >> 32) as u32);
-        Vec2::new(bits_to_unit(x), bits_to_unit(y))
-    }
-}
-
 /// `(j + 0.5) / n`. A power-of-two `n` (every square pattern's sample count at 4, 16, 64 or 256
 /// samples per pixel) is a multiplication by its exact reciprocal, the same bits as the
 /// division without its latency on the sample's chain.
@@ -391,67 +363,6 @@ fn permute_index(mut i: u32, len: u32, key: u32) -> u32 {
     }
 }
 
-/// The second dimension of Sobol' (the first is the van der Corput radical inverse, `i`'s
-/// bits reversed): the upper-triangular Pascal matrix mod 2, as a 0.32 fixed-point fraction.
-///
-/// The product is linear over GF(2) (`f(a ^ b) = f(a) ^ f(b)`), so it is the XOR of the
-/// products of `i`'s four bytes, read from [`SOBOL_DIM1_BY_BYTE`]: four loads instead of a
-/// loop over 32 bits (the index is Owen-scrambled, so all 32 are in play), which was half of
-/// [`Sampler::point_2d`]'s time. Same bits as [`sobol_dim1_by_bit`].
-#[inline]
-fn sobol_dim1(i: u32) -> u32 {
-    let [b0, b1, b2, b3] = i.to_le_bytes();
-    SOBOL_DIM1_BY_BYTE[0][b0 as usize]
-        ^ SOBOL_DIM1_BY_BYTE[1][b1 as usize]
-        ^ SOBOL_DIM1_BY_BYTE[2][b2 as usize]
-        ^ SOBOL_DIM1_BY_BYTE[3][b3 as usize]
-}
-
-/// `SOBOL_DIM1_BY_BYTE[k][b]` is [`sobol_dim1_by_bit`] of `b << 8k` (4 KiB, built at compile
-/// time).
-static SOBOL_DIM1_BY_BYTE: [[u32; 256]; 4] = {
-    let mut table = [[0u32; 256]; 4];
-    let mut k = 0;
-    while k < 4 {
-        let mut b = 0;
-        while b < 256 {
-            table[k][b] = sobol_dim1_by_bit((b as u32) << (8 * k));
-            b += 1;
-        }
-        k += 1;
-    }
-    table
-};
-
-/// [`sobol_dim1`] one bit of `i` at a time: the matrix's columns, `1 << 31` and each the one
-/// before XOR itself shifted right.
-const fn sobol_dim1_by_bit(mut i: u32) -> u32 {
-    let mut out = 0u32;
-    let mut column = 1u32 << 31;
-    while i != 0 {
-        if i & 1 != 0 {
-            out ^= column;
-        }
-        i >>= 1;
-        column ^= column >> 1;
-    }
-    out
-}
-
-/// A nested uniform (Owen) scramble of the 0.32 fraction `v` keyed by `seed`: each digit is
-/// flipped by a hash of the digits above it only (Laine–Karras hash, Burley 2020's constants,
-/// as pbrt-v4's `FastOwenScrambler`), so elementary intervals map onto elementary intervals.
-#[inline]
-fn owen_scramble(v: u32, seed: u32) -> u32 {
-    let mut v = v.reverse_bits();
-    v ^= v.wrapping_mul(0x3d20_adea);
-    v = v.wrapping_add(seed);
-    v = v.wrapping_mul((seed >> 16) | 1);
-    v ^= v.wrapping_mul(0x0552_6c56);
-    v ^= v.wrapping_mul(0x53a2_2864);
-    v.reverse_bits()
-}
-
 fn sample_key(seed: u64, px: u32, py: u32, sample: u32) -> u64 {
     key_of(pixel_hash(seed, px, py), sample)
 }
@@ -489,11 +400,6 @@ pub fn unit(h: u64) -> f32 {
 
 fn to_unit(h: u64) -> f32 {
     (h >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
-}
-
-/// The top 24 bits of a 0.32 fraction as a value in [0, 1).
-fn bits_to_unit(v: u32) -> f32 {
-    (v >> 8) as f32 * (1.0 / (1u32 << 24) as f32)
 }
 
 #[cfg(test)]
@@ -541,27 +447,6 @@ mod tests {
             let key = StreamKey::of(lone.pixel_key, stream as u64);
             assert_eq!((cached.bits, cached.order), (key.bits, key.order));
         }
-    }
-
-    #[test]
-    fn sobol_dim1_by_bytes_is_the_bitwise_product() {
-        // The byte tables against the bit loop: every one- and two-bit index, then a spread of
-        // hashed ones (the scrambled indices `point_2d` feeds it).
-        for a in 0..32 {
-            for b in a..32 {
-                let i = (1u32 << a) | (1u32 << b);
-                assert_eq!(sobol_dim1(i), sobol_dim1_by_bit(i), "index {i:#x}");
-            }
-        }
-        let mut h = 0x1234_5678_9abc_def0u64;
-        for _ in 0..100_000 {
-            h = mix64(h);
-            let i = h as u32;
-            assert_eq!(sobol_dim1(i), sobol_dim1_by_bit(i), "index {i:#x}");
-        }
-        // The first points of the dimension, from its definition.
-        let first: Vec<u32> = (0..4).map(|i| sobol_dim1(i) >> 30).collect();
-        assert_eq!(first, [0, 2, 3, 1]);
     }
 
     #[test]

@@ -1,0 +1,201 @@
+//! Stage 4: the points of adaptive renders' sample sequences (`rng::Sampler::point_2d`,
+//! `rng::PixelSequences`): Owen-scrambled Sobol' (0,2)-sequences, one per pixel, replicate and
+//! stream (pbrt-v4's padded Owen-scrambled Sobol', with the hash-based nested uniform scramble
+//! of Laine–Karras / Burley 2020, as its `FastOwenScrambler`). Point `j` of a sequence: its index
+//! shuffled by a nested uniform scramble (so the streams of one sample are not paired by their
+//! common index), then Sobol' dimensions 0 and 1 of the shuffled index, each scrambled on its
+//! own. Every power-of-two prefix and every aligned power-of-two block is a (0,m,2)-net; each
+//! point is uniform on [0, 1)².
+//!
+//! Syntax: none of its own; `render { noise 0.05 }` / `--noise 0.05` samples with it.
+//!
+//! The Laine–Karras hash works on bit-reversed values (its carries run from the low bits up, so
+//! reversed, each digit depends only on the digits above it). Written as scramble = reverse, hash,
+//! reverse, the point takes seven 32-bit reversals, which x86 has no instruction for (a byte
+//! swap and three mask-and-shift steps each). [`OwenSobol::point`] keeps the values in the
+//! reversed domain between the steps instead: three reversals, the same bits as the plain
+//! composition ([`OwenSobol::point_by_definition`], tested).
+
+use glam::Vec2;
+
+use super::rng::mix64;
+
+/// The scramble of one stream of one sequence: the two hashes of the sequence's key and the
+/// stream that every point of it shares, derived once where a loop takes several points of the
+/// same sequence (`rng::PixelSequences::points_2d`).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct OwenSobol {
+    bits: u64,
+    seeds: u64,
+}
+
+impl OwenSobol {
+    /// The scramble of `stream` of the sequence keyed by `sequence_key`.
+    #[inline]
+    pub(super) fn of(sequence_key: u64, stream: u64) -> OwenSobol {
+        let bits = mix64(sequence_key ^ stream.wrapping_mul(0x9e37_79b9_7f4a_7c15));
+        OwenSobol {
+            bits,
+            seeds: mix64(bits ^ 0x2545_f491_4f6c_dd1d),
+        }
+    }
+
+    /// Point `j` of the sequence: [`OwenSobol::point_by_definition`], bit for bit.
+    #[inline]
+    pub(super) fn point(self, j: u32) -> Vec2 {
+        // The shuffled index `i`, and its reversal `u` (the hash's output before its last
+        // reversal): Sobol' dimension 0 of `i` is `u`, which the x scramble reverses back.
+        let u = laine_karras(j.reverse_bits(), (self.bits >> 32) as u32);
+        let i = u.reverse_bits();
+        let x_reversed = laine_karras(i, self.seeds as u32);
+        let y_reversed = laine_karras(sobol_dim1_reversed(i), (self.seeds >> 32) as u32);
+        // Both final reversals in one 64-bit reversal: x lands in the high half, y in the low.
+        let both = ((u64::from(y_reversed) << 32) | u64::from(x_reversed)).reverse_bits();
+        Vec2::new(bits_to_unit((both >> 32) as u32), bits_to_unit(both as u32))
+    }
+
+    /// Point `j` as the composition of whole scrambles: the index scrambled, then Sobol'
+    /// dimension 0 (the bit-reversed index) and dimension 1 of it, each scrambled.
+    #[cfg(test)]
+    fn point_by_definition(self, j: u32) -> Vec2 {
+        let i = owen_scramble(j, (self.bits >> 32) as u32);
+        let x = owen_scramble(i.reverse_bits(), self.seeds as u32);
+        let y = owen_scramble(sobol_dim1_by_bit(i), (self.seeds >> 32) as u32);
+        Vec2::new(bits_to_unit(x), bits_to_unit(y))
+    }
+}
+
+/// The top 24 bits of a 0.32 fraction as a value in [0, 1).
+#[inline]
+fn bits_to_unit(v: u32) -> f32 {
+    (v >> 8) as f32 * (1.0 / (1u32 << 24) as f32)
+}
+
+/// The Laine–Karras hash with Burley 2020's constants (pbrt-v4's `FastOwenScrambler` between its
+/// two reversals) of the bit-reversed fraction `v`: each output bit depends on the input bits at
+/// and below it only, that is on the digits at and above it of the fraction.
+#[inline]
+fn laine_karras(mut v: u32, seed: u32) -> u32 {
+    v ^= v.wrapping_mul(0x3d20_adea);
+    v = v.wrapping_add(seed);
+    v = v.wrapping_mul((seed >> 16) | 1);
+    v ^= v.wrapping_mul(0x0552_6c56);
+    v ^= v.wrapping_mul(0x53a2_2864);
+    v
+}
+
+/// A nested uniform (Owen) scramble of the 0.32 fraction `v` keyed by `seed`: each digit is
+/// flipped by a hash of the digits above it only, so elementary intervals map onto elementary
+/// intervals.
+#[cfg(test)]
+fn owen_scramble(v: u32, seed: u32) -> u32 {
+    laine_karras(v.reverse_bits(), seed).reverse_bits()
+}
+
+/// Sobol' dimension 1 of `i` (the upper-triangular Pascal matrix mod 2, as a 0.32 fraction),
+/// bit-reversed: the input of its scramble's hash.
+///
+/// The product is linear over GF(2) (`f(a ^ b) = f(a) ^ f(b)`), so it is the XOR of the
+/// products of `i`'s four bytes, read from [`SOBOL_DIM1_REVERSED_BY_BYTE`]: four loads instead
+/// of a loop over 32 bits (the index is shuffled, so all 32 are in play), and the reversal is in
+/// the tables.
+#[inline]
+fn sobol_dim1_reversed(i: u32) -> u32 {
+    let [b0, b1, b2, b3] = i.to_le_bytes();
+    SOBOL_DIM1_REVERSED_BY_BYTE[0][b0 as usize]
+        ^ SOBOL_DIM1_REVERSED_BY_BYTE[1][b1 as usize]
+        ^ SOBOL_DIM1_REVERSED_BY_BYTE[2][b2 as usize]
+        ^ SOBOL_DIM1_REVERSED_BY_BYTE[3][b3 as usize]
+}
+
+/// `SOBOL_DIM1_REVERSED_BY_BYTE[k][b]` is [`sobol_dim1_by_bit`] of `b << 8k`, bit-reversed
+/// (4 KiB, built at compile time).
+static SOBOL_DIM1_REVERSED_BY_BYTE: [[u32; 256]; 4] = {
+    let mut table = [[0u32; 256]; 4];
+    let mut k = 0;
+    while k < 4 {
+        let mut b = 0;
+        while b < 256 {
+            table[k][b] = sobol_dim1_by_bit((b as u32) << (8 * k)).reverse_bits();
+            b += 1;
+        }
+        k += 1;
+    }
+    table
+};
+
+/// Sobol' dimension 1 of `i` one bit at a time: the matrix's columns, `1 << 31` and each the
+/// one before XOR itself shifted right.
+const fn sobol_dim1_by_bit(mut i: u32) -> u32 {
+    let mut out = 0u32;
+    let mut column = 1u32 << 31;
+    while i != 0 {
+        if i & 1 != 0 {
+            out ^= column;
+        }
+        i >>= 1;
+        column ^= column >> 1;
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sobol_dim1_by_bytes_is_the_bitwise_product() {
+        // The byte tables against the bit loop: every one- and two-bit index, then a spread of
+        // hashed ones (the shuffled indices `point` feeds it).
+        for a in 0..32 {
+            for b in a..32 {
+                let i = (1u32 << a) | (1u32 << b);
+                let by_bit = sobol_dim1_by_bit(i).reverse_bits();
+                assert_eq!(sobol_dim1_reversed(i), by_bit, "index {i:#x}");
+            }
+        }
+        let mut h = 0x1234_5678_9abc_def0u64;
+        for _ in 0..100_000 {
+            h = mix64(h);
+            let i = h as u32;
+            let by_bit = sobol_dim1_by_bit(i).reverse_bits();
+            assert_eq!(sobol_dim1_reversed(i), by_bit, "index {i:#x}");
+        }
+        // The first points of the dimension, from its definition.
+        let first: Vec<u32> = (0..4).map(|i| sobol_dim1_by_bit(i) >> 30).collect();
+        assert_eq!(first, [0, 2, 3, 1]);
+    }
+
+    #[test]
+    fn points_are_the_composition_of_whole_scrambles() {
+        let mut key = 0x0bad_5eed_u64;
+        for stream in [0, 1, 3, 7, 1 << 40] {
+            for _ in 0..64 {
+                key = mix64(key);
+                let scramble = OwenSobol::of(key, stream);
+                let js = (0..300).chain([1 << 20, u32::MAX - 1, u32::MAX]);
+                for j in js {
+                    let (fast, plain) = (scramble.point(j), scramble.point_by_definition(j));
+                    assert_eq!(fast.x.to_bits(), plain.x.to_bits(), "x of point {j}");
+                    assert_eq!(fast.y.to_bits(), plain.y.to_bits(), "y of point {j}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_scramble_is_nested_each_digit_flipped_by_the_digits_above() {
+        // Two fractions whose first difference is digit k (from the top) scramble to fractions
+        // whose first difference is digit k: elementary intervals onto elementary intervals.
+        let mut h = 0x5151_u64;
+        for _ in 0..20_000 {
+            h = mix64(h);
+            let (v, seed, k) = (h as u32, (h >> 32) as u32, (h >> 27) as u32 % 32);
+            let w = v ^ (1u32 << (31 - k)); // the first difference at digit k (from the top)
+            let (sv, sw) = (owen_scramble(v, seed), owen_scramble(w, seed));
+            let high = (!0u64 << (32 - k)) as u32;
+            assert_eq!(sv & high, sw & high, "digits above {k}");
+            assert_ne!((sv ^ sw) & (1u32 << (31 - k)), 0, "digit {k}");
+        }
+    }
+}
