@@ -112,7 +112,7 @@ pub(super) fn divided(v: Vec3, d: f32) -> Vec3 {
 const STREAM_PICK: u64 = 0;
 pub(super) const STREAM_ENVIRONMENT: u64 = 1;
 pub(super) const STREAM_BRDF: u64 = 2;
-const STREAM_LIGHTS: u64 = 3;
+pub(super) const STREAM_LIGHTS: u64 = 3;
 /// The environment's bright set (`render::mis`), far above the per-light streams.
 pub(super) const STREAM_ENVIRONMENT_BRIGHT: u64 = (1 << 40) + 1;
 

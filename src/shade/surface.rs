@@ -49,14 +49,24 @@ impl SurfaceHit {
     /// `n` (the geometric normal, possibly flipped to face the viewer).
     #[inline]
     pub fn ray_origin(&self, n: Vec3, w: Vec3) -> Vec3 {
-        let bulge = if w.dot(self.ng) >= 0.0 {
-            self.bulge[0]
-        } else {
-            self.bulge[1]
-        };
-        let p = self.p + bulge;
-        offset_origin(p, self.p_error + gamma(4) * p.abs(), n, w)
+        leaving_origin(self.p, self.p_error, self.ng, self.bulge, n, w)
     }
+}
+
+/// [`SurfaceHit::ray_origin`] from the hit's parts: its point `p`, error bound `p_error`, face
+/// normal `ng` (as rebuilt, not flipped) and shadow-terminator offsets `bulge`.
+#[inline(always)]
+pub fn leaving_origin(
+    p: Vec3,
+    p_error: Vec3,
+    ng: Vec3,
+    bulge: [Vec3; 2],
+    n: Vec3,
+    w: Vec3,
+) -> Vec3 {
+    let bulge = if w.dot(ng) >= 0.0 { bulge[0] } else { bulge[1] };
+    let p = p + bulge;
+    offset_origin(p, p_error + gamma(4) * p.abs(), n, w)
 }
 
 /// Hanika, "Hacking the Shadow Terminator" (Ray Tracing Gems II, 2021, ch. 4): a low-poly mesh
