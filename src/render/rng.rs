@@ -598,6 +598,29 @@ mod tests {
         }
     }
 
+    /// A run's points taken together are the samplers' own, a power-of-two count or not, past
+    /// the last sample included (what a partly filled run computes and does not read).
+    #[test]
+    fn a_runs_stratified_points_are_its_samplers_points() {
+        for count in [1, 4, 9, 16, 25, 256] {
+            let batch = PixelBatch::new(11, 4, 7, 0, count);
+            for stream in [3, 6] {
+                for first in (0..count).step_by(8) {
+                    let mut run = [Vec2::ZERO; 8];
+                    batch.stratified_run(stream, first, count, &mut run);
+                    for (j, p) in (first..).zip(run) {
+                        let sampler = batch.sampler(j.min(count - 1));
+                        let q = sampler.stratified_2d(stream, j, count);
+                        assert_eq!(
+                            p.to_array().map(f32::to_bits),
+                            q.to_array().map(f32::to_bits)
+                        );
+                    }
+                }
+            }
+        }
+    }
+
     #[test]
     fn sobol_dim1_by_bytes_is_the_bitwise_product() {
         // The byte tables against the bit loop: every one- and two-bit index, then a spread of

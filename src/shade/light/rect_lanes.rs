@@ -300,9 +300,10 @@ mod tests {
                 }
             }
         }
-        // Every kind of lane was met, the common one most.
+        // Every kind of lane was met, the common one most (the far and grazing points fall
+        // under the solid-angle range: scalar).
         assert!(
-            seen[1] > seen[0] && seen[1] > 10 * seen[2] && seen[2] > 0,
+            seen[1] > seen[0] && seen[1] > seen[2] && seen[2] > 0,
             "{seen:?}"
         );
     }
