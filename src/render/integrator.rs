@@ -48,7 +48,7 @@ use crate::scene::{DirectStrategy, Scene, Surface};
 use crate::shade::brdf::Phong;
 use crate::shade::light::env_harmonics::SkyHarmonics;
 use crate::shade::normal_map;
-use crate::shade::surface::{seen_hit, SeenHit, SurfaceHit};
+use crate::shade::surface::{facing_viewer, seen_hit, SeenHit, SurfaceHit};
 use crate::shade::texture::footprint::{self, Footprint};
 use crate::shade::texture::FilterStats;
 use crate::shade::{AreaLight, Light, Picked};
@@ -112,7 +112,7 @@ pub(super) fn divided(v: Vec3, d: f32) -> Vec3 {
 const STREAM_PICK: u64 = 0;
 pub(super) const STREAM_ENVIRONMENT: u64 = 1;
 pub(super) const STREAM_BRDF: u64 = 2;
-const STREAM_LIGHTS: u64 = 3;
+pub(super) const STREAM_LIGHTS: u64 = 3;
 /// The environment's bright set (`render::mis`), far above the per-light streams.
 pub(super) const STREAM_ENVIRONMENT_BRIGHT: u64 = (1 << 40) + 1;
 
@@ -184,13 +184,7 @@ fn shade(
     };
     let dir = camera.dir;
     let wo = -dir;
-    let ng = if hit.ng.dot(wo) < 0.0 {
-        -hit.ng
-    } else {
-        hit.ng
-    };
-    let flip = hit.ns.dot(ng) < 0.0;
-    let mut ns = if flip { -hit.ns } else { hit.ns };
+    let (ng, mut ns, flip) = facing_viewer(hit.ng, hit.ns, dir);
     // Only textured materials pay for the footprint (and normal-mapped ones for the map), and
     // only when a texture is mip-filtered.
     let textured = mat.is_textured();

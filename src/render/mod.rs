@@ -29,6 +29,7 @@ mod mis;
 mod owen_sobol;
 pub mod pattern;
 pub mod pooled_stop;
+mod rect_lit;
 pub mod rng;
 mod second_pass;
 pub mod window;
@@ -47,8 +48,10 @@ use self::estimate::{Accumulator, NoiseStats, PixelEstimate};
 use self::first_pass::{FirstBatches, FirstTileResult};
 use self::integrator::{radiance_scaled, RayCounts};
 use self::pooled_stop::{ReplicatePool, POOL_BATCH};
+use self::rect_lit::RectLit;
 use self::second_pass::{PixelState, SecondPass, SecondTileResult};
 pub use self::window::PixelWindow;
+use crate::bvh::Scratch;
 use crate::film::Film;
 use crate::scene::Scene;
 use crate::shade::texture::footprint::footprint_scale;
@@ -212,6 +215,7 @@ pub fn render_window(
         offsets: &offsets,
         emitter_pixels: &emitter_pixels,
         boosted_offsets: &boosted_offsets,
+        rect_lit: adaptive.is_none().then(|| RectLit::of(scene)).flatten(),
         adaptive,
     };
     let window = window.clip(settings.width, settings.height);
@@ -386,6 +390,8 @@ struct Job<'a> {
     emitter_pixels: &'a EmitterPixels,
     /// Their sub-pixel positions (a finer grid of the same pattern).
     boosted_offsets: &'a [Vec2],
+    /// The scene's pixels take `rect_lit`'s path (a fixed-count render of a scene it covers).
+    rect_lit: Option<RectLit<'a>>,
     adaptive: Option<Adaptive>,
 }
 
@@ -479,9 +485,10 @@ impl Job<'_> {
     fn tile(&self, t: Tile) -> (Vec<PixelEstimate>, RayCounts) {
         let mut counts = RayCounts::default();
         let mut pixels = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
+        let mut scratch = Scratch::new();
         for y in t.y0..t.y1 {
             for x in t.x0..t.x1 {
-                pixels.push(self.fixed_pixel(x, y, &mut counts));
+                pixels.push(self.fixed_pixel(x, y, &mut counts, &mut scratch));
             }
         }
         (pixels, counts)
@@ -538,14 +545,20 @@ impl Job<'_> {
     }
 
     /// Box filter: the plain mean of a fixed count of samples.
-    fn fixed_pixel(&self, x: u32, y: u32, counts: &mut RayCounts) -> PixelEstimate {
+    fn fixed_pixel(
+        &self,
+        x: u32,
+        y: u32,
+        counts: &mut RayCounts,
+        scratch: &mut Scratch,
+    ) -> PixelEstimate {
         let mut acc = Accumulator::default();
         let offsets = match self.emitter_pixels.factor_at(x, y) {
             1 => self.offsets,
             _ => self.boosted_offsets,
         };
         let scale = footprint_scale(offsets.len() as u32);
-        self.batch(x, y, 0, (offsets, scale), &mut acc, counts);
+        self.batch(x, y, (offsets, scale), &mut acc, counts, scratch);
         acc.finish(offsets.len() as u32, false)
     }
 
@@ -748,34 +761,45 @@ impl Job<'_> {
         }
     }
 
-    /// Batch `batch` of the pixel: one sample at each of `offsets`, with its own
-    /// stratification sets (batch 0 is a fixed-count render's only batch), textures filtered
-    /// with the footprint scaled by `footprint_scale`.
+    /// The pixel's samples, one at each of `offsets`, stratified together (a fixed-count
+    /// render's one batch), textures filtered with the footprint scaled by `footprint_scale`.
     fn batch(
         &self,
         x: u32,
         y: u32,
-        batch: u32,
         (offsets, footprint_scale): (&[Vec2], f32),
         acc: &mut Accumulator,
         counts: &mut RayCounts,
+        scratch: &mut Scratch,
     ) {
         let count = offsets.len() as u32;
         let seed = self.scene.settings.seed;
-        // Each batch's pattern is shifted (toroidally, which keeps the rotated grid's one
-        // sample per row and column) by its own random offset per pixel (Cranley–Patterson
-        // rotation). A fixed pattern would be a fixed quadrature of the pixel's footprint: its
-        // error at edges never averages out, whatever the seed, and adaptive batches would
-        // sample the same positions again and again.
+        // The pattern is shifted (toroidally, which keeps the rotated grid's one sample per row
+        // and column) by its own random offset per pixel (Cranley–Patterson rotation). A fixed
+        // pattern would be a fixed quadrature of the pixel's footprint: its error at edges
+        // never averages out, whatever the seed.
         // A single sample stays at the pixel centre: a 1-spp render is a point-sampled image
         // (sharp, and what closed-form tests of one pixel expect).
-        let samplers = rng::PixelBatch::new(seed, x, y, batch, count);
+        let samplers = rng::PixelBatch::new(seed, x, y, 0, count);
         let shift = if count > 1 {
-            let bits = samplers.sampler(0).pixel_bits(rng::STREAM_SUBPIXEL);
+            let bits = samplers.pixel_bits(rng::STREAM_SUBPIXEL);
             Vec2::new(rng::unit(bits), rng::unit(bits << 24))
         } else {
             Vec2::ZERO
         };
+        if let Some(lit) = &self.rect_lit {
+            let pattern = (offsets, shift);
+            lit.pixel(
+                &self.camera,
+                (x, y),
+                pattern,
+                &samplers,
+                acc,
+                counts,
+                scratch,
+            );
+            return;
+        }
         for (s, offset) in offsets.iter().enumerate() {
             let o = *offset + shift;
             let o = Vec2::new(rng::wrap_unit(o.x), rng::wrap_unit(o.y));

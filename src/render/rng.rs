@@ -52,6 +52,27 @@ impl StreamKey {
         }
     }
 
+    /// Point `j` of the stream's set of `n` ([`Sampler::stratified_2d`]).
+    #[inline(always)]
+    fn point(self, j: u32, n: u32) -> Vec2 {
+        // Each stream visits the set in its own order: without it, sample `s` would take
+        // point `s` of every stream, so its light point would be a fixed function of its
+        // sub-pixel position (and of its light pick), and a penumbra pixel would converge to a
+        // seed-dependent value instead of the pixel's integral (pbrt-v4's padded sampler
+        // permutes each dimension's index the same way).
+        self.at(permute_index(j, n, self.order), n)
+    }
+
+    /// Point `j` of the set of `n` in the stream's own order (`j` permuted already).
+    #[inline(always)]
+    fn at(self, j: u32, n: u32) -> Vec2 {
+        let shift = to_unit(self.bits);
+        let x = wrap_unit(stratum_centre(j, n) + shift);
+        // The shift uses the top 24 bits, the scramble the low 32: independent.
+        let y = ((j.reverse_bits() ^ self.bits as u32) >> 8) as f32 * (1.0 / (1u32 << 24) as f32);
+        Vec2::new(x, y)
+    }
+
     /// The keys of streams `0..CACHED_STREAMS`.
     fn first(pixel_key: u64) -> [StreamKey; CACHED_STREAMS] {
         std::array::from_fn(|s| StreamKey::of(pixel_key, s as u64))
@@ -74,6 +95,33 @@ impl PixelBatch {
             batch,
             count: count.max(1),
             streams: StreamKey::first(pixel_key),
+        }
+    }
+
+    /// [`Sampler::pixel_bits`] of the batch's samplers (the same for all of them).
+    pub fn pixel_bits(&self, dim: u64) -> u64 {
+        pixel_bits(self.pixel_key, dim)
+    }
+
+    /// Points `j0, j0 + 1, …` of stream `stream`'s set of `n` (as many as `out` holds): what
+    /// the batch's samplers' [`Sampler::stratified_2d`]`(stream, j, n)` give, the stream's key
+    /// derived once, and the points of a power-of-two set computed side by side.
+    #[inline(always)]
+    pub fn stratified_run(&self, stream: u64, j0: u32, n: u32, out: &mut [Vec2]) {
+        let key = stream_key(&self.streams, self.pixel_key, stream);
+        let n1 = n.max(1);
+        if n1.is_power_of_two() {
+            let w = n1 - 1;
+            for (j, p) in (j0..).zip(out.iter_mut()) {
+                *p = key.at(
+                    permute_round(j, w, key.order).wrapping_add(key.order) & w,
+                    n,
+                );
+            }
+        } else {
+            for (j, p) in (j0..).zip(out.iter_mut()) {
+                *p = key.point(j, n);
+            }
         }
     }
 
@@ -191,6 +239,20 @@ impl PixelSequences {
     }
 }
 
+/// The key of stream `stream` of a pixel whose first streams' keys are `cached`.
+#[inline(always)]
+fn stream_key(cached: &[StreamKey; CACHED_STREAMS], pixel_key: u64, stream: u64) -> StreamKey {
+    match cached.get(stream as usize) {
+        Some(&key) if stream < CACHED_STREAMS as u64 => key,
+        _ => StreamKey::of(pixel_key, stream),
+    }
+}
+
+/// [`Sampler::pixel_bits`] of a pixel key.
+fn pixel_bits(pixel_key: u64, dim: u64) -> u64 {
+    mix64(pixel_key ^ dim.wrapping_mul(0x9e37_79b9_7f4a_7c15))
+}
+
 /// murmur3's 64-bit finaliser: a bijective avalanche mix.
 #[inline]
 pub(super) fn mix64(mut x: u64) -> u64 {
@@ -266,7 +328,7 @@ impl Sampler {
 
     /// Random bits shared by every sample of the pixel, for per-pixel scrambling.
     pub fn pixel_bits(&self, dim: u64) -> u64 {
-        mix64(self.pixel_key ^ dim.wrapping_mul(0x9e37_79b9_7f4a_7c15))
+        pixel_bits(self.pixel_key, dim)
     }
 
     /// This sample's index among the pixel's samples, and their count (0 for a progressive
@@ -284,21 +346,7 @@ impl Sampler {
         if self.progressive {
             return self.point_2d(stream, j);
         }
-        let StreamKey { bits, order } = match self.streams.get(stream as usize) {
-            Some(&key) if stream < CACHED_STREAMS as u64 => key,
-            _ => StreamKey::of(self.pixel_key, stream),
-        };
-        // Each stream visits the set in its own order: without it, sample `s` would take
-        // point `s` of every stream, so its light point would be a fixed function of its
-        // sub-pixel position (and of its light pick), and a penumbra pixel would converge to a
-        // seed-dependent value instead of the pixel's integral (pbrt-v4's padded sampler
-        // permutes each dimension's index the same way).
-        let j = permute_index(j, n, order);
-        let shift = to_unit(bits);
-        let x = wrap_unit(stratum_centre(j, n) + shift);
-        // The shift uses the top 24 bits, the scramble the low 32: independent.
-        let y = ((j.reverse_bits() ^ bits as u32) >> 8) as f32 * (1.0 / (1u32 << 24) as f32);
-        Vec2::new(x, y)
+        stream_key(&self.streams, self.pixel_key, stream).point(j, n)
     }
 
     /// Point `j` of the pixel's Owen-scrambled Sobol' sequence for `stream` (see the module
@@ -326,7 +374,7 @@ fn stratum_centre(j: u32, n: u32) -> f32 {
 /// "Correlated Multi-Jittered Sampling": a hash bijective on the next power of two, cycle-walked
 /// into `0..len`). `len` 0 is treated as 1.
 #[inline]
-fn permute_index(mut i: u32, len: u32, key: u32) -> u32 {
+fn permute_index(i: u32, len: u32, key: u32) -> u32 {
     let len = len.max(1);
     let mut w = len - 1;
     w |= w >> 1;
@@ -334,33 +382,40 @@ fn permute_index(mut i: u32, len: u32, key: u32) -> u32 {
     w |= w >> 4;
     w |= w >> 8;
     w |= w >> 16;
+    // A power-of-two length (every fixed-count render's) takes one round, and no division.
+    if len & w == 0 {
+        return permute_round(i, w, key).wrapping_add(key) & w;
+    }
+    let mut i = i;
     loop {
-        i ^= key;
-        i = i.wrapping_mul(0xe170_893d);
-        i ^= key >> 16;
-        i ^= (i & w) >> 4;
-        i ^= key >> 8;
-        i = i.wrapping_mul(0x0929_eb3f);
-        i ^= key >> 23;
-        i ^= (i & w) >> 1;
-        i = i.wrapping_mul(1 | key >> 27);
-        i = i.wrapping_mul(0x6935_fa69);
-        i ^= (i & w) >> 11;
-        i = i.wrapping_mul(0x74dc_b303);
-        i ^= (i & w) >> 2;
-        i = i.wrapping_mul(0x9e50_1cc3);
-        i ^= (i & w) >> 2;
-        i = i.wrapping_mul(0xc860_a3df);
-        i &= w;
-        i ^= i >> 5;
+        i = permute_round(i, w, key);
         if i < len {
-            // A power-of-two length (every fixed-count render's) needs no division.
-            if len & w == 0 {
-                return i.wrapping_add(key) & w;
-            }
             return ((u64::from(i) + u64::from(key)) % u64::from(len)) as u32;
         }
     }
+}
+
+/// One round of [`permute_index`]'s hash, bijective on `0..=w` (`w + 1` a power of two).
+#[inline(always)]
+fn permute_round(mut i: u32, w: u32, key: u32) -> u32 {
+    i ^= key;
+    i = i.wrapping_mul(0xe170_893d);
+    i ^= key >> 16;
+    i ^= (i & w) >> 4;
+    i ^= key >> 8;
+    i = i.wrapping_mul(0x0929_eb3f);
+    i ^= key >> 23;
+    i ^= (i & w) >> 1;
+    i = i.wrapping_mul(1 | key >> 27);
+    i = i.wrapping_mul(0x6935_fa69);
+    i ^= (i & w) >> 11;
+    i = i.wrapping_mul(0x74dc_b303);
+    i ^= (i & w) >> 2;
+    i = i.wrapping_mul(0x9e50_1cc3);
+    i ^= (i & w) >> 2;
+    i = i.wrapping_mul(0xc860_a3df);
+    i &= w;
+    i ^ (i >> 5)
 }
 
 fn sample_key(seed: u64, px: u32, py: u32, sample: u32) -> u64 {
@@ -446,6 +501,29 @@ mod tests {
         for (stream, cached) in lone.streams.iter().enumerate() {
             let key = StreamKey::of(lone.pixel_key, stream as u64);
             assert_eq!((cached.bits, cached.order), (key.bits, key.order));
+        }
+    }
+
+    /// A run's points taken together are the samplers' own, a power-of-two count or not, past
+    /// the last sample included (what a partly filled run computes and does not read).
+    #[test]
+    fn a_runs_stratified_points_are_its_samplers_points() {
+        for count in [1, 4, 9, 16, 25, 256] {
+            let batch = PixelBatch::new(11, 4, 7, 0, count);
+            for stream in [3, 6] {
+                for first in (0..count).step_by(8) {
+                    let mut run = [Vec2::ZERO; 8];
+                    batch.stratified_run(stream, first, count, &mut run);
+                    for (j, p) in (first..).zip(run) {
+                        let sampler = batch.sampler(j.min(count - 1));
+                        let q = sampler.stratified_2d(stream, j, count);
+                        assert_eq!(
+                            p.to_array().map(f32::to_bits),
+                            q.to_array().map(f32::to_bits)
+                        );
+                    }
+                }
+            }
         }
     }
 

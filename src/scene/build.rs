@@ -109,6 +109,7 @@ fn build_with(
         lights: a.lights,
         light_sampling: Default::default(),
         strategy: Default::default(),
+        shading_path: Default::default(),
         timings: BuildTimings {
             asset_load,
             accel_build,

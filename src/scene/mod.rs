@@ -142,6 +142,17 @@ pub enum DirectStrategy {
     BrdfOnly,
 }
 
+/// Which per-sample code renders the scene's pixels: the same bits either way.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ShadingPath {
+    /// A path specialised for the scene's features where one covers it (`render::rect_lit`),
+    /// the general integrator elsewhere.
+    #[default]
+    Specialised,
+    /// The general integrator everywhere (what tests compare the specialised paths with).
+    General,
+}
+
 /// Everything the renderer needs, ready to trace.
 #[derive(Debug)]
 pub struct Scene {
@@ -176,6 +187,8 @@ pub struct Scene {
     pub light_sampling: LightSampling,
     /// How direct light from area lights and the environment is sampled (tests switch it).
     pub strategy: DirectStrategy,
+    /// Whether pixels may take a path specialised for the scene's features (tests switch it).
+    pub shading_path: ShadingPath,
     /// How long the build took.
     pub timings: BuildTimings,
 }

@@ -49,14 +49,24 @@ impl SurfaceHit {
     /// `n` (the geometric normal, possibly flipped to face the viewer).
     #[inline]
     pub fn ray_origin(&self, n: Vec3, w: Vec3) -> Vec3 {
-        let bulge = if w.dot(self.ng) >= 0.0 {
-            self.bulge[0]
-        } else {
-            self.bulge[1]
-        };
-        let p = self.p + bulge;
-        offset_origin(p, self.p_error + gamma(4) * p.abs(), n, w)
+        leaving_origin(self.p, self.p_error, self.ng, self.bulge, n, w)
     }
+}
+
+/// [`SurfaceHit::ray_origin`] from the hit's parts: its point `p`, error bound `p_error`, face
+/// normal `ng` (as rebuilt, not flipped) and shadow-terminator offsets `bulge`.
+#[inline(always)]
+pub fn leaving_origin(
+    p: Vec3,
+    p_error: Vec3,
+    ng: Vec3,
+    bulge: [Vec3; 2],
+    n: Vec3,
+    w: Vec3,
+) -> Vec3 {
+    let bulge = if w.dot(ng) >= 0.0 { bulge[0] } else { bulge[1] };
+    let p = p + bulge;
+    offset_origin(p, p_error + gamma(4) * p.abs(), n, w)
 }
 
 /// Hanika, "Hacking the Shadow Terminator" (Ray Tracing Gems II, 2021, ch. 4): a low-poly mesh
@@ -175,14 +185,7 @@ fn rebuild(
     let obj = tri.map(|i| mesh.positions[i as usize]);
     let m = inst.world_from_object;
     let (world, transform_error) = if m == Affine3A::IDENTITY {
-        // What the general path computes, without its products: `1·x + 0·y + 0·z + 0` is
-        // `x + 0` for finite coordinates (a −0 becomes +0 either way), and `|M|·|q| + |t|` is
-        // `|q|`. Unplaced meshes (all of cornell's) are the common case.
-        let world = obj.map(|q| q + Vec3::ZERO);
-        (
-            world,
-            obj.iter().map(|q| q.abs()).fold(Vec3::ZERO, Vec3::max),
-        )
+        unmoved_corners(obj)
     } else {
         let abs_m = glam::Mat3A::from_cols(
             m.matrix3.x_axis.abs(),
@@ -196,9 +199,7 @@ fn rebuild(
         (obj.map(|p| m.transform_point3(p)), error)
     };
     let b = [1.0 - hit.u - hit.v, hit.u, hit.v];
-    let p = b[0] * world[0] + b[1] * world[1] + b[2] * world[2];
-    let abs_sum = (b[0] * world[0]).abs() + (b[1] * world[1]).abs() + (b[2] * world[2]).abs();
-    let p_error = gamma(7) * abs_sum + gamma(3) * transform_error;
+    let (p, p_error) = point_and_error(world, transform_error, hit.u, hit.v);
     let ng = match unmoved.get(hit.prim as usize) {
         Some(&n) => n,
         None => face_normal(world),
@@ -234,6 +235,41 @@ fn rebuild(
         bulge,
         hit: *hit,
     }
+}
+
+/// The world corners of a triangle of an unmoved placement (object corners `obj`) and their
+/// error bound: what the general transform computes, without its products (`1·x + 0·y + 0·z +
+/// 0` is `x + 0` for finite coordinates, a −0 becoming +0 either way, and `|M|·|q| + |t|` is
+/// `|q|`). Unplaced meshes (all of cornell's) are the common case.
+#[inline(always)]
+pub fn unmoved_corners(obj: [Vec3; 3]) -> ([Vec3; 3], Vec3) {
+    let world = obj.map(|q| q + Vec3::ZERO);
+    (
+        world,
+        obj.iter().map(|q| q.abs()).fold(Vec3::ZERO, Vec3::max),
+    )
+}
+
+/// The point at barycentrics (`u`, `v`) of the triangle with world corners `world`, and the
+/// bound on its rounding error (`γ(7)·Σ|bᵢ pᵢ|`, plus `γ(3)` of the corners' own bound
+/// `transform_error`).
+#[inline(always)]
+pub fn point_and_error(world: [Vec3; 3], transform_error: Vec3, u: f32, v: f32) -> (Vec3, Vec3) {
+    let b = [1.0 - u - v, u, v];
+    let p = b[0] * world[0] + b[1] * world[1] + b[2] * world[2];
+    let abs_sum = (b[0] * world[0]).abs() + (b[1] * world[1]).abs() + (b[2] * world[2]).abs();
+    (p, gamma(7) * abs_sum + gamma(3) * transform_error)
+}
+
+/// The geometric and shading normals of a hit (`ng`, `ns` as rebuilt) turned to the side of
+/// the viewer looking along unit direction `dir`: `ng` faces the viewer, `ns` lies on `ng`'s
+/// side; and whether `ns` was flipped.
+#[inline(always)]
+pub fn facing_viewer(ng: Vec3, ns: Vec3, dir: Vec3) -> (Vec3, Vec3, bool) {
+    let wo = -dir;
+    let ng = if ng.dot(wo) < 0.0 { -ng } else { ng };
+    let flip = ns.dot(ng) < 0.0;
+    (ng, if flip { -ns } else { ns }, flip)
 }
 
 /// The unit face normal `(p1 − p0) × (p2 − p0)` of a world-space triangle (zero if degenerate).

@@ -49,21 +49,21 @@ pub struct AreaLight {
     by_area: Distribution1D,
     /// The frame of the rectangle the mesh is, when it is one (two triangles): it is then
     /// sampled whole as a spherical rectangle (see `spherical_rect`).
-    rect_frame: Option<RectFrame>,
+    pub(super) rect_frame: Option<RectFrame>,
     /// For a rectangle: how a sampled point is placed (boxed, so that `Light`'s variants stay
     /// close in size).
-    rect_points: Box<RectPoints>,
+    pub(super) rect_points: Box<RectPoints>,
 }
 
 /// How a rectangle light places a point it sampled (see `AreaLight::sample_rect`).
 #[derive(Debug, Clone, Copy, Default)]
-struct RectPoints {
+pub(super) struct RectPoints {
     /// Per triangle, the affine map from the rectangle's parameters (s, t) to the triangle's
     /// barycentrics (b₁, b₂), so a sampled point is rebuilt on its triangle without a
     /// ray–triangle test (where the shadow ray's end needs it).
     barycentrics: [RectToBarycentric; 2],
     /// Where its shadow rays end, without rebuilding the point.
-    shadow: RectShadowEnd,
+    pub(super) shadow: RectShadowEnd,
 }
 
 /// `(b₁, b₂) = m · ((s, t) − origin)`: a triangle of the rectangle in its (s, t) parameters.
@@ -330,10 +330,7 @@ impl AreaLight {
         }
         // The corner's triangle holds s + t ≤ 1 (see `rectangle`), the other one the rest.
         let t = usize::from(sample.s + sample.t > 1.0);
-        let end = self
-            .rect_points
-            .shadow
-            .target(p, sample.offset, rect.plane_offset());
+        let end = self.rect_shadow_end(p, sample.offset, rect.plane_offset());
         let (point, shadow_target) = match end {
             Some(end) => (p + sample.offset, end),
             // Almost in the light's plane: the point rebuilt on its triangle and offset off it.
@@ -352,6 +349,13 @@ impl AreaLight {
             radiance: self.radiance,
             inv_pdf_solid_angle: rect.solid_angle(),
         })
+    }
+
+    /// Where the shadow ray from `p` towards the rectangle's sample `p + offset` ends
+    /// (`shadow_end`; `z0` the offset's component across the plane), if not too close to it.
+    #[inline(always)]
+    pub(super) fn rect_shadow_end(&self, p: Vec3, offset: Vec3, z0: f32) -> Option<Vec3> {
+        self.rect_points.shadow.target(p, offset, z0)
     }
 
     /// Whether a rectangle light sends anything to `p`: it is two-sided, or `p` is in front.

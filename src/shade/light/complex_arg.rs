@@ -53,9 +53,6 @@ fn atan_reduced(t: f64) -> f64 {
 #[inline]
 pub fn arg(v: DVec2) -> f64 {
     let (a, b) = (v.x.abs(), v.y.abs());
-    if a == 0.0 && b == 0.0 {
-        return 0.0;
-    }
     // The angle of (a, b) in [0, π/2] as base ± atan(n / d), |n / d| ≤ tan(π/8): chosen by
     // selects, one division.
     let (n, d, base, sign) = if b <= a * TAN_PI_8 {
@@ -71,7 +68,13 @@ pub fn arg(v: DVec2) -> f64 {
     } else {
         first_quadrant
     };
-    half.copysign(v.y)
+    // Selects rather than branches, so that several lanes' arguments can be taken side by
+    // side (`rect_lanes`); the origin's `0 / 0` above is NaN, its argument 0 (as `atan2`'s).
+    if a == 0.0 && b == 0.0 {
+        0.0
+    } else {
+        half.copysign(v.y)
+    }
 }
 
 #[cfg(test)]

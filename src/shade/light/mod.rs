@@ -29,6 +29,7 @@ pub mod env_texels;
 pub mod env_vertical;
 pub mod environment;
 pub mod point;
+pub mod rect_lanes;
 pub mod shadow_end;
 pub mod spherical;
 pub mod spherical_rect;

@@ -18,7 +18,7 @@
 //! [`spherical::MIN_SOLID_ANGLE`](super::spherical::MIN_SOLID_ANGLE) a caller samples by area
 //! (as `area` does for triangles).
 
-use glam::{DVec2, Vec2, Vec3, Vec4};
+use glam::{DVec2, Vec2, Vec3};
 
 use super::complex_arg::arg;
 
@@ -26,23 +26,23 @@ use super::complex_arg::arg;
 /// the edges, z towards the point's side flipped away) and the spherical rectangle's angles.
 #[derive(Debug, Clone, Copy)]
 pub struct SphericalRect {
-    x: Vec3,
-    y: Vec3,
-    z: Vec3,
-    z0: f32,
-    x0: f32,
-    x1: f32,
-    y0: f32,
-    y1: f32,
-    inv_width: f32,
-    inv_height: f32,
-    b0: f32,
-    b1: f32,
+    pub(super) x: Vec3,
+    pub(super) y: Vec3,
+    pub(super) z: Vec3,
+    pub(super) z0: f32,
+    pub(super) x0: f32,
+    pub(super) x1: f32,
+    pub(super) y0: f32,
+    pub(super) y1: f32,
+    pub(super) inv_width: f32,
+    pub(super) inv_height: f32,
+    pub(super) b0: f32,
+    pub(super) b1: f32,
     /// 1 − b0² = z0² / (z0² + y0²), from f64 (no cancellation).
-    one_minus_b0_sq: f32,
-    cos_k: f32,
-    sin_k: f32,
-    solid_angle: f32,
+    pub(super) one_minus_b0_sq: f32,
+    pub(super) cos_k: f32,
+    pub(super) sin_k: f32,
+    pub(super) solid_angle: f32,
 }
 
 /// A point of the rectangle drawn by [`SphericalRect::sample`].
@@ -63,7 +63,7 @@ pub struct RectSample {
 /// `|nₐ × n_b| = |z₀|·(the corner's distance)`. A positive factor changes no argument, so the
 /// corners are multiplied without the four normalisations.
 #[inline]
-fn corner_turn(cos_numerator: f64, z0: f64, corner_length: f64) -> DVec2 {
+pub(super) fn corner_turn(cos_numerator: f64, z0: f64, corner_length: f64) -> DVec2 {
     DVec2::new(cos_numerator, z0.abs() * corner_length)
 }
 
@@ -88,7 +88,7 @@ fn power_of_two_scale(largest: f32) -> Option<f64> {
 
 /// The complex product `a · b`.
 #[inline]
-fn turn(a: DVec2, b: DVec2) -> DVec2 {
+pub(super) fn turn(a: DVec2, b: DVec2) -> DVec2 {
     DVec2::new(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x)
 }
 
@@ -96,14 +96,14 @@ fn turn(a: DVec2, b: DVec2) -> DVec2 {
 /// lengths and unit directions), computed once per light instead of once per sample.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RectFrame {
-    corner: Vec3,
-    x: Vec3,
-    y: Vec3,
-    z: Vec3,
-    exl: f32,
-    eyl: f32,
-    inv_width: f32,
-    inv_height: f32,
+    pub(super) corner: Vec3,
+    pub(super) x: Vec3,
+    pub(super) y: Vec3,
+    pub(super) z: Vec3,
+    pub(super) exl: f32,
+    pub(super) eyl: f32,
+    pub(super) inv_width: f32,
+    pub(super) inv_height: f32,
 }
 
 impl RectFrame {
@@ -138,67 +138,30 @@ impl SphericalRect {
     /// [`SphericalRect::new`] of a rectangle whose frame is already known.
     #[inline]
     pub fn seen_from(p: Vec3, frame: &RectFrame) -> Option<SphericalRect> {
-        let RectFrame {
-            corner,
-            x,
-            y,
-            mut z,
-            exl,
-            eyl,
-            inv_width,
-            inv_height,
-        } = *frame;
-        let d = corner - p;
-        let mut z0 = d.dot(z);
-        if z0 > 0.0 {
-            z = -z;
-            z0 = -z0;
-        }
-        if z0 >= 0.0 || z0.is_nan() {
+        let c = FrameCoordinates::of(p, frame);
+        if !c.in_front() {
             return None;
         }
-        let (x0, y0) = (d.dot(x), d.dot(y));
-        let (x1, y1) = (x0 + exl, y0 + eyl);
-        // The set-up in f64 (see the module doc): the closed-form normals n₀ ∝ (0, z₀, −y₀),
-        // n₁ ∝ (−z₀, 0, x₁), n₂ ∝ (0, −z₀, y₁), n₃ ∝ (z₀, 0, −x₀); n₀ and n₂ have lengths…
-        let (dx0, dx1, dy0, dy1, dz0) = (x0 as f64, x1 as f64, y0 as f64, y1 as f64, z0 as f64);
         // The product below is of eighth powers of these coordinates: near f32's largest
         // (≈ 3e38) it overflows f64 (its argument would be NaN), among f32's subnormals it
         // underflows. Every figure taken from the set-up is homogeneous of degree 0 in them, so
         // an exact power-of-two scale changes no bit; only such coordinates pay for it.
-        // (Four lanes and two range tests: `f32::max`'s NaN rules cost 30 instructions a call.)
-        let in_plane = Vec4::new(x0, x1, y0, y1).abs().max_element();
-        let unscaled = MIN_UNSCALED..=MAX_UNSCALED;
-        let (dx0, dx1, dy0, dy1, dz0) = if unscaled.contains(&in_plane) && unscaled.contains(&-z0) {
-            (dx0, dx1, dy0, dy1, dz0)
-        } else {
-            let s = power_of_two_scale(in_plane.max(-z0))?;
-            (dx0 * s, dx1 * s, dy0 * s, dy1 * s, dz0 * s)
+        let coords = c.as_f64();
+        let coords = match c.unscaled() {
+            true => coords,
+            false => {
+                let s = power_of_two_scale(c.largest())?;
+                coords.map(|v| v * s)
+            }
         };
-        let zz = dz0 * dz0;
-        let (l0, l2) = ((zz + dy0 * dy0).sqrt(), (zz + dy1 * dy1).sqrt());
-        let corner_len = |a: f64, b: f64| (a * a + b * b + zz).sqrt();
-        // …and the angle gᵢ = acos(−nᵢ·nᵢ₊₁) at each corner is the argument of
-        // (−nᵢ·nᵢ₊₁, |nᵢ × nᵢ₊₁|) with the normals unnormalised (`corner_turn`).
-        let g0 = corner_turn(dy0 * dx1, dz0, corner_len(dx1, dy0));
-        let g1 = corner_turn(-dx1 * dy1, dz0, corner_len(dx1, dy1));
-        let g2 = corner_turn(dx0 * dy1, dz0, corner_len(dx0, dy1));
-        let g3 = corner_turn(-dx0 * dy0, dz0, corner_len(dx0, dy0));
-        // The product's argument is Ω; its length (the normals' lengths squared, eight powers
-        // of the distances: within f64's range for any f32 coordinates) does not matter, so
-        // Ω does not wait for a normalisation.
-        let g23 = turn(g2, g3);
-        let all = turn(turn(g0, g1), g23);
-        // e^{i(g₂ + g₃)}, normalised: the sample's offset angle k needs its cosine and sine.
-        let g23 = g23 * (1.0 / g23.length());
+        let a = Angles::of(coords);
         // arg(e^{i(2π + Ω)}) = Ω, in (−π, π]; a light filling more than half the hemisphere
         // (Ω > π) comes out negative. A negative figure is told apart from a rounding of a
         // vanishing Ω by the plain angle sum, which only this rare case pays for.
-        // The product is exact to f64 and its argument to `complex_arg::ARG_RELATIVE_ERROR`
-        // (5e-11), far under the f32 Ω is kept in.
-        let mut omega = arg(all);
+        let mut omega = a.omega;
         if omega <= 0.0 {
             let angle = |g: DVec2| g.y.atan2(g.x);
+            let [g0, g1, g2, g3] = a.turns;
             let sum = angle(g0) + angle(g1) + angle(g2) + angle(g3) - 2.0 * std::f64::consts::PI;
             if sum <= std::f64::consts::PI {
                 return None;
@@ -209,25 +172,7 @@ impl SphericalRect {
         if solid_angle <= 0.0 || solid_angle.is_nan() {
             return None;
         }
-        // k = 2π − g₂ − g₃: e^{ik} is the conjugate of e^{i(g₂ + g₃)}.
-        Some(SphericalRect {
-            x,
-            y,
-            z,
-            z0,
-            x0,
-            x1,
-            y0,
-            y1,
-            inv_width,
-            inv_height,
-            b0: (-dy0 / l0) as f32,
-            b1: (dy1 / l2) as f32,
-            one_minus_b0_sq: (zz / (l0 * l0)) as f32,
-            cos_k: g23.x as f32,
-            sin_k: -g23.y as f32,
-            solid_angle,
-        })
+        Some(a.rect(&c, frame, solid_angle))
     }
 
     /// The component across the rectangle's plane of every offset [`SphericalRect::sample`]
@@ -245,8 +190,23 @@ impl SphericalRect {
     /// uniform over the spherical rectangle.
     #[inline]
     pub fn sample(&self, u: Vec2) -> RectSample {
+        let (sin_u, cos_u) = self.column_angle(u.x).sin_cos();
+        self.sample_at(u.y, sin_u, cos_u)
+    }
+
+    /// The angle whose sine and cosine [`SphericalRect::sample_at`] takes for `u.x`: the
+    /// sub-rectangle left of the sample's column subtends `u.x · Ω`.
+    #[inline(always)]
+    pub(super) fn column_angle(&self, ux: f32) -> f32 {
+        ux * self.solid_angle
+    }
+
+    /// [`SphericalRect::sample`] from the sine and cosine of its column angle (libm's, taken
+    /// apart so that several samples' remaining arithmetic can run side by side:
+    /// `rect_lanes`).
+    #[inline(always)]
+    pub(super) fn sample_at(&self, uy: f32, sin_u: f32, cos_u: f32) -> RectSample {
         // The column: the sub-rectangle [x0, xu] subtends u.x · Ω; au = u.x · Ω + k.
-        let (sin_u, cos_u) = (u.x * self.solid_angle).sin_cos();
         let sin_au = sin_u * self.cos_k + cos_u * self.sin_k;
         let cos_au = cos_u * self.cos_k - sin_u * self.sin_k;
         // The paper's fu = (cos_au·b0 − b1) / sin_au, cu = sign(fu) / √(fu² + b0²) and
@@ -256,23 +216,188 @@ impl SphericalRect {
         let num = cos_au * self.b0 - self.b1;
         let den2 = num * num - self.one_minus_b0_sq * sin_au * sin_au;
         let xu = -self.z0 * 1f32.copysign(num) * sin_au / den2.max(0.0).sqrt();
-        let xu = if xu.is_nan() { self.x0 } else { xu }.clamp(self.x0, self.x1);
+        let xu = clamp(if xu.is_nan() { self.x0 } else { xu }, self.x0, self.x1);
         // The row: uniform in the sine of the elevation along that column; d² = xu² + z0² and
         // yv = hv·d / √(1 − hv²) = hv·√(d² / (1 − hv²)).
         let d2 = xu * xu + self.z0 * self.z0;
         let h0 = self.y0 / (d2 + self.y0 * self.y0).sqrt();
         let h1 = self.y1 / (d2 + self.y1 * self.y1).sqrt();
-        let hv = h0 + u.y * (h1 - h0);
+        let hv = h0 + uy * (h1 - h0);
         let hv2 = hv * hv;
         let yv = if hv2 < 1.0 - 1e-6 {
-            (hv * (d2 / (1.0 - hv2)).sqrt()).clamp(self.y0, self.y1)
+            clamp(hv * (d2 / (1.0 - hv2)).sqrt(), self.y0, self.y1)
         } else {
             self.y1
         };
         RectSample {
             offset: xu * self.x + yv * self.y + self.z0 * self.z,
-            s: ((xu - self.x0) * self.inv_width).clamp(0.0, 1.0),
-            t: ((yv - self.y0) * self.inv_height).clamp(0.0, 1.0),
+            s: clamp((xu - self.x0) * self.inv_width, 0.0, 1.0),
+            t: clamp((yv - self.y0) * self.inv_height, 0.0, 1.0),
+        }
+    }
+}
+
+/// `f32::clamp` without its panic for `lo > hi` (never the case here: each caller's `lo` is
+/// below its `hi`), which would keep a loop over several samples from running them side by
+/// side; the same value otherwise.
+#[inline(always)]
+fn clamp(x: f32, lo: f32, hi: f32) -> f32 {
+    let x = if x < lo { lo } else { x };
+    if x > hi {
+        hi
+    } else {
+        x
+    }
+}
+
+/// A shading point's coordinates in a rectangle's frame: `z` the frame's normal flipped away
+/// from the point's side, `z0` the plane's offset along it (negative in front), `x0 … x1` and
+/// `y0 … y1` the rectangle's extent.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct FrameCoordinates {
+    pub(super) z: Vec3,
+    pub(super) z0: f32,
+    pub(super) x0: f32,
+    pub(super) x1: f32,
+    pub(super) y0: f32,
+    pub(super) y1: f32,
+}
+
+impl FrameCoordinates {
+    #[inline(always)]
+    pub(super) fn of(p: Vec3, frame: &RectFrame) -> FrameCoordinates {
+        let d = frame.corner - p;
+        let z0 = d.dot(frame.z);
+        let flip = z0 > 0.0;
+        let (x0, y0) = (d.dot(frame.x), d.dot(frame.y));
+        FrameCoordinates {
+            z: if flip { -frame.z } else { frame.z },
+            z0: if flip { -z0 } else { z0 },
+            x0,
+            x1: x0 + frame.exl,
+            y0,
+            y1: y0 + frame.eyl,
+        }
+    }
+
+    /// Whether the point is off the plane (a finite `z0`, now negative).
+    #[inline(always)]
+    pub(super) fn in_front(&self) -> bool {
+        self.z0 < 0.0
+    }
+
+    /// Whether the set-up takes the coordinates unscaled: the largest in [`MIN_UNSCALED`,
+    /// `MAX_UNSCALED`] (in-plane) and `−z0` in it too. (Two range tests on the in-plane four's
+    /// largest: `f32::max`'s NaN rules on all five cost 30 instructions a call.)
+    #[inline(always)]
+    pub(super) fn unscaled(&self) -> bool {
+        let unscaled = MIN_UNSCALED..=MAX_UNSCALED;
+        unscaled.contains(&self.in_plane()) && unscaled.contains(&-self.z0)
+    }
+
+    /// The largest in-plane coordinate's magnitude (NaN if any of them is).
+    #[inline(always)]
+    fn in_plane(&self) -> f32 {
+        let m = |a: f32, b: f32| {
+            if a.is_nan() || b.is_nan() {
+                f32::NAN
+            } else {
+                a.max(b)
+            }
+        };
+        m(
+            m(self.x0.abs(), self.x1.abs()),
+            m(self.y0.abs(), self.y1.abs()),
+        )
+    }
+
+    /// The largest coordinate's magnitude.
+    fn largest(&self) -> f32 {
+        self.in_plane().max(-self.z0)
+    }
+
+    /// `(x0, x1, y0, y1, z0)` in f64.
+    #[inline(always)]
+    pub(super) fn as_f64(&self) -> [f64; 5] {
+        [self.x0, self.x1, self.y0, self.y1, self.z0].map(f64::from)
+    }
+}
+
+/// The spherical rectangle's angles from the light-frame coordinates `(x0, x1, y0, y1, z0)`
+/// (f64, possibly scaled by a power of two), the set-up's common branch.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Angles {
+    /// The product's argument: Ω, or Ω − 2π for Ω > π.
+    pub(super) omega: f64,
+    /// The four corners' unnormalised turns (for the rare Ω > π case).
+    turns: [DVec2; 4],
+    b0: f32,
+    b1: f32,
+    one_minus_b0_sq: f32,
+    cos_k: f32,
+    sin_k: f32,
+}
+
+impl Angles {
+    #[inline(always)]
+    pub(super) fn of([dx0, dx1, dy0, dy1, dz0]: [f64; 5]) -> Angles {
+        // The closed-form normals n₀ ∝ (0, z₀, −y₀), n₁ ∝ (−z₀, 0, x₁), n₂ ∝ (0, −z₀, y₁),
+        // n₃ ∝ (z₀, 0, −x₀); n₀ and n₂ have lengths…
+        let zz = dz0 * dz0;
+        let (l0, l2) = ((zz + dy0 * dy0).sqrt(), (zz + dy1 * dy1).sqrt());
+        let corner_len = |a: f64, b: f64| (a * a + b * b + zz).sqrt();
+        // …and the angle gᵢ = acos(−nᵢ·nᵢ₊₁) at each corner is the argument of
+        // (−nᵢ·nᵢ₊₁, |nᵢ × nᵢ₊₁|) with the normals unnormalised (`corner_turn`).
+        let g0 = corner_turn(dy0 * dx1, dz0, corner_len(dx1, dy0));
+        let g1 = corner_turn(-dx1 * dy1, dz0, corner_len(dx1, dy1));
+        let g2 = corner_turn(dx0 * dy1, dz0, corner_len(dx0, dy1));
+        let g3 = corner_turn(-dx0 * dy0, dz0, corner_len(dx0, dy0));
+        // The product's argument is Ω; its length (the normals' lengths squared, eight powers
+        // of the distances: within f64's range for any f32 coordinates) does not matter, so
+        // Ω does not wait for a normalisation.
+        let g23 = turn(g2, g3);
+        let all = turn(turn(g0, g1), g23);
+        // e^{i(g₂ + g₃)}, normalised: the sample's offset angle k needs its cosine and sine.
+        let g23 = g23 * (1.0 / g23.length());
+        // The product is exact to f64 and its argument to `complex_arg::ARG_RELATIVE_ERROR`
+        // (5e-11), far under the f32 Ω is kept in.
+        Angles {
+            omega: arg(all),
+            turns: [g0, g1, g2, g3],
+            b0: (-dy0 / l0) as f32,
+            b1: (dy1 / l2) as f32,
+            one_minus_b0_sq: (zz / (l0 * l0)) as f32,
+            // k = 2π − g₂ − g₃: e^{ik} is the conjugate of e^{i(g₂ + g₃)}.
+            cos_k: g23.x as f32,
+            sin_k: -g23.y as f32,
+        }
+    }
+
+    /// The spherical rectangle of solid angle `solid_angle` these angles describe.
+    #[inline(always)]
+    pub(super) fn rect(
+        &self,
+        c: &FrameCoordinates,
+        frame: &RectFrame,
+        solid_angle: f32,
+    ) -> SphericalRect {
+        SphericalRect {
+            x: frame.x,
+            y: frame.y,
+            z: c.z,
+            z0: c.z0,
+            x0: c.x0,
+            x1: c.x1,
+            y0: c.y0,
+            y1: c.y1,
+            inv_width: frame.inv_width,
+            inv_height: frame.inv_height,
+            b0: self.b0,
+            b1: self.b1,
+            one_minus_b0_sq: self.one_minus_b0_sq,
+            cos_k: self.cos_k,
+            sin_k: self.sin_k,
+            solid_angle,
         }
     }
 }

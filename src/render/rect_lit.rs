@@ -1,0 +1,544 @@
+//! Stage 4: the per-sample path of a scene lit by one rectangle light, a run of samples at a
+//! time.
+//!
+//! [`integrator::radiance_scaled`](super::integrator::radiance_scaled) serves every scene:
+//! textures, normal maps, specular lobes, the environment, several lights, multiple importance
+//! sampling. A scene with none of them (constant Lambertian materials, one area light that is a
+//! rectangle sampled by solid angle once per camera sample, no environment, a fixed sample
+//! count: cornell) needs per camera sample a camera ray, its hit and, at a shading point, one
+//! light sample and one shadow ray (MIS gives way to light sampling alone on such surfaces:
+//! `mis::strategy_at`). [`RectLit::of`] recognises such a scene once per render, and its
+//! pixels take this path, which carries none of the other branches' state. The same
+//! floating-point operations in the same order as the general path, so the same bits (tests
+//! compare whole images), a run of [`LANES`] samples at a time:
+//!
+//! 1. the run's camera rays made side by side, traced one by one, and their hits rebuilt: an
+//!    emitter's radiance, black for a miss, or a shading point (side by side for unmoved
+//!    placements of meshes without vertex normals, cornell's; one by one otherwise);
+//! 2. the run's light samples and shadow rays computed side by side
+//!    (`shade::light::rect_lanes`, then the rays' origins);
+//! 3. the shadow rays traced, and the samples' radiance added to the pixel in order.
+//!
+//! "Side by side" is a loop over the run's lanes whose body is branch-free, which the compiler
+//! vectorises; a pixel's runs are compiled for AVX2 where the CPU has it (entered with
+//! `geom::avx2`'s token), eight `f32` or four `f64` lanes a vector. BVH queries run on the
+//! tile's own traversal stacks ([`Scratch`]).
+
+use std::f32::consts::FRAC_1_PI;
+
+use glam::{Affine3A, Vec2, Vec3};
+
+use super::camera::PinholeCamera;
+use super::estimate::Accumulator;
+use super::integrator::{divided, RayCounts, STREAM_LIGHTS};
+use super::rng::{self, PixelBatch};
+use crate::bvh::Hit;
+use crate::bvh::{Accel, Scratch};
+use crate::geom::avx2::{Avx2, Kernel};
+use crate::geom::Ray;
+use crate::ir::{ColorInput, ScalarInput};
+use crate::scene::{DirectStrategy, LightSampling, Scene, ShadingPath, Surface};
+use crate::shade::light::rect_lanes::{LaneSample, LaneVecs, Lanes, LANES};
+use crate::shade::surface::{
+    facing_viewer, leaving_origin, point_and_error, seen_hit, unmoved_corners, SeenHit, SurfaceHit,
+};
+use crate::shade::{AreaLight, Light, Picked};
+
+/// A scene this path renders (see the module doc), with what its samples read.
+pub(super) struct RectLit<'a> {
+    scene: &'a Scene,
+    accel: &'a Accel,
+    light: &'a AreaLight,
+    /// The light's pick probability (the power table's one entry).
+    pmf: f32,
+    /// By material index.
+    materials: Vec<Lambert>,
+    /// By instance: whether it places its mesh unmoved and the mesh has no vertex normals and
+    /// its face normals were computed at the build (its hits are rebuilt in lanes).
+    flat: Vec<bool>,
+    avx2: Option<Avx2>,
+}
+
+/// A constant material without a specular lobe or normal map.
+#[derive(Debug, Clone, Copy, Default)]
+struct Lambert {
+    /// `diffuse / π`: what `Phong::eval` returns without a specular lobe.
+    f: Vec3,
+    /// Added at every hit.
+    ambient: Vec3,
+}
+
+/// A run's shading points, one per lane.
+#[derive(Debug, Clone, Copy, Default)]
+struct Run {
+    /// The camera rays' unit directions.
+    dir: LaneVecs,
+    /// Lanes with a shading point (the others are done: `value`).
+    shaded: [bool; LANES],
+    /// Shading points still to rebuild from `corners` and the barycentrics (`Run::rebuild`).
+    flat: [bool; LANES],
+    corners: [LaneVecs; 3],
+    u_hit: Lanes,
+    v_hit: Lanes,
+    /// The radiance of a lane without a shading point (an emitter's, or black).
+    value: [Vec3; LANES],
+    material: [Lambert; LANES],
+    /// The light's sample point for each lane's sample.
+    u: [Vec2; LANES],
+    p: LaneVecs,
+    p_error: LaneVecs,
+    /// The face normal as rebuilt (`SurfaceHit::ng`).
+    face: LaneVecs,
+    /// The geometric and shading normals on the viewer's side.
+    ng: LaneVecs,
+    ns: LaneVecs,
+    /// The shadow-terminator offsets, front and back (`SurfaceHit::bulge`).
+    bulge: [LaneVecs; 2],
+}
+
+/// A run's shadow rays.
+#[derive(Debug, Clone, Copy, Default)]
+struct Shadows {
+    kind: [LaneSample; LANES],
+    /// Whether the light sample is above both horizons, so a ray is traced.
+    traced: [bool; LANES],
+    /// The shading cosine.
+    cos: Lanes,
+    inv_pdf_solid_angle: Lanes,
+    origin: LaneVecs,
+    /// To the ray's end (`t_max = 1`).
+    to_end: LaneVecs,
+}
+
+impl Run {
+    /// Lane `i`'s shadow ray towards a light sample in direction `wi` ending at `target`:
+    /// `Integrator::unoccluded`'s test and ray, in the same operations.
+    #[inline(always)]
+    fn shadow_ray(&self, i: usize, wi: Vec3, target: Vec3) -> (bool, f32, Vec3, Vec3) {
+        let (ng, ns) = (self.ng.get(i), self.ns.get(i));
+        let cos = ns.dot(wi);
+        let traced = !(wi.dot(ng) <= 0.0 || cos <= 0.0 || !wi.is_finite());
+        let bulge = [self.bulge[0].get(i), self.bulge[1].get(i)];
+        let origin = leaving_origin(
+            self.p.get(i),
+            self.p_error.get(i),
+            self.face.get(i),
+            bulge,
+            ng,
+            wi,
+        );
+        (traced, cos, origin, target - origin)
+    }
+
+    /// Lane `i` becomes shading point `hit` seen along unit direction `dir`, of `material`.
+    #[inline(always)]
+    fn set_shaded(&mut self, i: usize, hit: &SurfaceHit, dir: Vec3, material: Lambert) {
+        let (ng, ns, _) = facing_viewer(hit.ng, hit.ns, dir);
+        self.shaded[i] = true;
+        self.material[i] = material;
+        self.p.set(i, hit.p);
+        self.p_error.set(i, hit.p_error);
+        self.face.set(i, hit.ng);
+        self.ng.set(i, ng);
+        self.ns.set(i, ns);
+        self.bulge[0].set(i, hit.bulge[0]);
+        self.bulge[1].set(i, hit.bulge[1]);
+    }
+}
+
+impl Run {
+    /// The `flat` lanes' shading points, side by side: `seen_hit`'s rebuild of an unmoved
+    /// placement's hit on a mesh without vertex normals (the shading normal is the face's, no
+    /// shadow-terminator offset), then `shade`'s normals turned to the viewer.
+    #[inline(always)]
+    fn rebuild(&mut self) {
+        for i in 0..LANES {
+            let obj = [0, 1, 2].map(|k| self.corners[k].get(i));
+            let (world, transform_error) = unmoved_corners(obj);
+            let (p, p_error) =
+                point_and_error(world, transform_error, self.u_hit[i], self.v_hit[i]);
+            let face = self.face.get(i);
+            let (ng, ns, _) = facing_viewer(face, face, self.dir.get(i).normalize());
+            let flat = self.flat[i];
+            let keep = |new: Vec3, old: Vec3| if flat { new } else { old };
+            self.p.set(i, keep(p, self.p.get(i)));
+            self.p_error.set(i, keep(p_error, self.p_error.get(i)));
+            self.ng.set(i, keep(ng, self.ng.get(i)));
+            self.ns.set(i, keep(ns, self.ns.get(i)));
+            for side in 0..2 {
+                self.bulge[side].set(i, keep(Vec3::ZERO, self.bulge[side].get(i)));
+            }
+        }
+    }
+}
+
+impl<'a> RectLit<'a> {
+    /// This path for `scene`, if the scene is one it renders (see the module doc).
+    pub(super) fn of(scene: &'a Scene) -> Option<RectLit<'a>> {
+        let settings = &scene.settings;
+        let allowed = scene.shading_path == ShadingPath::Specialised;
+        let fixed = settings.noise.is_none() && settings.light_samples.max(1) == 1;
+        let light_sampled = scene.light_sampling == LightSampling::SolidAngle
+            && scene.strategy != DirectStrategy::BrdfOnly
+            && scene.lights.environment.is_none();
+        if !(allowed && fixed && light_sampled) {
+            return None;
+        }
+        let (Picked::Light(0, Light::Area(light)), pmf) = scene.lights.single()? else {
+            return None;
+        };
+        if light.samples != 1 || !light.samples_in_lanes() {
+            return None;
+        }
+        let materials = scene
+            .materials
+            .iter()
+            .map(
+                |m| match (m.diffuse, m.specular, m.shininess, &m.normal_map) {
+                    (
+                        ColorInput::Constant(d),
+                        ColorInput::Constant(s),
+                        ScalarInput::Constant(_),
+                        None,
+                    ) if s == Vec3::ZERO => Some(Lambert {
+                        f: d * FRAC_1_PI,
+                        ambient: m.ambient,
+                    }),
+                    _ => None,
+                },
+            )
+            .collect::<Option<Vec<_>>>()?;
+        let flat = scene
+            .instances
+            .iter()
+            .map(|inst| {
+                let mesh = inst.mesh as usize;
+                inst.world_from_object == Affine3A::IDENTITY
+                    && scene.meshes.get(mesh).is_some_and(|m| m.normals.is_empty())
+                    && scene.face_normals.get(mesh).is_some_and(|n| !n.is_empty())
+            })
+            .collect();
+        Some(RectLit {
+            scene,
+            accel: scene.accel.as_ref()?,
+            light,
+            pmf,
+            materials,
+            flat,
+            avx2: Avx2::detect(),
+        })
+    }
+
+    /// The pixel (`x`, `y`)'s samples at `offsets` (each shifted by `shift`, wrapped), with
+    /// the batch's samplers, added to `acc` in order: what `Job::batch` computes.
+    #[allow(clippy::too_many_arguments)] // reason: the pixel, its pattern and the sinks
+    pub(super) fn pixel(
+        &self,
+        camera: &PinholeCamera,
+        (x, y): (u32, u32),
+        pattern: (&[Vec2], Vec2),
+        samplers: &PixelBatch,
+        acc: &mut Accumulator,
+        counts: &mut RayCounts,
+        scratch: &mut Scratch,
+    ) {
+        let pixel = PixelKernel {
+            lit: self,
+            camera,
+            film: Vec2::new(x as f32, y as f32),
+            pattern,
+            samplers,
+            acc,
+            counts,
+            scratch,
+        };
+        match self.avx2 {
+            Some(avx2) => avx2.run(pixel),
+            None => pixel.run(),
+        }
+    }
+
+    /// Traces lane `i`'s camera ray (from the eye along the run's direction) into it: a
+    /// shading point (to rebuild, for a flat hit), or the radiance it sees
+    /// (`integrator::radiance_scaled`'s first half).
+    #[inline(always)]
+    fn camera_sample(
+        &self,
+        eye: Vec3,
+        i: usize,
+        lanes: &mut Run,
+        counts: &mut RayCounts,
+        scratch: &mut Scratch,
+    ) {
+        counts.camera += 1;
+        let ray = Ray::new(eye, lanes.dir.get(i));
+        lanes.value[i] = Vec3::ZERO;
+        let Some(h) = self.accel.closest_hit_with(&ray, scratch) else {
+            return;
+        };
+        if let Some((material, corners, face)) = self.flat_hit(&h) {
+            lanes.shaded[i] = true;
+            lanes.flat[i] = true;
+            lanes.material[i] = material;
+            for (k, c) in corners.into_iter().enumerate() {
+                lanes.corners[k].set(i, c);
+            }
+            (lanes.u_hit[i], lanes.v_hit[i]) = (h.u, h.v);
+            lanes.face.set(i, face);
+            return;
+        }
+        lanes.value[i] = match seen_hit(self.scene, &h) {
+            Some(SeenHit::Emitter { light, ng }) => {
+                match self.scene.lights.lights.get(light as usize) {
+                    Some(Light::Area(a)) => a.radiance_towards(ng, -ray.dir.normalize()),
+                    _ => Vec3::ZERO,
+                }
+            }
+            Some(SeenHit::Surface(hit)) => {
+                if let Surface::Material(m) = hit.surface {
+                    if let Some(&material) = self.materials.get(m as usize) {
+                        lanes.set_shaded(i, &hit, ray.dir.normalize(), material);
+                    }
+                }
+                Vec3::ZERO
+            }
+            None => Vec3::ZERO,
+        };
+    }
+
+    /// For a hit on a material of a `flat` instance: the material, the triangle's corners and
+    /// its face normal (what `Run::rebuild` takes, `seen_hit`'s look-ups).
+    #[inline(always)]
+    fn flat_hit(&self, h: &Hit) -> Option<(Lambert, [Vec3; 3], Vec3)> {
+        if !self.flat.get(h.instance as usize).copied().unwrap_or(false) {
+            return None;
+        }
+        let scene = self.scene;
+        let inst = scene.instances.get(h.instance as usize)?;
+        let mesh = scene.meshes.get(inst.mesh as usize)?;
+        let tri = mesh.triangles.get(h.prim as usize)?;
+        let Surface::Material(m) = scene.surface_of(inst, mesh, h.prim) else {
+            return None;
+        };
+        let material = *self.materials.get(m as usize)?;
+        let face = *scene
+            .face_normals
+            .get(inst.mesh as usize)?
+            .get(h.prim as usize)?;
+        let corners = tri.map(|v| mesh.positions.get(v as usize).copied());
+        let [Some(a), Some(b), Some(c)] = corners else {
+            return None;
+        };
+        Some((material, [a, b, c], face))
+    }
+
+    /// The run's light samples and shadow rays, lane by lane (see the module doc).
+    #[inline(always)]
+    fn shadows(&self, lanes: &Run) -> Shadows {
+        let samples = self.light.sample_lanes(&lanes.p, &lanes.u, &lanes.shaded);
+        let mut out = Shadows {
+            kind: samples.kind,
+            inv_pdf_solid_angle: samples.inv_pdf_solid_angle,
+            ..Shadows::default()
+        };
+        for i in 0..LANES {
+            let (traced, cos, origin, to_end) =
+                lanes.shadow_ray(i, samples.wi.get(i), samples.shadow_target.get(i));
+            out.traced[i] = traced;
+            out.cos[i] = cos;
+            out.origin.set(i, origin);
+            out.to_end.set(i, to_end);
+        }
+        out
+    }
+
+    /// Lane `i`'s radiance: its shadow ray traced, then `shade`'s sum.
+    #[inline(always)]
+    fn radiance(
+        &self,
+        i: usize,
+        lanes: &Run,
+        shadows: &Shadows,
+        counts: &mut RayCounts,
+        scratch: &mut Scratch,
+    ) -> Vec3 {
+        if !lanes.shaded[i] {
+            return lanes.value[i];
+        }
+        let seen = match shadows.kind[i] {
+            LaneSample::Nothing => None,
+            LaneSample::Sampled => {
+                let ray = (
+                    shadows.traced[i],
+                    shadows.cos[i],
+                    shadows.origin.get(i),
+                    shadows.to_end.get(i),
+                );
+                self.unoccluded(ray, counts, scratch)
+                    .map(|cos| (cos, shadows.inv_pdf_solid_angle[i]))
+            }
+            LaneSample::Scalar => self
+                .light
+                .sample(lanes.p.get(i), lanes.u[i], LightSampling::SolidAngle)
+                .and_then(|s| {
+                    let ray = lanes.shadow_ray(i, s.wi, s.shadow_target);
+                    self.unoccluded(ray, counts, scratch)
+                        .map(|cos| (cos, s.inv_pdf_solid_angle))
+                }),
+        };
+        // `Shading::area_light`'s sum (one sample, weight 1), `Shading::lights`' (one pick of
+        // probability `pmf`), then `shade`'s ambient and BRDF rays (none).
+        let material = lanes.material[i];
+        let mut sum = Vec3::ZERO;
+        if let Some((cos, inv_pdf)) = seen {
+            sum += self.light.radiance * material.f * (cos * inv_pdf * 1.0);
+        }
+        let mut lights = Vec3::ZERO;
+        lights += divided(sum, self.pmf);
+        material.ambient + lights + Vec3::ZERO
+    }
+
+    /// The shading cosine of a shadow ray `(traced, cos, origin, to_end)` that reaches its end.
+    #[inline(always)]
+    fn unoccluded(
+        &self,
+        (traced, cos, origin, to_end): (bool, f32, Vec3, Vec3),
+        counts: &mut RayCounts,
+        scratch: &mut Scratch,
+    ) -> Option<f32> {
+        if !traced {
+            return None;
+        }
+        counts.shadow += 1;
+        let blocked = self
+            .accel
+            .any_hit_with(&Ray::segment(origin, to_end, 1.0), scratch);
+        (!blocked).then_some(cos)
+    }
+}
+
+/// One pixel's samples ([`RectLit::pixel`]), to run compiled for AVX2 or not.
+struct PixelKernel<'r, 'a> {
+    lit: &'r RectLit<'a>,
+    camera: &'r PinholeCamera,
+    /// The pixel's corner on the film.
+    film: Vec2,
+    /// The sub-pixel offsets and their shift.
+    pattern: (&'r [Vec2], Vec2),
+    samplers: &'r PixelBatch,
+    acc: &'r mut Accumulator,
+    counts: &'r mut RayCounts,
+    scratch: &'r mut Scratch,
+}
+
+impl PixelKernel<'_, '_> {
+    #[inline(always)]
+    fn run(self) {
+        let PixelKernel {
+            lit,
+            camera,
+            film,
+            pattern: (offsets, shift),
+            samplers,
+            acc,
+            counts,
+            scratch,
+        } = self;
+        let count = offsets.len() as u32;
+        let eye = camera.eye();
+        let mut lanes = Run::default();
+        for (first, run) in (0..).step_by(LANES).zip(offsets.chunks(LANES)) {
+            lanes.shaded = [false; LANES];
+            lanes.flat = [false; LANES];
+            // Every lane's point (past the pixel's last sample too: unread), so the loop has
+            // a fixed length and runs side by side.
+            samplers.stratified_run(STREAM_LIGHTS, first, count, &mut lanes.u);
+            let mut at = [film; LANES];
+            for (a, offset) in at.iter_mut().zip(run) {
+                let o = *offset + shift;
+                *a += Vec2::new(rng::wrap_unit(o.x), rng::wrap_unit(o.y));
+            }
+            for (i, &a) in at.iter().enumerate() {
+                lanes.dir.set(i, camera.ray(a).dir);
+            }
+            for i in 0..run.len() {
+                lit.camera_sample(eye, i, &mut lanes, counts, scratch);
+            }
+            lanes.rebuild();
+            let shadows = lit.shadows(&lanes);
+            for i in 0..run.len() {
+                let l = lit.radiance(i, &lanes, &shadows, counts, scratch);
+                // As `Job::batch`: a non-finite sample is counted, not added.
+                if l.is_finite() {
+                    acc.add(l);
+                } else {
+                    counts.nonfinite += 1;
+                }
+            }
+        }
+    }
+}
+
+impl Kernel<Avx2> for PixelKernel<'_, '_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn call(self, _: Avx2) {
+        self.run();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::assets::FsLoader;
+    use crate::compile::compile_file;
+    use crate::ir::SceneDesc;
+    use crate::scene::{build, BuildOptions};
+
+    fn example(name: &str, edit: impl Fn(&mut SceneDesc)) -> Scene {
+        let loader = FsLoader::new();
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("examples")
+            .join(format!("{name}.scn"));
+        let mut desc = compile_file(&path, &loader)
+            .scene
+            .expect("the example compiles");
+        edit(&mut desc);
+        build(&desc, &loader, &BuildOptions::default())
+            .into_result()
+            .map(|(scene, _)| scene)
+            .unwrap_or_else(|_| panic!("{name} builds"))
+    }
+
+    fn cornell(edit: impl Fn(&mut SceneDesc)) -> Scene {
+        example("cornell", edit)
+    }
+
+    /// cornell and soft_shadows take the path; a specular lobe, several light samples, an adaptive render or
+    /// the general path asked for do not (the image comparisons are `tests/render_rect_lit.rs`).
+    #[test]
+    fn covers_cornell_and_no_scene_with_other_features() {
+        assert!(RectLit::of(&cornell(|_| ())).is_some());
+        // A sphere with vertex normals and a rotated box: covered, their hits rebuilt one by one.
+        let soft = example("soft_shadows", |_| ());
+        let lit = RectLit::of(&soft).expect("soft_shadows is covered");
+        assert!(lit.flat.iter().any(|&f| f) && !lit.flat.iter().all(|&f| f));
+        let specular =
+            |d: &mut SceneDesc| d.materials[0].specular = ColorInput::Constant(Vec3::splat(0.2));
+        let picks = |d: &mut SceneDesc| d.render.light_samples = 2;
+        let adaptive = |d: &mut SceneDesc| d.render.noise = Some(0.05);
+        let samples = |d: &mut SceneDesc| {
+            if let Some(crate::ir::Light::Area(a)) = d.lights.first_mut() {
+                a.samples = 4;
+            }
+        };
+        let edits: [fn(&mut SceneDesc); 4] = [specular, picks, adaptive, samples];
+        for edit in edits {
+            assert!(RectLit::of(&cornell(edit)).is_none());
+        }
+        let mut general = cornell(|_| ());
+        general.shading_path = ShadingPath::General;
+        assert!(RectLit::of(&general).is_none());
+    }
+}
