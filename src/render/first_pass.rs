@@ -93,7 +93,10 @@ impl FirstBatches {
         let mut block = [None; BLOCK_PIXELS];
         let (width, centre) = (a.width() as i64, self.index(x, y));
         for (k, slot) in block.iter_mut().enumerate() {
-            let (dx, dy) = ((k % BLOCK_SIDE) as i64 - r as i64, (k / BLOCK_SIDE) as i64 - r as i64);
+            let (dx, dy) = (
+                (k % BLOCK_SIDE) as i64 - r as i64,
+                (k / BLOCK_SIDE) as i64 - r as i64,
+            );
             let index = match (inside, centre) {
                 (true, Some(centre)) => usize::try_from(centre as i64 + dy * width + dx).ok(),
                 _ => self.neighbour_index(x, y, dx, dy),
