@@ -119,8 +119,10 @@ impl PixelBatch {
                 );
             }
         } else {
+            // Past the set's end (a caller's fixed-length run past its last sample) the index
+            // wraps: the cycle walk of `permute_index` only ends for indices inside the set.
             for (j, p) in (j0..).zip(out.iter_mut()) {
-                *p = key.point(j, n);
+                *p = key.point(if j < n1 { j } else { j % n1 }, n);
             }
         }
     }
@@ -372,7 +374,8 @@ fn stratum_centre(j: u32, n: u32) -> f32 {
 
 /// Element `i` of a pseudo-random permutation of `0..len` keyed by `key` (Kensler 2013,
 /// "Correlated Multi-Jittered Sampling": a hash bijective on the next power of two, cycle-walked
-/// into `0..len`). `len` 0 is treated as 1.
+/// into `0..len`). `len` 0 is treated as 1; unless `len` is a power of two, `i` must lie in
+/// `0..len`: the walk only ends there.
 #[inline]
 fn permute_index(i: u32, len: u32, key: u32) -> u32 {
     let len = len.max(1);
@@ -386,6 +389,7 @@ fn permute_index(i: u32, len: u32, key: u32) -> u32 {
     if len & w == 0 {
         return permute_round(i, w, key).wrapping_add(key) & w;
     }
+    debug_assert!(i < len, "index {i} outside the permutation of 0..{len}");
     let mut i = i;
     loop {
         i = permute_round(i, w, key);
@@ -504,11 +508,13 @@ mod tests {
         }
     }
 
-    /// A run's points taken together are the samplers' own, a power-of-two count or not, past
-    /// the last sample included (what a partly filled run computes and does not read).
+    /// A run's points taken together are the samplers' own, a power-of-two count or not; past
+    /// the last sample (what a partly filled run computes and does not read) a power-of-two set
+    /// goes on with its own permutation and any other wraps to its start, and either ends (the
+    /// cycle walk of a count like 9 never ended for an index past the set).
     #[test]
     fn a_runs_stratified_points_are_its_samplers_points() {
-        for count in [1, 4, 9, 16, 25, 256] {
+        for count in [1, 4, 5, 9, 16, 17, 25, 256] {
             let batch = PixelBatch::new(11, 4, 7, 0, count);
             for stream in [3, 6] {
                 for first in (0..count).step_by(8) {
@@ -516,7 +522,12 @@ mod tests {
                     batch.stratified_run(stream, first, count, &mut run);
                     for (j, p) in (first..).zip(run) {
                         let sampler = batch.sampler(j.min(count - 1));
-                        let q = sampler.stratified_2d(stream, j, count);
+                        let inside = if count.is_power_of_two() {
+                            j
+                        } else {
+                            j % count
+                        };
+                        let q = sampler.stratified_2d(stream, inside, count);
                         assert_eq!(
                             p.to_array().map(f32::to_bits),
                             q.to_array().map(f32::to_bits)
