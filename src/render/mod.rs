@@ -48,7 +48,7 @@ use self::estimate::{Accumulator, NoiseStats, PixelEstimate};
 use self::first_pass::{FirstBatches, FirstTileResult};
 use self::integrator::{radiance_scaled, RayCounts};
 use self::pooled_stop::{ReplicatePool, POOL_BATCH};
-use self::rect_lit::RectLit;
+use self::rect_lit::{RectLit, Samples};
 use self::second_pass::{PixelState, SecondPass, SecondTileResult};
 pub use self::window::PixelWindow;
 use crate::bvh::Scratch;
@@ -215,7 +215,7 @@ pub fn render_window(
         offsets: &offsets,
         emitter_pixels: &emitter_pixels,
         boosted_offsets: &boosted_offsets,
-        rect_lit: adaptive.is_none().then(|| RectLit::of(scene)).flatten(),
+        rect_lit: RectLit::of(scene),
         adaptive,
     };
     let window = window.clip(settings.width, settings.height);
@@ -390,7 +390,7 @@ struct Job<'a> {
     emitter_pixels: &'a EmitterPixels,
     /// Their sub-pixel positions (a finer grid of the same pattern).
     boosted_offsets: &'a [Vec2],
-    /// The scene's pixels take `rect_lit`'s path (a fixed-count render of a scene it covers).
+    /// The scene's pixels take `rect_lit`'s path (a scene it covers, fixed-count or adaptive).
     rect_lit: Option<RectLit<'a>>,
     adaptive: Option<Adaptive>,
 }
@@ -500,13 +500,15 @@ impl Job<'_> {
         let mut counts = RayCounts::default();
         let mut pixels = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
         let size = estimate::FIRST_BATCH;
+        let mut scratch = Scratch::new();
         for y in t.y0..t.y1 {
             for x in t.x0..t.x1 {
                 let sequences = rng::PixelSequences::new(self.scene.settings.seed, x, y);
                 let mut acc = Accumulator::default();
                 // Filtered for the first round's samples, as its second half is.
                 let scale = footprint_scale(early_stop::LAST_EARLY);
-                self.progressive_batch(x, y, &sequences, 0..size, scale, &mut acc, &mut counts);
+                let (samples, sinks) = (0..size, (&mut counts, &mut scratch));
+                self.progressive_batch((x, y), &sequences, samples, scale, &mut acc, sinks);
                 pixels.push(acc);
             }
         }
@@ -518,9 +520,10 @@ impl Job<'_> {
     fn tile_to_pool(&self, a: &Adaptive, t: Tile, first: &FirstBatches) -> SecondTileResult {
         let mut counts = RayCounts::default();
         let mut pixels = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
+        let mut scratch = Scratch::new();
         for y in t.y0..t.y1 {
             for x in t.x0..t.x1 {
-                pixels.push(self.pixel_to_pool(a, x, y, first, &mut counts));
+                pixels.push(self.pixel_to_pool(a, x, y, first, &mut counts, &mut scratch));
             }
         }
         (pixels, counts)
@@ -536,9 +539,11 @@ impl Job<'_> {
     ) -> (Vec<PixelEstimate>, RayCounts) {
         let mut counts = RayCounts::default();
         let mut pixels = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
+        let mut scratch = Scratch::new();
         for y in t.y0..t.y1 {
             for x in t.x0..t.x1 {
-                pixels.push(self.pixel_from_pool(a, x, y, first, pooling, &mut counts));
+                let sinks = (&mut counts, &mut scratch);
+                pixels.push(self.pixel_from_pool(a, (x, y), first, pooling, sinks));
             }
         }
         (pixels, counts)
@@ -590,7 +595,7 @@ impl Job<'_> {
         (batch, size): (usize, u32),
         taken: &mut u32,
         acc: &mut Accumulator,
-        counts: &mut RayCounts,
+        (counts, scratch): (&mut RayCounts, &mut Scratch),
     ) {
         if batch == 0 {
             // Taken in the first pass, for every pixel.
@@ -599,7 +604,8 @@ impl Job<'_> {
             // Textures are filtered for the samples the pixel will have by this batch's end.
             let scale = footprint_scale(*taken + size);
             let samples = *taken..*taken + size;
-            self.progressive_batch(x, y, sequences, samples, scale, acc, counts);
+            let sinks = (&mut *counts, &mut *scratch);
+            self.progressive_batch((x, y), sequences, samples, scale, acc, sinks);
         }
         *taken += size;
     }
@@ -613,6 +619,7 @@ impl Job<'_> {
         y: u32,
         first: &FirstBatches,
         counts: &mut RayCounts,
+        scratch: &mut Scratch,
     ) -> PixelState {
         let sequences = rng::PixelSequences::new(self.scene.settings.seed, x, y);
         let rules = self.rules(a, x, y, first);
@@ -627,7 +634,7 @@ impl Job<'_> {
                 (batch, size),
                 &mut taken,
                 &mut acc,
-                counts,
+                (&mut *counts, &mut *scratch),
             );
             if batch == POOL_BATCH {
                 return PixelState::Pooling { acc, taken };
@@ -645,16 +652,15 @@ impl Job<'_> {
     fn pixel_from_pool(
         &self,
         a: &Adaptive,
-        x: u32,
-        y: u32,
+        (x, y): (u32, u32),
         first: &FirstBatches,
         pooling: &SecondPass,
-        counts: &mut RayCounts,
+        (counts, scratch): (&mut RayCounts, &mut Scratch),
     ) -> PixelEstimate {
         // Every band pixel is in the second pass; taking it again would give the same bits.
         let state = match pooling.at(x, y) {
             Some(state) => *state,
-            None => self.pixel_to_pool(a, x, y, first, counts),
+            None => self.pixel_to_pool(a, x, y, first, counts, scratch),
         };
         let (mut acc, mut taken) = match state {
             PixelState::Done(estimate) => return estimate,
@@ -675,7 +681,7 @@ impl Job<'_> {
                 (batch, size),
                 &mut taken,
                 &mut acc,
-                counts,
+                (&mut *counts, &mut *scratch),
             );
             if let Some(e) = self.decide(a, &rules, &acc, taken, None) {
                 return e;
@@ -733,14 +739,19 @@ impl Job<'_> {
     #[allow(clippy::too_many_arguments)] // reason: the pixel, its sequences and the sinks
     fn progressive_batch(
         &self,
-        x: u32,
-        y: u32,
+        (x, y): (u32, u32),
         sequences: &rng::PixelSequences,
         samples: std::ops::Range<u32>,
         footprint_scale: f32,
         acc: &mut Accumulator,
-        counts: &mut RayCounts,
+        (counts, scratch): (&mut RayCounts, &mut Scratch),
     ) {
+        if let Some(lit) = &self.rect_lit {
+            // Its scenes have no textures: the footprint scale is unread.
+            let samples = Samples::Progressive { sequences, samples };
+            lit.pixel(&self.camera, (x, y), samples, acc, counts, scratch);
+            return;
+        }
         // The sub-pixel positions a batch at a time, apart from the rays (`points_2d`).
         let mut offsets = [Vec2::ZERO; estimate::BATCH as usize];
         let mut next = samples.start;
@@ -788,16 +799,12 @@ impl Job<'_> {
             Vec2::ZERO
         };
         if let Some(lit) = &self.rect_lit {
-            let pattern = (offsets, shift);
-            lit.pixel(
-                &self.camera,
-                (x, y),
-                pattern,
-                &samplers,
-                acc,
-                counts,
-                scratch,
-            );
+            let samples = Samples::Fixed {
+                offsets,
+                shift,
+                samplers: &samplers,
+            };
+            lit.pixel(&self.camera, (x, y), samples, acc, counts, scratch);
             return;
         }
         for (s, offset) in offsets.iter().enumerate() {

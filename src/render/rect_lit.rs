@@ -4,13 +4,14 @@
 //! [`integrator::radiance_scaled`](super::integrator::radiance_scaled) serves every scene:
 //! textures, normal maps, specular lobes, the environment, several lights, multiple importance
 //! sampling. A scene with none of them (constant Lambertian materials, one area light that is a
-//! rectangle sampled by solid angle once per camera sample, no environment, a fixed sample
-//! count: cornell) needs per camera sample a camera ray, its hit and, at a shading point, one
+//! rectangle sampled by solid angle once per camera sample, no environment: cornell,
+//! soft_shadows) needs per camera sample a camera ray, its hit and, at a shading point, one
 //! light sample and one shadow ray (MIS gives way to light sampling alone on such surfaces:
 //! `mis::strategy_at`). [`RectLit::of`] recognises such a scene once per render, and its
 //! pixels take this path, which carries none of the other branches' state. The same
 //! floating-point operations in the same order as the general path, so the same bits (tests
-//! compare whole images), a run of [`LANES`] samples at a time:
+//! compare whole images), a run of [`LANES`] samples at a time (the last run of a batch may be
+//! shorter, down to one sample):
 //!
 //! 1. the run's camera rays made side by side, traced one by one, and their hits rebuilt: an
 //!    emitter's radiance, black for a miss, or a shading point (side by side for unmoved
@@ -18,6 +19,11 @@
 //! 2. the run's light samples and shadow rays computed side by side
 //!    (`shade::light::rect_lanes`, then the rays' origins);
 //! 3. the shadow rays traced, and the samples' radiance added to the pixel in order.
+//!
+//! The sub-pixel positions and light points come from where the general path takes them
+//! ([`Samples`]): a fixed-count render's per-pixel stratified set and its shift
+//! (`rng::PixelBatch`), or an adaptive pixel's sequences, continued from batch to batch
+//! (`rng::PixelSequences::points_2d`, each sample added to its replicate).
 //!
 //! "Side by side" is a loop over the run's lanes whose body is branch-free, which the compiler
 //! vectorises; a pixel's runs are compiled for AVX2 where the CPU has it (entered with
@@ -31,7 +37,7 @@ use glam::{Affine3A, Vec2, Vec3};
 use super::camera::PinholeCamera;
 use super::estimate::Accumulator;
 use super::integrator::{divided, RayCounts, STREAM_LIGHTS};
-use super::rng::{self, PixelBatch};
+use super::rng::{self, PixelBatch, PixelSequences, STREAM_SUBPIXEL};
 use crate::bvh::Hit;
 use crate::bvh::{Accel, Scratch};
 use crate::geom::avx2::{Avx2, Kernel};
@@ -177,11 +183,11 @@ impl<'a> RectLit<'a> {
     pub(super) fn of(scene: &'a Scene) -> Option<RectLit<'a>> {
         let settings = &scene.settings;
         let allowed = scene.shading_path == ShadingPath::Specialised;
-        let fixed = settings.noise.is_none() && settings.light_samples.max(1) == 1;
+        let one_pick = settings.light_samples.max(1) == 1;
         let light_sampled = scene.light_sampling == LightSampling::SolidAngle
             && scene.strategy != DirectStrategy::BrdfOnly
             && scene.lights.environment.is_none();
-        if !(allowed && fixed && light_sampled) {
+        if !(allowed && one_pick && light_sampled) {
             return None;
         }
         let (Picked::Light(0, Light::Area(light)), pmf) = scene.lights.single()? else {
@@ -229,15 +235,13 @@ impl<'a> RectLit<'a> {
         })
     }
 
-    /// The pixel (`x`, `y`)'s samples at `offsets` (each shifted by `shift`, wrapped), with
-    /// the batch's samplers, added to `acc` in order: what `Job::batch` computes.
-    #[allow(clippy::too_many_arguments)] // reason: the pixel, its pattern and the sinks
+    /// The pixel (`x`, `y`)'s `samples`, added to `acc` in order: what `Job::batch` (a fixed
+    /// count) or `Job::progressive_batch` (an adaptive pixel's batch) computes.
     pub(super) fn pixel(
         &self,
         camera: &PinholeCamera,
         (x, y): (u32, u32),
-        pattern: (&[Vec2], Vec2),
-        samplers: &PixelBatch,
+        samples: Samples,
         acc: &mut Accumulator,
         counts: &mut RayCounts,
         scratch: &mut Scratch,
@@ -246,8 +250,7 @@ impl<'a> RectLit<'a> {
             lit: self,
             camera,
             film: Vec2::new(x as f32, y as f32),
-            pattern,
-            samplers,
+            samples,
             acc,
             counts,
             scratch,
@@ -417,15 +420,30 @@ impl<'a> RectLit<'a> {
     }
 }
 
+/// Where a pixel's samples take their sub-pixel positions and light points.
+pub(super) enum Samples<'r> {
+    /// A fixed-count render's one batch: point `s` of the stratified `offsets` shifted by
+    /// `shift` (wrapped), and the batch's samplers' stratified light points.
+    Fixed {
+        offsets: &'r [Vec2],
+        shift: Vec2,
+        samplers: &'r PixelBatch,
+    },
+    /// Samples `samples` (counted over all the pixel's batches) of an adaptive pixel: each
+    /// continues its sequences (`PixelSequences::points_2d`) and is added to its replicate.
+    Progressive {
+        sequences: &'r PixelSequences,
+        samples: std::ops::Range<u32>,
+    },
+}
+
 /// One pixel's samples ([`RectLit::pixel`]), to run compiled for AVX2 or not.
 struct PixelKernel<'r, 'a> {
     lit: &'r RectLit<'a>,
     camera: &'r PinholeCamera,
     /// The pixel's corner on the film.
     film: Vec2,
-    /// The sub-pixel offsets and their shift.
-    pattern: (&'r [Vec2], Vec2),
-    samplers: &'r PixelBatch,
+    samples: Samples<'r>,
     acc: &'r mut Accumulator,
     counts: &'r mut RayCounts,
     scratch: &'r mut Scratch,
@@ -438,42 +456,99 @@ impl PixelKernel<'_, '_> {
             lit,
             camera,
             film,
-            pattern: (offsets, shift),
-            samplers,
+            samples,
             acc,
             counts,
             scratch,
         } = self;
-        let count = offsets.len() as u32;
         let eye = camera.eye();
         let mut lanes = Run::default();
-        for (first, run) in (0..).step_by(LANES).zip(offsets.chunks(LANES)) {
-            lanes.shaded = [false; LANES];
-            lanes.flat = [false; LANES];
-            // Every lane's point (past the pixel's last sample too: unread), so the loop has
-            // a fixed length and runs side by side.
-            samplers.stratified_run(STREAM_LIGHTS, first, count, &mut lanes.u);
-            let mut at = [film; LANES];
-            for (a, offset) in at.iter_mut().zip(run) {
-                let o = *offset + shift;
-                *a += Vec2::new(rng::wrap_unit(o.x), rng::wrap_unit(o.y));
-            }
-            for (i, &a) in at.iter().enumerate() {
-                lanes.dir.set(i, camera.ray(a).dir);
-            }
-            for i in 0..run.len() {
-                lit.camera_sample(eye, i, &mut lanes, counts, scratch);
-            }
-            lanes.rebuild();
-            let shadows = lit.shadows(&lanes);
-            for i in 0..run.len() {
-                let l = lit.radiance(i, &lanes, &shadows, counts, scratch);
-                // As `Job::batch`: a non-finite sample is counted, not added.
-                if l.is_finite() {
-                    acc.add(l);
-                } else {
-                    counts.nonfinite += 1;
+        match samples {
+            Samples::Fixed {
+                offsets,
+                shift,
+                samplers,
+            } => {
+                let count = offsets.len() as u32;
+                for (first, run) in (0..).step_by(LANES).zip(offsets.chunks(LANES)) {
+                    // Every lane's point (past the pixel's last sample too: unread), so the
+                    // loop has a fixed length and runs side by side.
+                    samplers.stratified_run(STREAM_LIGHTS, first, count, &mut lanes.u);
+                    let mut at = [film; LANES];
+                    for (a, offset) in at.iter_mut().zip(run) {
+                        let o = *offset + shift;
+                        *a += Vec2::new(rng::wrap_unit(o.x), rng::wrap_unit(o.y));
+                    }
+                    let add = |_: usize, l: Vec3| {
+                        acc.add(l);
+                    };
+                    lit.run(
+                        camera,
+                        eye,
+                        (&at, run.len()),
+                        &mut lanes,
+                        add,
+                        counts,
+                        scratch,
+                    );
                 }
+            }
+            Samples::Progressive { sequences, samples } => {
+                let mut offsets = [Vec2::ZERO; LANES];
+                let mut first = samples.start;
+                while first < samples.end {
+                    let len = (samples.end - first).min(LANES as u32) as usize;
+                    let run = first..first + len as u32;
+                    sequences.points_2d(STREAM_SUBPIXEL, run.clone(), &mut offsets[..len]);
+                    // Lanes past the run keep their last points (unread).
+                    sequences.points_2d(STREAM_LIGHTS, run.clone(), &mut lanes.u[..len]);
+                    let mut at = [film; LANES];
+                    for (a, o) in at.iter_mut().zip(&offsets[..len]) {
+                        *a += *o;
+                    }
+                    let add = |i: usize, l: Vec3| {
+                        acc.add_replicate(l, PixelSequences::replicate(first + i as u32));
+                    };
+                    lit.run(camera, eye, (&at, len), &mut lanes, add, counts, scratch);
+                    first = run.end;
+                }
+            }
+        }
+    }
+}
+
+impl RectLit<'_> {
+    /// One run: the first `len` lanes' samples, seen through film points `at` with the light
+    /// points already in `lanes.u`, each finite radiance handed to `add` with its lane, in
+    /// order (as `Job::batch`: a non-finite sample is counted, not added).
+    #[allow(clippy::too_many_arguments)] // reason: the run, its sink and the tile's state
+    #[inline(always)]
+    fn run(
+        &self,
+        camera: &PinholeCamera,
+        eye: Vec3,
+        (at, len): (&[Vec2; LANES], usize),
+        lanes: &mut Run,
+        mut add: impl FnMut(usize, Vec3),
+        counts: &mut RayCounts,
+        scratch: &mut Scratch,
+    ) {
+        lanes.shaded = [false; LANES];
+        lanes.flat = [false; LANES];
+        for (i, &a) in at.iter().enumerate() {
+            lanes.dir.set(i, camera.ray(a).dir);
+        }
+        for i in 0..len {
+            self.camera_sample(eye, i, lanes, counts, scratch);
+        }
+        lanes.rebuild();
+        let shadows = self.shadows(lanes);
+        for i in 0..len {
+            let l = self.radiance(i, lanes, &shadows, counts, scratch);
+            if l.is_finite() {
+                add(i, l);
+            } else {
+                counts.nonfinite += 1;
             }
         }
     }
@@ -515,11 +590,12 @@ mod tests {
         example("cornell", edit)
     }
 
-    /// cornell and soft_shadows take the path; a specular lobe, several light samples, an adaptive render or
-    /// the general path asked for do not (the image comparisons are `tests/render_rect_lit.rs`).
+    /// cornell and soft_shadows take the path, fixed-count or adaptive; a specular lobe,
+    /// several light samples or the general path asked for do not (the image comparisons are `tests/render_rect_lit.rs`).
     #[test]
     fn covers_cornell_and_no_scene_with_other_features() {
         assert!(RectLit::of(&cornell(|_| ())).is_some());
+        assert!(RectLit::of(&cornell(|d| d.render.noise = Some(0.05))).is_some());
         // A sphere with vertex normals and a rotated box: covered, their hits rebuilt one by one.
         let soft = example("soft_shadows", |_| ());
         let lit = RectLit::of(&soft).expect("soft_shadows is covered");
@@ -527,13 +603,12 @@ mod tests {
         let specular =
             |d: &mut SceneDesc| d.materials[0].specular = ColorInput::Constant(Vec3::splat(0.2));
         let picks = |d: &mut SceneDesc| d.render.light_samples = 2;
-        let adaptive = |d: &mut SceneDesc| d.render.noise = Some(0.05);
         let samples = |d: &mut SceneDesc| {
             if let Some(crate::ir::Light::Area(a)) = d.lights.first_mut() {
                 a.samples = 4;
             }
         };
-        let edits: [fn(&mut SceneDesc); 4] = [specular, picks, adaptive, samples];
+        let edits: [fn(&mut SceneDesc); 3] = [specular, picks, samples];
         for edit in edits {
             assert!(RectLit::of(&cornell(edit)).is_none());
         }
