@@ -616,4 +616,79 @@ mod tests {
         general.shading_path = ShadingPath::General;
         assert!(RectLit::of(&general).is_none());
     }
+
+    /// An adaptive pixel's samples `samples` on the general path: `Job::progressive_batch`'s
+    /// loop, one sample at a time.
+    fn general_progressive(
+        scene: &Scene,
+        camera: &PinholeCamera,
+        (x, y): (u32, u32),
+        samples: std::ops::Range<u32>,
+        counts: &mut RayCounts,
+    ) -> Accumulator {
+        let sequences = PixelSequences::new(scene.settings.seed, x, y);
+        let mut acc = Accumulator::default();
+        for g in samples {
+            let mut o = [Vec2::ZERO];
+            sequences.points_2d(STREAM_SUBPIXEL, g..g + 1, &mut o);
+            let ray = camera.ray(Vec2::new(x as f32, y as f32) + o[0]);
+            let mut sampler = sequences.sampler(g);
+            let l =
+                crate::render::integrator::radiance_scaled(scene, &ray, 1.0, &mut sampler, counts);
+            if l.is_finite() {
+                acc.add_replicate(l, PixelSequences::replicate(g));
+            } else {
+                counts.nonfinite += 1;
+            }
+        }
+        acc
+    }
+
+    /// An adaptive pixel's runs of any length (1, 2, 3, 5, 9 samples, from the first sample, in
+    /// the shared round, across its end and deep in the replicates' sequences) give the general
+    /// path's sums bit for bit, and its ray counts: the sequences continue across batches.
+    #[test]
+    fn adaptive_runs_of_any_length_are_the_general_paths_samples() {
+        for name in ["cornell", "soft_shadows"] {
+            let scene = example(name, |d| {
+                d.render.width = 24;
+                d.render.height = 24;
+                d.render.noise = Some(0.05);
+            });
+            let lit = RectLit::of(&scene).expect("covered");
+            let camera = PinholeCamera::new(&scene.camera, 24, 24);
+            let mut scratch = Scratch::new();
+            let mut shadow_rays = 0;
+            for (x, y) in [(3, 4), (12, 12), (20, 7), (11, 20)] {
+                let sequences = PixelSequences::new(scene.settings.seed, x, y);
+                for start in [0, 2, 3, 4, 17, 100] {
+                    for len in [1, 2, 3, 5, 9] {
+                        let samples = start..start + len;
+                        let (mut fast_counts, mut general_counts) =
+                            (RayCounts::default(), RayCounts::default());
+                        let mut fast = Accumulator::default();
+                        let from = Samples::Progressive {
+                            sequences: &sequences,
+                            samples: samples.clone(),
+                        };
+                        let sinks = (&mut fast, &mut fast_counts, &mut scratch);
+                        lit.pixel(&camera, (x, y), from, sinks.0, sinks.1, sinks.2);
+                        let general = general_progressive(
+                            &scene,
+                            &camera,
+                            (x, y),
+                            samples,
+                            &mut general_counts,
+                        );
+                        let what = format!("{name} ({x}, {y}), samples {start}..{}", start + len);
+                        assert_eq!(format!("{fast:?}"), format!("{general:?}"), "{what}");
+                        assert_eq!(fast_counts, general_counts, "{what}");
+                        assert_eq!(fast_counts.camera, u64::from(len), "{what}");
+                        shadow_rays += fast_counts.shadow;
+                    }
+                }
+            }
+            assert!(shadow_rays > 0, "{name}: lit samples compared");
+        }
+    }
 }
