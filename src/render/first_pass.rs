@@ -1,6 +1,6 @@
 //! Stage 4, render: the first batches of an adaptive render, which every pixel takes before
 //! any pixel decides, so that each can pool its neighbours' (`render::early_stop`). The render
-//! goes band by band (a row of tiles, `render::bands`): a band's [`FirstBatches`] cover its rows
+//! goes band by band (rows of tiles, `render::bands`): a band's [`FirstBatches`] cover its rows
 //! and a margin of `early_stop::RADIUS` rows and columns, those above kept from the band
 //! before, so about a band's accumulators are held at a time, not the image's.
 //!
@@ -35,14 +35,22 @@ impl FirstBatches {
     pub(super) fn assemble(
         area: PixelWindow,
         before: Option<&FirstBatches>,
+        spare: Option<FirstBatches>,
         tiles: &[Tile],
         results: Vec<Option<FirstTileResult>>,
     ) -> Result<FirstBatches, Cancelled> {
         let width = area.width() as usize;
+        // A band's buffers are a few hundred kB: fresh ones each band cost page faults (a
+        // few percent of a loose-target render), so the band before last's are reused.
+        let (mut pixels, mut summaries) =
+            spare.map_or_else(Default::default, |s| (s.pixels, s.summaries));
+        pixels.clear();
+        pixels.resize(width * area.height() as usize, Accumulator::default());
+        summaries.clear();
         let mut out = FirstBatches {
             area,
-            pixels: vec![Accumulator::default(); width * area.height() as usize],
-            summaries: Vec::new(),
+            pixels,
+            summaries,
             counts: RayCounts::default(),
         };
         if let Some(before) = before {
@@ -65,7 +73,8 @@ impl FirstBatches {
                 out.pixels[y * width + x] = acc;
             }
         }
-        out.summaries = out.pixels.iter().map(FirstBatchSummary::of).collect();
+        let summaries = out.pixels.iter().map(FirstBatchSummary::of);
+        out.summaries.extend(summaries);
         Ok(out)
     }
 
@@ -164,7 +173,8 @@ mod tests {
             })
             .collect();
         let result = Some((pixels, RayCounts::default()));
-        FirstBatches::assemble(area, None, &[tile], vec![result]).expect("every tile is there")
+        FirstBatches::assemble(area, None, None, &[tile], vec![result])
+            .expect("every tile is there")
     }
 
     #[test]

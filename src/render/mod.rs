@@ -226,7 +226,7 @@ pub fn render_window(
         .build()
         .ok();
     let used_threads = pool.as_ref().map_or(1, |p| p.current_num_threads());
-    // An adaptive render goes band by band (a row of tiles), in three passes: the first
+    // An adaptive render goes band by band (rows of tiles, `bands`), in three passes: the first
     // batches of the band's rows and of a margin of twice `early_stop::RADIUS` rows and
     // columns around them (the rows above kept from the band before); then every pixel of the
     // band and a margin of `RADIUS` to its first whole batch, which may stop early on its
@@ -254,32 +254,41 @@ pub fn render_window(
     };
     let mut pass_counts = RayCounts::default();
     let results = match job.adaptive {
-        None => job.run(&tiles, pool.as_ref(), &progress, cancel, |t| job.tile(t)),
+        None => job.run(&tiles, pool.as_ref(), &progress, cancel, |t, s| {
+            job.tile(t, s)
+        }),
         Some(ref a) => {
             let mut results = Vec::with_capacity(tiles.len());
             let mut first: Option<FirstBatches> = None;
             let mut second: Option<SecondPass> = None;
+            // The band before last's, whose buffers the next band reuses.
+            let (mut spare_first, mut spare_second) = (None, None);
             for ((band, first_fresh), second_fresh) in
                 bands.iter().zip(&first_fresh).zip(&second_fresh)
             {
-                let got = job.run(first_fresh, pool.as_ref(), &progress, cancel, |t| {
-                    job.first_batches(t)
+                let got = job.run(first_fresh, pool.as_ref(), &progress, cancel, |t, s| {
+                    job.first_batches(t, s)
                 });
                 let area = band.grow(2 * early_stop::RADIUS, width, height);
-                let now = FirstBatches::assemble(area, first.as_ref(), first_fresh, got)?;
+                let spare = spare_first.take();
+                let now = FirstBatches::assemble(area, first.as_ref(), spare, first_fresh, got)?;
                 pass_counts.add(&now.counts);
-                let got = job.run(second_fresh, pool.as_ref(), &progress, cancel, |t| {
-                    job.tile_to_pool(a, t, &now)
+                let got = job.run(second_fresh, pool.as_ref(), &progress, cancel, |t, s| {
+                    job.tile_to_pool(a, t, &now, s)
                 });
                 let area = band.grow(early_stop::RADIUS, width, height);
-                let pooling = SecondPass::assemble(area, second.as_ref(), second_fresh, got)?;
+                let spare = spare_second.take();
+                let pooling =
+                    SecondPass::assemble(area, second.as_ref(), spare, second_fresh, got)?;
                 pass_counts.add(&pooling.counts);
                 let band_tiles = self::tiles(*band);
-                results.extend(job.run(&band_tiles, pool.as_ref(), &progress, cancel, |t| {
-                    job.tile_from_pool(a, t, &now, &pooling)
-                }));
-                first = Some(now);
-                second = Some(pooling);
+                results.extend(
+                    job.run(&band_tiles, pool.as_ref(), &progress, cancel, |t, s| {
+                        job.tile_from_pool(a, t, (&now, &pooling), s)
+                    }),
+                );
+                spare_first = first.replace(now);
+                spare_second = second.replace(pooling);
             }
             results
         }
@@ -309,16 +318,27 @@ struct Progress<'a> {
 type TileResult = Option<(Vec<PixelEstimate>, RayCounts)>;
 
 /// The window's rows of tiles, top to bottom: [`tiles`] of each, in order, are the window's.
+///
+/// A band is as many rows of tiles as make [`BAND_TILES`] tiles (one row of a wide image):
+/// each band's three passes end in a join of the threads, whose waits a small image's bands
+/// of one row paid 24 times at 160×120 (docs/quality.md). A pixel's bits do not depend on
+/// the bands (as `--tile` windows' do not).
 fn bands(window: PixelWindow) -> Vec<PixelWindow> {
+    let across = (window.x1.saturating_sub(window.x0)).div_ceil(TILE_SIZE).max(1);
+    let height = BAND_TILES.div_ceil(across).max(1) * TILE_SIZE;
     (window.y0..window.y1)
-        .step_by(TILE_SIZE as usize)
+        .step_by(height as usize)
         .map(|y0| PixelWindow {
             y0,
-            y1: (y0 + TILE_SIZE).min(window.y1),
+            y1: (y0 + height).min(window.y1),
             ..window
         })
         .collect()
 }
+
+/// The fewest tiles in an adaptive render's band (short of the window's), which bounds how
+/// often the threads join; a band's pixels are what the passes hold at a time.
+const BAND_TILES: u32 = 40;
 
 /// For each band, the tiles of its area grown by `margin` that the bands before did not
 /// cover (their rows are kept from the band before).
@@ -404,20 +424,30 @@ impl Job<'_> {
         pool: Option<&rayon::ThreadPool>,
         progress: &Progress,
         cancel: &AtomicBool,
-        work: impl Fn(Tile) -> T + Sync,
+        work: impl Fn(Tile, &mut Scratch) -> T + Sync,
     ) -> Vec<Option<T>> {
-        let run_tile = |tile: &Tile| {
+        // One set of traversal stacks per worker, not per tile: an adaptive render runs three
+        // passes a band, and fresh stacks for each tile of each cost page faults.
+        let run_tile = |scratch: &mut Scratch, tile: &Tile| {
             if cancel.load(Ordering::Relaxed) {
                 return None;
             }
-            let out = work(*tile);
+            let out = work(*tile, scratch);
             let n = progress.done.fetch_add(1, Ordering::Relaxed) + 1;
             (progress.report)(n as f32 / progress.total.max(1) as f32);
             Some(out)
         };
         match pool {
-            Some(pool) => pool.install(|| tiles.par_iter().map(run_tile).collect()),
-            None => tiles.iter().map(run_tile).collect(),
+            Some(pool) => pool.install(|| {
+                tiles
+                    .par_iter()
+                    .map_init(Scratch::new, |scratch, tile| run_tile(scratch, tile))
+                    .collect()
+            }),
+            None => {
+                let mut scratch = Scratch::new();
+                tiles.iter().map(|t| run_tile(&mut scratch, t)).collect()
+            }
         }
     }
 
@@ -482,13 +512,12 @@ impl Job<'_> {
         })
     }
 
-    fn tile(&self, t: Tile) -> (Vec<PixelEstimate>, RayCounts) {
+    fn tile(&self, t: Tile, scratch: &mut Scratch) -> (Vec<PixelEstimate>, RayCounts) {
         let mut counts = RayCounts::default();
         let mut pixels = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
-        let mut scratch = Scratch::new();
         for y in t.y0..t.y1 {
             for x in t.x0..t.x1 {
-                pixels.push(self.fixed_pixel(x, y, &mut counts, &mut scratch));
+                pixels.push(self.fixed_pixel(x, y, &mut counts, scratch));
             }
         }
         (pixels, counts)
@@ -496,18 +525,17 @@ impl Job<'_> {
 
     /// The first batch of every pixel of the tile (adaptive renders): the first half of the
     /// jointly stratified first round, taken before any pixel decides (`early_stop`).
-    fn first_batches(&self, t: Tile) -> FirstTileResult {
+    fn first_batches(&self, t: Tile, scratch: &mut Scratch) -> FirstTileResult {
         let mut counts = RayCounts::default();
         let mut pixels = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
         let size = estimate::FIRST_BATCH;
-        let mut scratch = Scratch::new();
         for y in t.y0..t.y1 {
             for x in t.x0..t.x1 {
                 let sequences = rng::PixelSequences::new(self.scene.settings.seed, x, y);
                 let mut acc = Accumulator::default();
                 // Filtered for the first round's samples, as its second half is.
                 let scale = footprint_scale(early_stop::LAST_EARLY);
-                let (samples, sinks) = (0..size, (&mut counts, &mut scratch));
+                let (samples, sinks) = (0..size, (&mut counts, &mut *scratch));
                 self.progressive_batch((x, y), &sequences, samples, scale, &mut acc, sinks);
                 pixels.push(acc);
             }
@@ -517,13 +545,18 @@ impl Job<'_> {
 
     /// Every pixel of the tile to its first whole batch, unless it stops before
     /// ([`PixelState`]), taken before any pixel decides on it (`pooled_stop`).
-    fn tile_to_pool(&self, a: &Adaptive, t: Tile, first: &FirstBatches) -> SecondTileResult {
+    fn tile_to_pool(
+        &self,
+        a: &Adaptive,
+        t: Tile,
+        first: &FirstBatches,
+        scratch: &mut Scratch,
+    ) -> SecondTileResult {
         let mut counts = RayCounts::default();
         let mut pixels = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
-        let mut scratch = Scratch::new();
         for y in t.y0..t.y1 {
             for x in t.x0..t.x1 {
-                pixels.push(self.pixel_to_pool(a, x, y, first, &mut counts, &mut scratch));
+                pixels.push(self.pixel_to_pool(a, x, y, first, &mut counts, scratch));
             }
         }
         (pixels, counts)
@@ -534,15 +567,14 @@ impl Job<'_> {
         &self,
         a: &Adaptive,
         t: Tile,
-        first: &FirstBatches,
-        pooling: &SecondPass,
+        (first, pooling): (&FirstBatches, &SecondPass),
+        scratch: &mut Scratch,
     ) -> (Vec<PixelEstimate>, RayCounts) {
         let mut counts = RayCounts::default();
         let mut pixels = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
-        let mut scratch = Scratch::new();
         for y in t.y0..t.y1 {
             for x in t.x0..t.x1 {
-                let sinks = (&mut counts, &mut scratch);
+                let sinks = (&mut counts, &mut *scratch);
                 pixels.push(self.pixel_from_pool(a, (x, y), first, pooling, sinks));
             }
         }

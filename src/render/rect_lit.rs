@@ -156,9 +156,13 @@ impl Run {
     /// The `flat` lanes' shading points, side by side: `seen_hit`'s rebuild of an unmoved
     /// placement's hit on a mesh without vertex normals (the shading normal is the face's, no
     /// shadow-terminator offset), then `shade`'s normals turned to the viewer.
+    /// Only the first `N` lanes: a run's side-by-side loops are as long as the smallest of
+    /// 2, 4 and [`LANES`] that holds it ([`RectLit::run`]), so an adaptive pixel's runs of 2
+    /// samples do not pay for 8. Each lane's operations are the same for any `N`.
     #[inline(always)]
-    fn rebuild(&mut self) {
-        for i in 0..LANES {
+    fn rebuild<const N: usize>(&mut self) {
+        const { assert!(N <= LANES) };
+        for i in 0..N {
             let obj = [0, 1, 2].map(|k| self.corners[k].get(i));
             let (world, transform_error) = unmoved_corners(obj);
             let (p, p_error) =
@@ -336,15 +340,18 @@ impl<'a> RectLit<'a> {
     }
 
     /// The run's light samples and shadow rays, lane by lane (see the module doc).
+    /// Only the first `N` lanes (see [`Run::rebuild`]).
     #[inline(always)]
-    fn shadows(&self, lanes: &Run) -> Shadows {
-        let samples = self.light.sample_lanes(&lanes.p, &lanes.u, &lanes.shaded);
+    fn shadows<const N: usize>(&self, lanes: &Run) -> Shadows {
+        let samples = self
+            .light
+            .sample_first_lanes::<N>(&lanes.p, &lanes.u, &lanes.shaded);
         let mut out = Shadows {
             kind: samples.kind,
             inv_pdf_solid_angle: samples.inv_pdf_solid_angle,
             ..Shadows::default()
         };
-        for i in 0..LANES {
+        for i in 0..N {
             let (traced, cos, origin, to_end) =
                 lanes.shadow_ray(i, samples.wi.get(i), samples.shadow_target.get(i));
             out.traced[i] = traced;
@@ -529,20 +536,43 @@ impl RectLit<'_> {
         eye: Vec3,
         (at, len): (&[Vec2; LANES], usize),
         lanes: &mut Run,
+        add: impl FnMut(usize, Vec3),
+        counts: &mut RayCounts,
+        scratch: &mut Scratch,
+    ) {
+        let run = (at, len);
+        match len {
+            0..=2 => self.run_first::<2>(camera, eye, run, lanes, add, counts, scratch),
+            3..=4 => self.run_first::<4>(camera, eye, run, lanes, add, counts, scratch),
+            _ => self.run_first::<LANES>(camera, eye, run, lanes, add, counts, scratch),
+        }
+    }
+
+    /// [`RectLit::run`] with its side-by-side loops over the first `N` lanes (`len <= N`).
+    #[allow(clippy::too_many_arguments)] // reason: the run, its sink and the tile's state
+    #[allow(clippy::needless_range_loop)] // reason: the vectorisable shape (`Run::rebuild`)
+    #[inline(always)]
+    fn run_first<const N: usize>(
+        &self,
+        camera: &PinholeCamera,
+        eye: Vec3,
+        (at, len): (&[Vec2; LANES], usize),
+        lanes: &mut Run,
         mut add: impl FnMut(usize, Vec3),
         counts: &mut RayCounts,
         scratch: &mut Scratch,
     ) {
+        debug_assert!(len <= N && N <= LANES);
         lanes.shaded = [false; LANES];
         lanes.flat = [false; LANES];
-        for (i, &a) in at.iter().enumerate() {
-            lanes.dir.set(i, camera.ray(a).dir);
+        for i in 0..N {
+            lanes.dir.set(i, camera.ray(at[i]).dir);
         }
         for i in 0..len {
             self.camera_sample(eye, i, lanes, counts, scratch);
         }
-        lanes.rebuild();
-        let shadows = self.shadows(lanes);
+        lanes.rebuild::<N>();
+        let shadows = self.shadows::<N>(lanes);
         for i in 0..len {
             let l = self.radiance(i, lanes, &shadows, counts, scratch);
             if l.is_finite() {

@@ -42,14 +42,21 @@ impl SecondPass {
     pub(super) fn assemble(
         area: PixelWindow,
         before: Option<&SecondPass>,
+        spare: Option<SecondPass>,
         tiles: &[Tile],
         results: Vec<Option<SecondTileResult>>,
     ) -> Result<SecondPass, Cancelled> {
         let width = area.width() as usize;
+        // The band before last's buffers, reused (as `FirstBatches::assemble`'s).
+        let (mut pixels, mut spreads) =
+            spare.map_or_else(Default::default, |s| (s.pixels, s.spreads));
+        pixels.clear();
+        pixels.resize(width * area.height() as usize, None);
+        spreads.clear();
         let mut out = SecondPass {
             area,
-            pixels: vec![None; width * area.height() as usize],
-            spreads: Vec::new(),
+            pixels,
+            spreads,
             counts: RayCounts::default(),
         };
         if let Some(before) = before {
@@ -72,14 +79,11 @@ impl SecondPass {
                 out.pixels[y * width + x] = Some(state);
             }
         }
-        out.spreads = out
-            .pixels
-            .iter()
-            .map(|state| match state {
-                Some(PixelState::Pooling { acc, .. }) => acc.relative_replicate_variance(),
-                _ => None,
-            })
-            .collect();
+        let spreads = out.pixels.iter().map(|state| match state {
+            Some(PixelState::Pooling { acc, .. }) => acc.relative_replicate_variance(),
+            _ => None,
+        });
+        out.spreads.extend(spreads);
         Ok(out)
     }
 

@@ -141,9 +141,6 @@ impl AreaLight {
     ///
     /// Each loop's body is branch-free (selects; `&` on flags, not `&&`) and reads nothing but
     /// arrays and values held outside it, which is what lets the compiler vectorise it.
-    // A lane index reads several arrays in each loop: one `for i in 0..LANES` per loop is the
-    // vectorisable shape, not zipped iterators.
-    #[allow(clippy::needless_range_loop)]
     #[inline(always)]
     pub fn sample_lanes(
         &self,
@@ -151,25 +148,40 @@ impl AreaLight {
         u: &[Vec2; LANES],
         active: &[bool; LANES],
     ) -> AreaLanes {
+        self.sample_first_lanes::<LANES>(p, u, active)
+    }
+
+    /// [`AreaLight::sample_lanes`] for the first `N` lanes alone (`N <= LANES`; the others
+    /// are left [`LaneSample::Nothing`]): a short run's loops as long as the run, not
+    /// [`LANES`]. Each lane's operations are the same for any `N`, so the same bits.
+    // A lane index reads several arrays in each loop: one `for i in 0..N` per loop is the
+    // vectorisable shape, not zipped iterators.
+    #[allow(clippy::needless_range_loop)]
+    #[inline(always)]
+    pub fn sample_first_lanes<const N: usize>(
+        &self,
+        p: &LaneVecs,
+        u: &[Vec2; LANES],
+        active: &[bool; LANES],
+    ) -> AreaLanes {
+        const { assert!(N <= LANES) };
         let mut out = AreaLanes::default();
         let (Some(frame), Some(&normal), Some(&[corner, _, _])) = (
             self.rect_frame,
             self.normals.first(),
             self.triangles.first(),
         ) else {
-            out.kind = active.map(|a| {
-                if a {
-                    LaneSample::Scalar
-                } else {
-                    LaneSample::Nothing
+            for i in 0..N {
+                if active[i] {
+                    out.kind[i] = LaneSample::Scalar;
                 }
-            });
+            }
             return out;
         };
         let two_sided = self.two_sided;
         let range = spherical::MIN_SOLID_ANGLE..=spherical::MAX_SOLID_ANGLE;
         let mut rects = RectLanes::default();
-        for i in 0..LANES {
+        for i in 0..N {
             let at = p.get(i);
             let c = FrameCoordinates::of(at, &frame);
             let a = Angles::of(c.as_f64());
@@ -190,14 +202,14 @@ impl AreaLight {
             rects.set(i, &a.rect(&c, &frame, solid_angle));
         }
         let (mut sin_u, mut cos_u) = ([0.0; LANES], [0.0; LANES]);
-        for i in 0..LANES {
+        for i in 0..N {
             if out.kind[i] == LaneSample::Sampled {
                 let rect = rects.get(i, &frame);
                 (sin_u[i], cos_u[i]) = rect.column_angle(u[i].x).sin_cos();
             }
         }
         let shadow = self.rect_points.shadow;
-        for i in 0..LANES {
+        for i in 0..N {
             let rect = rects.get(i, &frame);
             let sample = rect.sample_at(u[i].y, sin_u[i], cos_u[i]);
             let wi = sample.offset.normalize_or_zero();
