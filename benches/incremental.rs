@@ -4,7 +4,7 @@
 //!
 //! The scene of issue 22: 100,000 `object` statements, each with a rotate and a translate, over
 //! three meshes, an OBJ mesh and an image texture (placed by the group) and 100 materials that
-//! name one constant, `gloss`, and one `group` (about 9 MB). Thirty-six kinds
+//! name one constant, `gloss`, and one `group` (about 9 MB). Thirty-seven kinds
 //! of edit, one line each: one object's translate in the middle of the file (a person nudging one
 //! object), one material's colour, the value of `gloss` (its 100 materials re-checked), an
 //! `object` line inserted, one deleted, an object's material misspelt then put back (every
@@ -28,7 +28,8 @@
 //! then name an unknown material) and put back, and a material pasted with two objects that
 //! name it, then deleted; (ninth session) a second light added and deleted, the light's
 //! intensity set to -1 (an error) and put back, and `let lens` (the camera names it) renamed
-//! and named back.
+//! and named back; (twelfth session) a second `material m5` added (a duplicate-name error)
+//! and deleted.
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
 //!    each edit (the text served from memory; diagnostics are ready when it returns).
@@ -300,9 +301,12 @@ enum Kind {
     /// `lens2` (the camera gets an unknown-name error); 1, 3, 5, …: named back (full compiles
     /// before).
     LensRenamed,
+    /// (Twelfth session.) Edits 0, 2, 4, …: a second `material m5` inserted after the last
+    /// material (a duplicate-name error); 1, 3, 5, …: deleted (full compiles before).
+    Redeclared,
 }
 
-const KINDS: [Kind; 36] = [
+const KINDS: [Kind; 37] = [
     Kind::Object,
     Kind::Material,
     Kind::Let,
@@ -339,6 +343,7 @@ const KINDS: [Kind; 36] = [
     Kind::LightAdded,
     Kind::SettingError,
     Kind::LensRenamed,
+    Kind::Redeclared,
     // Last: it leaves a material line per pair before the last `let`.
     Kind::GroupNamesAdded,
 ];
@@ -362,6 +367,7 @@ fn errs(kind: Kind) -> bool {
             | Kind::Removed
             | Kind::SettingError
             | Kind::LensRenamed
+            | Kind::Redeclared
     )
 }
 
@@ -582,6 +588,16 @@ fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String
                 1,
             );
         }
+        Kind::Redeclared if k.is_multiple_of(2) => {
+            let line = format!(
+                "material m5 = phong {{ diffuse rgb(0.{}, 0.1, 0.1) }}",
+                k % 10
+            );
+            lines.insert(FIRST_MATERIAL + 100, line);
+        }
+        Kind::Redeclared => {
+            lines.remove(FIRST_MATERIAL + 100);
+        }
         Kind::LensRenamed => {
             let at = lines.len() - 2;
             let (from, to) = match k % 2 {
@@ -650,6 +666,7 @@ fn splits(kind: Kind) -> bool {
             | Kind::MaterialLost
             | Kind::Removed
             | Kind::PasteObjects
+            | Kind::Redeclared
     )
 }
 
@@ -797,6 +814,7 @@ fn front_end(objects: usize, edits: usize) {
                         | Kind::LetRenamed
                         | Kind::GroupNamesAdded
                         | Kind::Removed
+                        | Kind::Redeclared
                 );
                 let checked = match kind {
                     Kind::LetError => checked(Kind::Let, k),
@@ -810,6 +828,8 @@ fn front_end(objects: usize, edits: usize) {
                     Kind::LetRenamed => 101,
                     // The group; then the material added and the group.
                     Kind::GroupNamesAdded => 1 + k % 2,
+                    // The duplicate added (its error made); removed, nothing.
+                    Kind::Redeclared => 1 - k % 2,
                     _ => usize::from(checks || k % 2 == 1),
                 };
                 let unchanged = !checks && inc.reuse == Reuse::Unchanged;

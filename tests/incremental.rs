@@ -2414,11 +2414,13 @@ fn a_declaration_removed_that_something_names_is_checked_with_what_names_it() {
         // (2026-11-28; a full compile before).
         (spare, "", true),
         ("light sun", &*format!("{spare}light sun"), true),
-        // A name declared twice: a full compile.
+        // A second declaration of a name added alone: checked alone (its duplicate-name
+        // error; twelfth session, a full compile before); another removed while it stands: a
+        // full compile.
         (
             "material m3",
             "material m1 = phong { diffuse #111 }\nmaterial m3",
-            false,
+            true,
         ),
         (m2, "", false),
     ];
@@ -2935,4 +2937,132 @@ fn survey_declines() {
     for (name, scene, ov, from, to) in cases {
         eprintln!("SURVEY {name:40} {}", survey_one(scene, ov, from, to));
     }
+}
+
+/// A second declaration of a name (a duplicate-name error stands): its value edited (a
+/// digit, a key misspelt, its kind changed: the check reads no more than its name), added
+/// alone after the first of its name, and removed alone (the error goes) are checked alone
+/// (`check/recheck/redeclared.rs`; a full compile before); the first declaration edited while
+/// a duplicate stands, and a declaration added before the first of its name, still take a
+/// full compile. Every result is the full compile's.
+#[test]
+fn a_second_declaration_edited_added_or_removed_is_checked_alone() {
+    let dups = "material m1 = phong { diffuse #f00 }\nlet k = 5\n\
+                mesh ball = box { size 2 }\ntexture board = checker { scale 3 }\n";
+    let scene = base_scene().replace("light sun", &(dups.to_string() + "light sun"));
+    let edits = [
+        // a. Edited.
+        ("diffuse #f00 }", "diffuse #0f0 }", true),
+        ("diffuse #0f0 }", "diffusee #0f0 }", true),
+        ("let k = 5", "let k = 6", true),
+        ("let k = 6", "let k = nowhere * 2", true),
+        (
+            "mesh ball = box { size 2 }",
+            "mesh ball = box { size 3 }",
+            true,
+        ),
+        (
+            "mesh ball = box { size 3 }",
+            "mesh ball = cone { size 3 }",
+            true,
+        ),
+        ("checker { scale 3 }", "checker { scale 4 }", true),
+        // The first declaration of a duplicated name edited: a full compile.
+        ("let k = 2", "let k = 3", false),
+        // b. Added after the first of its name, alone.
+        (
+            "light sun",
+            "material m3 = phong { diffuse #00f }\nlight sun",
+            true,
+        ),
+        ("light sun", "let spin = 1\nlight sun", true),
+        ("light sun", "mesh spare = box { size 5 }\nlight sun", true),
+        (
+            "light sun",
+            "texture board = checker { scale 9 }\nlight sun",
+            true,
+        ),
+        // Added before the first of its name: it becomes the first (a full compile).
+        (
+            "// a scene for edits\n",
+            "// a scene for edits\nmaterial m2 = phong { diffuse #0ff }\n",
+            false,
+        ),
+        // c. Removed alone: their errors go.
+        ("material m3 = phong { diffuse #00f }\n", "", true),
+        ("let spin = 1\n", "", true),
+        ("mesh spare = box { size 5 }\n", "", true),
+        ("texture board = checker { scale 9 }\n", "", true),
+        ("material m1 = phong { diffusee #0f0 }\n", "", true),
+        ("let k = nowhere * 2\n", "", true),
+        ("mesh ball = cone { size 3 }\n", "", true),
+        ("texture board = checker { scale 4 }\n", "", true),
+    ];
+    replay_edits(scene, &edits);
+}
+
+/// Seeded second declarations added at random lines, edited and removed: whenever one goes
+/// after the first of its name, it is checked alone; every result is the full compile's.
+#[test]
+fn seeded_second_declarations_compile_as_a_fresh_compile_does() {
+    let lines = [
+        ("let k =", "let k = 7\n"),
+        ("material m0 =", "material m0 = phong { diffuse #123 }\n"),
+        ("mesh box1 =", "mesh box1 = box { size 4 }\n"),
+        ("texture board =", "texture board = checker { scale 2 }\n"),
+    ];
+    let mut fast_count = 0;
+    for seed in 1..=4u64 {
+        let mut rng = SplitMix64(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+        let mut inc = Incremental::new(Overrides::default());
+        let mut text = base_scene();
+        let _ = compile_as_a_full_compile_does(&mut inc, &text, "first");
+        for step in 0..24 {
+            let (head, line) = lines[rng.below(lines.len())];
+            let first_at = text.find(head).expect("declared in the base scene");
+            let (edited, fast) = if let Some(at) = text.rfind(line) {
+                // The second one: edited (its digit) or removed.
+                if rng.below(2) == 0 {
+                    let digit = line.rfind(|c: char| c.is_ascii_digit()).expect("a digit");
+                    let mut new = line.to_string();
+                    new.replace_range(digit..digit + 1, "9");
+                    let old_line = line.to_string();
+                    let mut t = text.clone();
+                    t.replace_range(at..at + old_line.len(), &new);
+                    // Put back at once (the next step finds it by its text).
+                    let (_, label) = compile_as_a_full_compile_does(&mut inc, &t, "edited");
+                    if at > first_at {
+                        assert!(matches!(inc.reuse, Reuse::Statements { .. }), "{label}");
+                        fast_count += 1;
+                    }
+                    (text.clone(), at > first_at)
+                } else {
+                    let mut t = text.clone();
+                    t.replace_range(at..at + line.len(), "");
+                    (t, at > first_at)
+                }
+            } else {
+                let starts: Vec<usize> = std::iter::once(0)
+                    .chain(text.match_indices('\n').map(|(i, _)| i + 1))
+                    .filter(|&i| i > 0 && i < text.len())
+                    .collect();
+                let at = starts[rng.below(starts.len())];
+                let mut t = text.clone();
+                t.insert_str(at, line);
+                (t, at > first_at)
+            };
+            text = edited;
+            let (_, label) = compile_as_a_full_compile_does(
+                &mut inc,
+                &text,
+                &format!("seed {seed} step {step}"),
+            );
+            let took = matches!(inc.reuse, Reuse::Statements { .. });
+            if fast {
+                assert!(took, "{label}");
+                fast_count += 1;
+            }
+        }
+    }
+    assert!(fast_count >= 40, "fast {fast_count}");
 }

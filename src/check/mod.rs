@@ -149,17 +149,7 @@ impl<'s> Checker<'s> {
         let Some(first) = self.table(ns).declare(name, span) else {
             return true;
         };
-        {
-            self.error(
-                Diagnostic::error(
-                    Code::CheckDuplicateName,
-                    format!("{} `{name}` is declared twice", ns.what()),
-                )
-                .at(span, "declared again here")
-                .also(first, "first declared here")
-                .help("rename one of them"),
-            );
-        }
+        self.error(names::duplicate_name(ns.what(), name, span, first));
         false
     }
 
@@ -176,15 +166,9 @@ impl<'s> Checker<'s> {
         }
         if let Some((_, first)) = self.lets.get(&name.name) {
             let first = *first;
-            self.error(
-                Diagnostic::error(
-                    Code::CheckDuplicateName,
-                    format!("constant `{}` is declared twice", name.name),
-                )
-                .at(name.span, "declared again here")
-                .also(first, "first declared here")
-                .help("rename one of them"),
-            );
+            self.error(names::duplicate_name(
+                "constant", &name.name, name.span, first,
+            ));
             return;
         }
         match self.eval(value).and_then(|v| self.define_override(name, v)) {

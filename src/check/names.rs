@@ -190,6 +190,24 @@ impl Table {
     }
 }
 
+/// The error for a name declared again at `again` (`what` it is: "constant", "material", ...),
+/// first declared at `first`: the full check's, and the incremental re-check's when it adds
+/// such a declaration (`recheck/redeclared.rs`).
+pub(in crate::check) fn duplicate_name(
+    what: &str,
+    name: &str,
+    again: Span,
+    first: Span,
+) -> Diagnostic {
+    Diagnostic::error(
+        Code::CheckDuplicateName,
+        format!("{what} `{name}` is declared twice"),
+    )
+    .at(again, "declared again here")
+    .also(first, "first declared here")
+    .help("rename one of them")
+}
+
 /// The `i`-th name of a table's `names`, which end at `ends`.
 fn name_at<'a>(names: &'a str, ends: &[u32], i: usize) -> &'a str {
     let start = if i == 0 { 0 } else { ends[i - 1] as usize };

@@ -9,8 +9,9 @@
 //! edit of `group`s that keeps their names is checked as one of `object`s ([`groups`]); a
 //! renamed declaration is checked with what reads either name ([`renamed`]), and so is a
 //! renamed `let` ([`let_renamed`]); declarations added or removed, with `object`s beside them,
-//! are checked with what names them ([`added`], [`removed`]);
-//! everything else is a full check.
+//! are checked with what names them ([`added`], [`removed`]); a second declaration of a name
+//! edited, added or removed alone only moves spans and gives or takes its error
+//! ([`redeclared`]); everything else is a full check.
 //!
 //! Why the result is the full check's: an `object` is checked in the placement phase, after
 //! every constant and declaration, reading only constants, the `frame`, the name tables and the
@@ -31,6 +32,7 @@ mod decls;
 mod groups;
 mod let_renamed;
 mod lets;
+mod redeclared;
 mod redo;
 mod reevaluate;
 mod removed;

@@ -19,7 +19,9 @@
 //! again together: [`CheckMemo::recheck_settings`]), and `material`s,
 //! `mesh`es and `texture`s added (a pasted block, `object`s with them) or removed (what names
 //! them checked again; [`CheckMemo::add_or_remove_decl`]); the version header edited alone
-//! (still `scnc 1`) only moves the spans. An edit that breaks the
+//! (still `scnc 1`) only moves the spans; a second declaration of a `let`, `material`, `mesh`
+//! or `texture` name edited, added or removed alone only gives or takes its duplicate-name
+//! error ([`CheckMemo::recheck_redeclared`]). An edit that breaks the
 //! syntax gets the full compile's diagnostics from the memo of the last text that parsed
 //! ([`super::broken`]), which stays for the edit that fixes it (diffed against that text). Anything
 //! else is a full compile, which is always correct: a file-level diagnostic (an include that
@@ -351,7 +353,12 @@ impl Memo {
             let lets = (old_stmts.iter().chain(&new)).all(|s| matches!(s, Stmt::Let { .. }));
             let settings = (old_stmts.iter().chain(&new)).all(crate::check::is_setting);
             let groups = (old_stmts.iter().chain(&new)).any(|s| matches!(s, Stmt::Group(_)));
-            if settings {
+            let redeclared =
+                self.check
+                    .recheck_redeclared(old_range.clone(), &old_stmts, &new, shift);
+            if let Some(checked) = redeclared {
+                checked?
+            } else if settings {
                 let check = &mut self.check;
                 check.recheck_settings(&sources, old_range, &old_stmts, &new, shift, &mut naming)?
             } else if groups {
