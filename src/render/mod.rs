@@ -324,7 +324,9 @@ type TileResult = Option<(Vec<PixelEstimate>, RayCounts)>;
 /// of one row paid 24 times at 160×120 (docs/quality.md). A pixel's bits do not depend on
 /// the bands (as `--tile` windows' do not).
 fn bands(window: PixelWindow) -> Vec<PixelWindow> {
-    let across = (window.x1.saturating_sub(window.x0)).div_ceil(TILE_SIZE).max(1);
+    let across = (window.x1.saturating_sub(window.x0))
+        .div_ceil(TILE_SIZE)
+        .max(1);
     let height = BAND_TILES.div_ceil(across).max(1) * TILE_SIZE;
     (window.y0..window.y1)
         .step_by(height as usize)
