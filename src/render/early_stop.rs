@@ -79,6 +79,11 @@ pub struct NeighbourPrior {
 }
 
 impl NeighbourPrior {
+    /// Samples the neighbours' first batches took.
+    pub fn samples(&self) -> u32 {
+        self.samples
+    }
+
     /// Samples the pixel (`own` so far) and its neighbours' first batches have taken together:
     /// what the rule of three behind `estimate::min_samples` counts once the pixel may lean on
     /// its neighbourhood.
@@ -209,6 +214,19 @@ pub fn chi_square_lower(dof: f64) -> f64 {
     (dof * (1.0 - a - Z_CONFIDENCE * a.sqrt()).max(0.0).powi(3)).max(1e-12)
 }
 
+/// Whether a pixel with `own` samples whose neighbours' first batches took `neighbours` may
+/// stop early at `target` at all ([`confident_error`] is `None` otherwise): at most
+/// [`LAST_EARLY`] samples, and `1/target` seen by the neighbourhood. Asked before the prior
+/// and the spread are derived, which most looks never need (`render::Job::decide`).
+pub fn may_look(own: u32, neighbours: u32, target: f64) -> bool {
+    let seen = NeighbourPrior {
+        samples: neighbours,
+        ..NeighbourPrior::default()
+    }
+    .seen(own);
+    own <= LAST_EARLY && f64::from(seen) >= 1.0 / target
+}
+
 /// The pixel's relative standard error if it may stop now, after `acc.count()` samples, at
 /// `target`; `None` if it must go on. See the module doc for the rule.
 pub fn confident_error(
@@ -218,7 +236,7 @@ pub fn confident_error(
     target: f64,
 ) -> Option<f64> {
     let n = acc.count() as f64;
-    if acc.count() > LAST_EARLY || f64::from(prior.seen(acc.count())) < 1.0 / target {
+    if !may_look(acc.count(), prior.samples, target) {
         return None;
     }
     if acc.count() == FIRST_BATCH {

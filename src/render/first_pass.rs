@@ -133,6 +133,15 @@ impl FirstBatches {
         NeighbourPrior::pool_summaries(neighbours)
     }
 
+    /// The samples of the first batches of the neighbours of (`x`, `y`) within
+    /// [`early_stop::RADIUS`]: [`FirstBatches::prior`]'s count, without its pooling.
+    pub(super) fn neighbour_samples(&self, x: u32, y: u32) -> u32 {
+        self.block(x, y)
+            .filter(|&(dx, dy, _)| (dx, dy) != (0, 0))
+            .map(|(_, _, summary)| summary.samples)
+            .sum()
+    }
+
     /// The scatter of the first-batch means over the block around (`x`, `y`), its own
     /// included ([`FirstBatchSpread`]).
     pub(super) fn spread(&self, x: u32, y: u32) -> FirstBatchSpread {
@@ -195,6 +204,11 @@ mod tests {
             );
             let block = offsets
                 .filter_map(|(dx, dy)| Some((dx as f64, dy as f64, at(dx, dy)?.mean_luminance())));
+            assert_eq!(
+                first.neighbour_samples(x, y),
+                first.prior(x, y).samples(),
+                "({x}, {y})"
+            );
             assert_eq!(
                 first.spread(x, y),
                 FirstBatchSpread::fit(block),

@@ -12,7 +12,8 @@
 //! adaptive render runs in three passes per band of rows: every pixel's first batch; every
 //! pixel to its first whole batch (20 samples), unless it stops before on what its neighbours'
 //! first batches say ([`early_stop`]); then each pixel on to its stop, the first of which pools
-//! its neighbours' replicate spreads ([`pooled_stop`]).
+//! its neighbours' replicate spreads ([`pooled_stop`]). A band's third pass runs beside the next
+//! band's first two, which do not read it.
 //!
 //! [`render_window`] renders only a rectangle of the image ([`window`]; `--tile K/N`), each of
 //! its pixels with exactly the bits of the full render.
@@ -34,6 +35,7 @@ pub mod rng;
 mod second_pass;
 pub mod window;
 
+use std::cell::OnceCell;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
@@ -259,36 +261,51 @@ pub fn render_window(
         }),
         Some(ref a) => {
             let mut results = Vec::with_capacity(tiles.len());
-            let mut first: Option<FirstBatches> = None;
-            let mut second: Option<SecondPass> = None;
+            // The band whose first and second passes are done, waiting for its third.
+            let mut ready: Option<(PixelWindow, FirstBatches, SecondPass)> = None;
             // The band before last's, whose buffers the next band reuses.
             let (mut spare_first, mut spare_second) = (None, None);
-            for ((band, first_fresh), second_fresh) in
-                bands.iter().zip(&first_fresh).zip(&second_fresh)
-            {
-                let got = job.run(first_fresh, pool.as_ref(), &progress, cancel, |t, s| {
-                    job.first_batches(t, s)
-                });
-                let area = band.grow(2 * early_stop::RADIUS, width, height);
-                let spare = spare_first.take();
-                let now = FirstBatches::assemble(area, first.as_ref(), spare, first_fresh, got)?;
-                pass_counts.add(&now.counts);
-                let got = job.run(second_fresh, pool.as_ref(), &progress, cancel, |t, s| {
-                    job.tile_to_pool(a, t, &now, s)
-                });
-                let area = band.grow(early_stop::RADIUS, width, height);
-                let spare = spare_second.take();
-                let pooling =
-                    SecondPass::assemble(area, second.as_ref(), spare, second_fresh, got)?;
-                pass_counts.add(&pooling.counts);
-                let band_tiles = self::tiles(*band);
-                results.extend(
-                    job.run(&band_tiles, pool.as_ref(), &progress, cancel, |t, s| {
-                        job.tile_from_pool(a, t, (&now, &pooling), s)
-                    }),
-                );
-                spare_first = first.replace(now);
-                spare_second = second.replace(pooling);
+            // A band's third pass runs beside the next band's first two (which read only the
+            // band's first batches and states, not its third pass's pixels): each fills the
+            // other's last tiles' wait, where three joins a band left a thread idle.
+            for k in 0..=bands.len() {
+                let spares = (spare_first.take(), spare_second.take());
+                let before = ready.as_ref();
+                let third = || {
+                    before.map(|(band, now, pooling)| {
+                        let band_tiles = self::tiles(*band);
+                        job.run(&band_tiles, pool.as_ref(), &progress, cancel, |t, s| {
+                            job.tile_from_pool(a, t, (now, pooling), s)
+                        })
+                    })
+                };
+                let next = || {
+                    let band = bands.get(k)?;
+                    let fresh = (
+                        first_fresh.get(k)?.as_slice(),
+                        second_fresh.get(k)?.as_slice(),
+                    );
+                    let before = before.map(|(_, first, second)| (first, second));
+                    let prepared = job.first_passes(
+                        a,
+                        *band,
+                        fresh,
+                        before,
+                        spares,
+                        (pool.as_ref(), &progress, cancel),
+                    );
+                    Some(prepared.map(|(now, pooling)| (*band, now, pooling)))
+                };
+                let (done, prepared) = both(pool.as_ref(), third, next);
+                results.extend(done.into_iter().flatten());
+                let prepared = prepared.transpose()?;
+                if let Some((_, now, pooling)) = &prepared {
+                    pass_counts.add(&now.counts);
+                    pass_counts.add(&pooling.counts);
+                }
+                if let Some((_, first, second)) = std::mem::replace(&mut ready, prepared) {
+                    (spare_first, spare_second) = (Some(first), Some(second));
+                }
             }
             results
         }
@@ -305,6 +322,18 @@ pub fn render_window(
     rendered.stats.cpu = cpu_start.and_then(|t| t.try_elapsed().ok());
     rendered.stats.threads = used_threads;
     Ok(rendered)
+}
+
+/// `a` and `b`, side by side on `pool` (in turn without one: the same results).
+fn both<A: Send, B: Send>(
+    pool: Option<&rayon::ThreadPool>,
+    a: impl FnOnce() -> A + Send,
+    b: impl FnOnce() -> B + Send,
+) -> (A, B) {
+    match pool {
+        Some(pool) => pool.install(|| rayon::join(a, b)),
+        None => (a(), b()),
+    }
 }
 
 /// Tiles done over both passes, for the caller's progress callback.
@@ -393,15 +422,30 @@ struct Adaptive {
 }
 
 /// What decides an adaptive pixel's stops besides its own samples.
-struct PixelRules {
+struct PixelRules<'f> {
     /// The fewest samples it takes (the emitter minimum, or 0).
     min: u32,
     /// The sliver rule, where an area light's outline crosses it.
     sliver: Option<SliverRule>,
-    /// Its neighbours' first batches (`early_stop`).
-    prior: NeighbourPrior,
-    /// The scatter of its block's first-batch means (`early_stop`).
-    spread: FirstBatchSpread,
+    /// The samples its neighbours' first batches took (`NeighbourPrior::seen`'s count).
+    neighbour_samples: u32,
+    /// The first batches and the pixel, which the early stop's prior and spread come from.
+    first: &'f FirstBatches,
+    at: (u32, u32),
+    /// Its neighbours' first batches pooled, and the scatter of its block's first-batch means
+    /// (`early_stop`): derived at the first look that may stop early, which most pixels past
+    /// their first round (and every pixel at 2% and tighter) never reach.
+    early: OnceCell<(NeighbourPrior, FirstBatchSpread)>,
+}
+
+impl PixelRules<'_> {
+    /// The early stop's prior and spread (derived once).
+    fn early(&self) -> &(NeighbourPrior, FirstBatchSpread) {
+        self.early.get_or_init(|| {
+            let (x, y) = self.at;
+            (self.first.prior(x, y), self.first.spread(x, y))
+        })
+    }
 }
 
 struct Job<'a> {
@@ -525,6 +569,34 @@ impl Job<'_> {
         (pixels, counts)
     }
 
+    /// A band's first two passes (`band`'s area grown by the margins, the tiles `fresh` new to
+    /// each): every pixel's first batch, then every pixel to its first whole batch, the rows
+    /// above kept from the band `before`, in buffers reused from `spares`.
+    fn first_passes(
+        &self,
+        a: &Adaptive,
+        band: PixelWindow,
+        (first_fresh, second_fresh): (&[Tile], &[Tile]),
+        before: Option<(&FirstBatches, &SecondPass)>,
+        (spare_first, spare_second): (Option<FirstBatches>, Option<SecondPass>),
+        (pool, progress, cancel): (Option<&rayon::ThreadPool>, &Progress, &AtomicBool),
+    ) -> Result<(FirstBatches, SecondPass), Cancelled> {
+        let (width, height) = (self.scene.settings.width, self.scene.settings.height);
+        let got = self.run(first_fresh, pool, progress, cancel, |t, s| {
+            self.first_batches(t, s)
+        });
+        let area = band.grow(2 * early_stop::RADIUS, width, height);
+        let first = before.map(|(first, _)| first);
+        let now = FirstBatches::assemble(area, first, spare_first, first_fresh, got)?;
+        let got = self.run(second_fresh, pool, progress, cancel, |t, s| {
+            self.tile_to_pool(a, t, &now, s)
+        });
+        let area = band.grow(early_stop::RADIUS, width, height);
+        let second = before.map(|(_, second)| second);
+        let pooling = SecondPass::assemble(area, second, spare_second, second_fresh, got)?;
+        Ok((now, pooling))
+    }
+
     /// The first batch of every pixel of the tile (adaptive renders): the first half of the
     /// jointly stratified first round, taken before any pixel decides (`early_stop`).
     fn first_batches(&self, t: Tile, scratch: &mut Scratch) -> FirstTileResult {
@@ -602,7 +674,7 @@ impl Job<'_> {
     }
 
     /// What decides an adaptive pixel's stops besides its own samples.
-    fn rules(&self, a: &Adaptive, x: u32, y: u32, first: &FirstBatches) -> PixelRules {
+    fn rules<'f>(&self, a: &Adaptive, x: u32, y: u32, first: &'f FirstBatches) -> PixelRules<'f> {
         PixelRules {
             // Emitter pixels' minimum is never cut short; `a.min` may be (`early_stop`).
             min: match self.emitter_pixels.factor_at(x, y) {
@@ -613,8 +685,10 @@ impl Job<'_> {
                 share: share as f64,
                 luminance: luminance as f64,
             }),
-            prior: first.prior(x, y),
-            spread: first.spread(x, y),
+            neighbour_samples: first.neighbour_samples(x, y),
+            first,
+            at: (x, y),
+            early: OnceCell::new(),
         }
     }
 
@@ -742,11 +816,15 @@ impl Job<'_> {
             return None;
         }
         if taken < a.min && taken <= early_stop::LAST_EARLY {
-            let (prior, spread) = (&rules.prior, &rules.spread);
+            // `confident_error` would say `None` without them (`early_stop::may_look`).
+            if !early_stop::may_look(acc.count(), rules.neighbour_samples, a.target) {
+                return None;
+            }
+            let (prior, spread) = rules.early();
             let e = early_stop::confident_error(acc, prior, spread, a.target)?;
             return Some(acc.finish_with(taken, false, e));
         }
-        if rules.prior.seen(taken) < a.min {
+        if taken.saturating_add(rules.neighbour_samples) < a.min {
             return None;
         }
         // `1/target` samples counted over the pixel and its neighbours' first batches (the
