@@ -4,7 +4,7 @@
 //!
 //! The scene of issue 22: 100,000 `object` statements, each with a rotate and a translate, over
 //! three meshes, an OBJ mesh and an image texture (placed by the group) and 100 materials that
-//! name one constant, `gloss`, and one `group` (about 9 MB). Thirty-seven kinds
+//! name one constant, `gloss`, and one `group` (about 9 MB). Thirty-eight kinds
 //! of edit, one line each: one object's translate in the middle of the file (a person nudging one
 //! object), one material's colour, the value of `gloss` (its 100 materials re-checked), an
 //! `object` line inserted, one deleted, an object's material misspelt then put back (every
@@ -29,7 +29,8 @@
 //! name it, then deleted; (ninth session) a second light added and deleted, the light's
 //! intensity set to -1 (an error) and put back, and `let lens` (the camera names it) renamed
 //! and named back; (twelfth session) a second `material m5` added (a duplicate-name error)
-//! and deleted.
+//! and deleted; (thirteenth session) the first `let gloss` edited while a second one stands
+//! (in process only: the duplicate-name error stands through every edit).
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
 //!    each edit (the text served from memory; diagnostics are ready when it returns).
@@ -304,9 +305,15 @@ enum Kind {
     /// (Twelfth session.) Edits 0, 2, 4, …: a second `material m5` inserted after the last
     /// material (a duplicate-name error); 1, 3, 5, …: deleted (full compiles before).
     Redeclared,
+    /// (Thirteenth session.) A second `let gloss` stands after the last material (a
+    /// duplicate-name error: put in before the kind's edits and taken out after, neither
+    /// measured); each edit changes the first `let gloss`'s value (the 100 materials that name
+    /// it checked again, the second passed over; a full compile before). Every edit gives the
+    /// error, so it runs in process only (`scnc watch` builds nothing while it stands).
+    FirstEdited,
 }
 
-const KINDS: [Kind; 37] = [
+const KINDS: [Kind; 38] = [
     Kind::Object,
     Kind::Material,
     Kind::Let,
@@ -344,6 +351,7 @@ const KINDS: [Kind; 37] = [
     Kind::SettingError,
     Kind::LensRenamed,
     Kind::Redeclared,
+    Kind::FirstEdited,
     // Last: it leaves a material line per pair before the last `let`.
     Kind::GroupNamesAdded,
 ];
@@ -598,6 +606,7 @@ fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String
         Kind::Redeclared => {
             lines.remove(FIRST_MATERIAL + 100);
         }
+        Kind::FirstEdited => lines[LET_LINE] = let_line(1 + k % 89),
         Kind::LensRenamed => {
             let at = lines.len() - 2;
             let (from, to) = match k % 2 {
@@ -667,6 +676,7 @@ fn splits(kind: Kind) -> bool {
             | Kind::Removed
             | Kind::PasteObjects
             | Kind::Redeclared
+            | Kind::FirstEdited
     )
 }
 
@@ -784,9 +794,18 @@ fn front_end(objects: usize, edits: usize) {
         let mut event_parts: Vec<([f64; 4], usize)> = Vec::new();
         // The incremental compiles' CPU time (ms), beside their wall time.
         let mut cpu_times = Vec::new();
+        // The second `let gloss` the kind's edits stand beside (its error: no value).
+        let dup = FIRST_MATERIAL + 100;
+        if kind == Kind::FirstEdited {
+            lines.insert(dup, "let gloss = 0.5".to_string());
+            let text = lines.join("\n") + "\n";
+            let loader = loader_with(&files(&text), &assets);
+            let r = inc.compile(path, &loader, &mut SourceMap::new());
+            assert!(r.value.is_none(), "a duplicate-name error");
+        }
         for k in 0..count {
             let loader = loader_with(&files(&edit(&mut lines, objects, kind, k)), &assets);
-            if errs(kind) && k == 0 {
+            if (errs(kind) || kind == Kind::FirstEdited) && k == 0 {
                 let t = Instant::now();
                 let r = compile_with(path, &loader, &mut SourceMap::new(), &overrides);
                 full_error = Some((t.elapsed().as_secs_f64() * 1e3, r.diagnostics.len()));
@@ -797,6 +816,13 @@ fn front_end(objects: usize, edits: usize) {
             let r = inc.compile(path, &loader, &mut sources);
             times.push(t.elapsed().as_secs_f64() * 1e3);
             cpu_times.push(cpu.elapsed().as_secs_f64() * 1e3);
+            if kind == Kind::FirstEdited {
+                // The `let` and the 100 materials that name it; not the second `let`.
+                assert!(r.value.is_none(), "{kind:?} edit {k}: the error stands");
+                let fast = matches!(inc.reuse, Reuse::Statements { checked: 101, .. });
+                assert!(fast, "{kind:?} edit {k} took {:?}", inc.reuse);
+                continue;
+            }
             if errs(kind) && k % 2 == 0 {
                 event_parts.push(error_event_costs(&r.diagnostics, &sources));
             }
@@ -859,6 +885,22 @@ fn front_end(objects: usize, edits: usize) {
                 "{kind:?} edit {k} took {:?}",
                 inc.reuse
             );
+        }
+        if kind == Kind::FirstEdited {
+            println!(
+                "{kind:?} edits ({count}, a duplicate-name error standing): incremental compile \
+                 median {:.1} ms (slowest {:.1} ms), CPU {:.1} ms; a full compile of the first \
+                 (ms, diagnostics) {full_error:?}",
+                median(&mut times.clone()),
+                max(&times),
+                median(&mut cpu_times)
+            );
+            lines.remove(dup);
+            let text = lines.join("\n") + "\n";
+            let loader = loader_with(&files(&text), &assets);
+            let r = inc.compile(path, &loader, &mut SourceMap::new());
+            assert!(r.value.is_some(), "the duplicate taken out");
+            continue;
         }
         let [mut total, mut assets, mut accel] = build;
         if errs(kind) {
@@ -1006,6 +1048,7 @@ fn watch(objects: usize, edits: usize, how: Save) {
         first["build_ms"].as_f64().unwrap_or(0.0),
     );
     let run = |k: Kind| only(k) && (parts == 0 || splits(k));
+    let run = |k: Kind| run(k) && k != Kind::FirstEdited;
     for kind in KINDS.into_iter().filter(|&k| !errs(k) && run(k)) {
         let mut figures: [Vec<f64>; 6] = Default::default();
         let mut incremental = 0;

@@ -2942,9 +2942,10 @@ fn survey_declines() {
 /// A second declaration of a name (a duplicate-name error stands): its value edited (a
 /// digit, a key misspelt, its kind changed: the check reads no more than its name), added
 /// alone after the first of its name, and removed alone (the error goes) are checked alone
-/// (`check/recheck/redeclared.rs`; a full compile before); the first declaration edited while
-/// a duplicate stands, and a declaration added before the first of its name, still take a
-/// full compile. Every result is the full compile's.
+/// (`check/recheck/redeclared.rs`; a full compile before); the first declaration's value
+/// edited while a duplicate stands is checked with what names it (`check/recheck/redo.rs`
+/// passes the second over; 2026-11-29); a declaration added before the first of its name still
+/// takes a full compile. Every result is the full compile's.
 #[test]
 fn a_second_declaration_edited_added_or_removed_is_checked_alone() {
     let dups = "material m1 = phong { diffuse #f00 }\nlet k = 5\n\
@@ -2967,8 +2968,12 @@ fn a_second_declaration_edited_added_or_removed_is_checked_alone() {
             true,
         ),
         ("checker { scale 3 }", "checker { scale 4 }", true),
-        // The first declaration of a duplicated name edited: a full compile.
-        ("let k = 2", "let k = 3", false),
+        // The first declaration of a duplicated name edited in its value: checked with what
+        // names it (the second declaration among them is passed over; a full compile before).
+        ("let k = 2", "let k = 3", true),
+        ("rgb(0.1, 0.5", "rgb(0.7, 0.5", true),
+        ("icosphere { radius 1 ", "icosphere { radius 2 ", true),
+        ("odd #303030  scale 8 }", "odd #303030  scale 6 }", true),
         // b. Added after the first of its name, alone.
         (
             "light sun",
@@ -3002,7 +3007,8 @@ fn a_second_declaration_edited_added_or_removed_is_checked_alone() {
 }
 
 /// Seeded second declarations added at random lines, edited and removed: whenever one goes
-/// after the first of its name, it is checked alone; every result is the full compile's.
+/// after the first of its name, it is checked alone; the first of a duplicated name edited in
+/// its value (and put back) is checked with what names it; every result is the full compile's.
 #[test]
 fn seeded_second_declarations_compile_as_a_fresh_compile_does() {
     let lines = [
@@ -3021,8 +3027,29 @@ fn seeded_second_declarations_compile_as_a_fresh_compile_does() {
             let (head, line) = lines[rng.below(lines.len())];
             let first_at = text.find(head).expect("declared in the base scene");
             let (edited, fast) = if let Some(at) = text.rfind(line) {
-                // The second one: edited (its digit) or removed.
-                if rng.below(2) == 0 {
+                // The first one (at `first_at`, whichever it is) edited in its value and put
+                // back, the second edited (its digit) or removed.
+                let choice = rng.below(3);
+                if choice == 2 {
+                    let end = text[first_at..]
+                        .find('\n')
+                        .map_or(text.len(), |e| first_at + e);
+                    let digit = first_at
+                        + text[first_at..end]
+                            .rfind(|c: char| c.is_ascii_digit())
+                            .expect("a digit");
+                    let mut t = text.clone();
+                    let to = if &t[digit..digit + 1] == "9" {
+                        "8"
+                    } else {
+                        "9"
+                    };
+                    t.replace_range(digit..digit + 1, to);
+                    let (_, label) = compile_as_a_full_compile_does(&mut inc, &t, "first edited");
+                    assert!(matches!(inc.reuse, Reuse::Statements { .. }), "{label}");
+                    fast_count += 1;
+                    (text.clone(), true)
+                } else if choice == 0 {
                     let digit = line.rfind(|c: char| c.is_ascii_digit()).expect("a digit");
                     let mut new = line.to_string();
                     new.replace_range(digit..digit + 1, "9");

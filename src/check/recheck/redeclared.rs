@@ -18,9 +18,13 @@
 //! adds its error among the diagnostics before the placement phase; removing one takes its
 //! error out. Every other span moves by the edit's [`Shift`].
 //!
+//! The first declaration of a duplicated name edited in its value is not this module's: it
+//! is an ordinary declaration edit ([`super::decls`]), whose re-check of what names a changed
+//! constant passes a second declaration over ([`super::redo`]; 2026-11-29).
+//!
 //! Still a full check: a `camera`, `light` or `group` declared twice, a second declaration
-//! renamed, several statements at once, the first declaration of a duplicated name edited,
-//! added or removed, and any of these in a scene with includes.
+//! renamed, several statements at once, the first declaration of a duplicated name added,
+//! removed or renamed, and any of these in a scene with includes.
 
 use std::ops::Range;
 

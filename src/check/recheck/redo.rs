@@ -56,6 +56,8 @@ pub(super) fn redo(
             match s {
                 // A `let` before this one cannot name it (the check would have reported it).
                 Stmt::Let { .. } if j <= i => {}
+                // A second declaration of a name: the check read no more than its name.
+                _ if a_later_declaration(cx, &s) => {}
                 Stmt::Let { .. } => {
                     lets.entry(j).or_insert(s);
                 }
@@ -157,6 +159,30 @@ pub(super) fn names_a_normal_map(d: &crate::syntax::Decl) -> bool {
     items
         .into_iter()
         .any(|i| matches!(i, Item::Value(e) if e.as_name() == Some("normal_map")))
+}
+
+/// Whether `s` is a `let`, `material`, `mesh` or `texture` declared after the first of its
+/// name (which the constants or its table hold at an earlier span of the same file): the
+/// check gave it the duplicate-name error and neither evaluated nor lowered it, so a changed
+/// constant it names changes nothing of it. Spans are compared within one file only, where
+/// byte order is the reading order.
+fn a_later_declaration(cx: &Checker, s: &Stmt) -> bool {
+    let (first, name) = match s {
+        Stmt::Let { name, .. } => (cx.lets.get(&name.name).map(|(_, at)| *at), name),
+        Stmt::Decl(d) => {
+            let ns = match d.kind {
+                DeclKind::Material => Namespace::Material,
+                DeclKind::Mesh => Namespace::Mesh,
+                DeclKind::Texture => Namespace::Texture,
+                DeclKind::Light => return false,
+            };
+            let table = &cx.tables[ns as usize];
+            let at = table.get(&d.name.name);
+            (at.and_then(|at| table.spans.get(at).copied()), &d.name)
+        }
+        _ => return false,
+    };
+    first.is_some_and(|f| f.file == name.span.file && f.end <= name.span.start)
 }
 
 /// Whether the primary label of `d` starts inside `span`.
