@@ -7,6 +7,7 @@
 
 pub mod compare;
 mod encode;
+mod exr_header;
 pub mod merge;
 pub mod tile;
 pub mod tonemap;
