@@ -37,13 +37,13 @@ use crate::syntax::{DeclKind, Ident, Stmt};
 
 /// Which kind of declared name: a constant, or a table's.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Declared {
+pub(super) enum Declared {
     Let,
     Table(Namespace),
 }
 
 /// The name a `let`, `material`, `mesh` or `texture` statement declares, and its kind.
-fn declared(s: &Stmt) -> Option<(Declared, &Ident)> {
+pub(super) fn declared(s: &Stmt) -> Option<(Declared, &Ident)> {
     match s {
         Stmt::Let { name, .. } => Some((Declared::Let, name)),
         Stmt::Decl(d) => {

@@ -11,6 +11,7 @@ use super::super::names::Namespace;
 use super::super::{Checker, StmtRecord};
 use super::decls::{Dependents, Redone};
 use super::groups::declared_groups;
+use super::redeclared::{declared, Declared};
 use super::reevaluate::{reevaluate, Failing};
 use crate::diag::Diagnostic;
 use crate::source::Span;
@@ -167,20 +168,16 @@ pub(super) fn names_a_normal_map(d: &crate::syntax::Decl) -> bool {
 /// constant it names changes nothing of it. Spans are compared within one file only, where
 /// byte order is the reading order.
 fn a_later_declaration(cx: &Checker, s: &Stmt) -> bool {
-    let (first, name) = match s {
-        Stmt::Let { name, .. } => (cx.lets.get(&name.name).map(|(_, at)| *at), name),
-        Stmt::Decl(d) => {
-            let ns = match d.kind {
-                DeclKind::Material => Namespace::Material,
-                DeclKind::Mesh => Namespace::Mesh,
-                DeclKind::Texture => Namespace::Texture,
-                DeclKind::Light => return false,
-            };
+    let Some((kind, name)) = declared(s) else {
+        return false;
+    };
+    let first = match kind {
+        Declared::Let => cx.lets.get(&name.name).map(|(_, at)| *at),
+        Declared::Table(ns) => {
             let table = &cx.tables[ns as usize];
-            let at = table.get(&d.name.name);
-            (at.and_then(|at| table.spans.get(at).copied()), &d.name)
+            let at = table.get(&name.name);
+            at.and_then(|at| table.spans.get(at).copied())
         }
-        _ => return false,
     };
     first.is_some_and(|f| f.file == name.span.file && f.end <= name.span.start)
 }
