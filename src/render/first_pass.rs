@@ -9,14 +9,12 @@
 use super::early_stop::{self, FirstBatchSpread, FirstBatchSummary, NeighbourPrior};
 use super::estimate::Accumulator;
 use super::integrator::RayCounts;
+use super::tile_rows::{self, TileRows};
 use super::{Cancelled, PixelWindow, Tile};
 
 /// Side of the block of pixels a pixel pools ([`early_stop::RADIUS`] each way), and its pixels.
 const BLOCK_SIDE: usize = 2 * early_stop::RADIUS as usize + 1;
 const BLOCK_PIXELS: usize = BLOCK_SIDE * BLOCK_SIDE;
-
-/// One tile's first batches and ray counts.
-pub(super) type FirstTileResult = (Vec<Accumulator>, RayCounts);
 
 /// The first batches of an adaptive render's pixels in one band of rows and its margin
 /// ([`early_stop::RADIUS`]), with the rays taken for the ones new to this band.
@@ -30,15 +28,13 @@ pub(super) struct FirstBatches {
 }
 
 impl FirstBatches {
-    /// The first batches over `area`: those `before` holds, and the tiles' new ones;
-    /// `Cancelled` if a tile is missing.
-    pub(super) fn assemble(
+    /// The first batches over `area` that `before` holds; the others are for the tiles to
+    /// write ([`FirstBatches::fresh`]) before [`FirstBatches::finish`].
+    pub(super) fn start(
         area: PixelWindow,
         before: Option<&FirstBatches>,
         spare: Option<FirstBatches>,
-        tiles: &[Tile],
-        results: Vec<Option<FirstTileResult>>,
-    ) -> Result<FirstBatches, Cancelled> {
+    ) -> FirstBatches {
         let width = area.width() as usize;
         // A band's buffers are a few hundred kB: fresh ones each band cost page faults (a
         // few percent of a loose-target render), so the band before last's are reused.
@@ -63,15 +59,20 @@ impl FirstBatches {
                 }
             }
         }
-        for (tile, result) in tiles.iter().zip(results) {
-            let (pixels, counts) = result.ok_or(Cancelled)?;
-            out.counts.add(&counts);
-            let tw = (tile.x1 - tile.x0) as usize;
-            for (k, acc) in pixels.into_iter().enumerate() {
-                let x = (tile.x0 - area.x0) as usize + k % tw;
-                let y = (tile.y0 - area.y0) as usize + k / tw;
-                out.pixels[y * width + x] = acc;
-            }
+        out
+    }
+
+    /// Each of `tiles`' pixels, for its tile to write its first batch into (`tile_rows`).
+    pub(super) fn fresh(&mut self, tiles: &[Tile]) -> Vec<TileRows<'_, Accumulator>> {
+        tile_rows::split(&mut self.pixels, self.area, tiles)
+    }
+
+    /// The band's first batches once the tiles have written theirs, with their ray counts
+    /// (`results`); `Cancelled` if a tile is missing.
+    pub(super) fn finish(self, results: Vec<Option<RayCounts>>) -> Result<FirstBatches, Cancelled> {
+        let mut out = self;
+        for counts in results {
+            out.counts.add(&counts.ok_or(Cancelled)?);
         }
         let summaries = out.pixels.iter().map(FirstBatchSummary::of);
         out.summaries.extend(summaries);
@@ -181,8 +182,16 @@ mod tests {
                 acc
             })
             .collect();
-        let result = Some((pixels, RayCounts::default()));
-        FirstBatches::assemble(area, None, None, &[tile], vec![result])
+        let pixels: Vec<Accumulator> = pixels;
+        let mut first = FirstBatches::start(area, None, None);
+        let mut fresh = first.fresh(&[tile]);
+        for (k, acc) in pixels.into_iter().enumerate() {
+            let (x, y) = (tile.x0 + k as u32 % 5, tile.y0 + k as u32 / 5);
+            *fresh[0].at(x, y).expect("in the tile") = acc;
+        }
+        drop(fresh);
+        first
+            .finish(vec![Some(RayCounts::default())])
             .expect("every tile is there")
     }
 

@@ -33,6 +33,7 @@ pub mod pooled_stop;
 mod rect_lit;
 pub mod rng;
 mod second_pass;
+mod tile_rows;
 pub mod window;
 
 use std::cell::OnceCell;
@@ -47,11 +48,12 @@ use self::early_stop::{FirstBatchSpread, NeighbourPrior};
 use self::emitter_coverage::{EmitterCoverage, SliverRule};
 use self::emitter_pixels::EmitterPixels;
 use self::estimate::{Accumulator, NoiseStats, PixelEstimate};
-use self::first_pass::{FirstBatches, FirstTileResult};
+use self::first_pass::FirstBatches;
 use self::integrator::{radiance_scaled, RayCounts};
 use self::pooled_stop::{ReplicatePool, POOL_BATCH};
 use self::rect_lit::{RectLit, Samples};
-use self::second_pass::{PixelState, SecondPass, SecondTileResult};
+use self::second_pass::{PixelState, SecondPass};
+use self::tile_rows::TileRows;
 pub use self::window::PixelWindow;
 use crate::bvh::Scratch;
 use crate::film::Film;
@@ -472,13 +474,26 @@ impl Job<'_> {
         cancel: &AtomicBool,
         work: impl Fn(Tile, &mut Scratch) -> T + Sync,
     ) -> Vec<Option<T>> {
+        let each = vec![(); tiles.len()];
+        self.run_into(tiles, each, (pool, progress, cancel), |t, (), s| work(t, s))
+    }
+
+    /// [`Job::run`], each tile handed its own `outs` item too (its pieces of a band buffer to
+    /// write: `tile_rows`).
+    fn run_into<U: Send, T: Send>(
+        &self,
+        tiles: &[Tile],
+        outs: Vec<U>,
+        (pool, progress, cancel): (Option<&rayon::ThreadPool>, &Progress, &AtomicBool),
+        work: impl Fn(Tile, U, &mut Scratch) -> T + Sync,
+    ) -> Vec<Option<T>> {
         // One set of traversal stacks per worker, not per tile: an adaptive render runs three
         // passes a band, and fresh stacks for each tile of each cost page faults.
-        let run_tile = |scratch: &mut Scratch, tile: &Tile| {
+        let run_tile = |scratch: &mut Scratch, (tile, out): (&Tile, U)| {
             if cancel.load(Ordering::Relaxed) {
                 return None;
             }
-            let out = work(*tile, scratch);
+            let out = work(*tile, out, scratch);
             let n = progress.done.fetch_add(1, Ordering::Relaxed) + 1;
             (progress.report)(n as f32 / progress.total.max(1) as f32);
             Some(out)
@@ -487,12 +502,17 @@ impl Job<'_> {
             Some(pool) => pool.install(|| {
                 tiles
                     .par_iter()
-                    .map_init(Scratch::new, |scratch, tile| run_tile(scratch, tile))
+                    .zip(outs)
+                    .map_init(Scratch::new, |scratch, item| run_tile(scratch, item))
                     .collect()
             }),
             None => {
                 let mut scratch = Scratch::new();
-                tiles.iter().map(|t| run_tile(&mut scratch, t)).collect()
+                tiles
+                    .iter()
+                    .zip(outs)
+                    .map(|item| run_tile(&mut scratch, item))
+                    .collect()
             }
         }
     }
@@ -582,26 +602,36 @@ impl Job<'_> {
         (pool, progress, cancel): (Option<&rayon::ThreadPool>, &Progress, &AtomicBool),
     ) -> Result<(FirstBatches, SecondPass), Cancelled> {
         let (width, height) = (self.scene.settings.width, self.scene.settings.height);
-        let got = self.run(first_fresh, pool, progress, cancel, |t, s| {
-            self.first_batches(t, s)
-        });
+        let run = (pool, progress, cancel);
         let area = band.grow(2 * early_stop::RADIUS, width, height);
         let first = before.map(|(first, _)| first);
-        let now = FirstBatches::assemble(area, first, spare_first, first_fresh, got)?;
-        let got = self.run(second_fresh, pool, progress, cancel, |t, s| {
-            self.tile_to_pool(a, t, &now, s)
+        let mut now = FirstBatches::start(area, first, spare_first);
+        let fresh = now.fresh(first_fresh);
+        let got = self.run_into(first_fresh, fresh, run, |t, mut rows, s| {
+            self.first_batches(t, &mut rows, s)
         });
+        let now = now.finish(got)?;
         let area = band.grow(early_stop::RADIUS, width, height);
         let second = before.map(|(_, second)| second);
-        let pooling = SecondPass::assemble(area, second, spare_second, second_fresh, got)?;
+        let mut pooling = SecondPass::start(area, second, spare_second);
+        let fresh = pooling.fresh(second_fresh);
+        let got = self.run_into(second_fresh, fresh, run, |t, mut rows, s| {
+            self.tile_to_pool(a, t, &now, &mut rows, s)
+        });
+        let pooling = pooling.finish(got)?;
         Ok((now, pooling))
     }
 
-    /// The first batch of every pixel of the tile (adaptive renders): the first half of the
-    /// jointly stratified first round, taken before any pixel decides (`early_stop`).
-    fn first_batches(&self, t: Tile, scratch: &mut Scratch) -> FirstTileResult {
+    /// The first batch of every pixel of the tile (adaptive renders), written into its `rows`
+    /// of the band's buffer: the first half of the jointly stratified first round, taken
+    /// before any pixel decides (`early_stop`).
+    fn first_batches(
+        &self,
+        t: Tile,
+        rows: &mut TileRows<'_, Accumulator>,
+        scratch: &mut Scratch,
+    ) -> RayCounts {
         let mut counts = RayCounts::default();
-        let mut pixels = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
         let size = estimate::FIRST_BATCH;
         for y in t.y0..t.y1 {
             for x in t.x0..t.x1 {
@@ -611,29 +641,35 @@ impl Job<'_> {
                 let scale = footprint_scale(early_stop::LAST_EARLY);
                 let (samples, sinks) = (0..size, (&mut counts, &mut *scratch));
                 self.progressive_batch((x, y), &sequences, samples, scale, &mut acc, sinks);
-                pixels.push(acc);
+                if let Some(out) = rows.at(x, y) {
+                    *out = acc;
+                }
             }
         }
-        (pixels, counts)
+        counts
     }
 
     /// Every pixel of the tile to its first whole batch, unless it stops before
-    /// ([`PixelState`]), taken before any pixel decides on it (`pooled_stop`).
+    /// ([`PixelState`]), taken before any pixel decides on it (`pooled_stop`), written into
+    /// its `rows` of the band's buffer.
     fn tile_to_pool(
         &self,
         a: &Adaptive,
         t: Tile,
         first: &FirstBatches,
+        rows: &mut TileRows<'_, Option<PixelState>>,
         scratch: &mut Scratch,
-    ) -> SecondTileResult {
+    ) -> RayCounts {
         let mut counts = RayCounts::default();
-        let mut pixels = Vec::with_capacity(((t.x1 - t.x0) * (t.y1 - t.y0)) as usize);
         for y in t.y0..t.y1 {
             for x in t.x0..t.x1 {
-                pixels.push(self.pixel_to_pool(a, x, y, first, &mut counts, scratch));
+                let state = self.pixel_to_pool(a, x, y, first, &mut counts, scratch);
+                if let Some(out) = rows.at(x, y) {
+                    *out = Some(state);
+                }
             }
         }
-        (pixels, counts)
+        counts
     }
 
     /// The tile's pixels from their first whole batch on to their stop.

@@ -23,7 +23,7 @@ use super::rng::mix64;
 /// The scramble of one stream of one sequence: the two hashes of the sequence's key and the
 /// stream that every point of it shares, derived once where a loop takes several points of the
 /// same sequence (`rng::PixelSequences::points_2d`).
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 pub(super) struct OwenSobol {
     bits: u64,
     seeds: u64,
@@ -62,6 +62,38 @@ impl OwenSobol {
         let x = owen_scramble(i.reverse_bits(), self.seeds as u32);
         let y = owen_scramble(sobol_dim1_by_bit(i), (self.seeds >> 32) as u32);
         Vec2::new(bits_to_unit(x), bits_to_unit(y))
+    }
+}
+
+/// Points side by side: lane `k` is `scrambles[k].point(j[k])`, bit for bit, in loops over
+/// fixed-length arrays that the compiler turns into vector instructions where it may (inside
+/// `geom::avx2::Avx2::run`, eight lanes a vector: `render::rect_lit`'s runs of samples). One
+/// point takes about 160 instructions one at a time, almost all of it in the three hashes and
+/// the bit reversals (which x86 does not have: a byte swap and three mask-and-shift steps), so
+/// this, not the scrambles' derivation, is what an adaptive sample's sequences cost
+/// (docs/quality.md, fourteenth session).
+#[inline(always)]
+pub(super) fn points_side_by_side<const N: usize>(
+    scrambles: &[OwenSobol; N],
+    j: &[u32; N],
+    out: &mut [Vec2; N],
+) {
+    let index_seed: [u32; N] = std::array::from_fn(|k| (scrambles[k].bits >> 32) as u32);
+    let x_seed: [u32; N] = std::array::from_fn(|k| scrambles[k].seeds as u32);
+    let y_seed: [u32; N] = std::array::from_fn(|k| (scrambles[k].seeds >> 32) as u32);
+    let mut i = [0u32; N];
+    let mut x = [0u32; N];
+    for k in 0..N {
+        let u = laine_karras(j[k].reverse_bits(), index_seed[k]);
+        i[k] = u.reverse_bits();
+        x[k] = laine_karras(i[k], x_seed[k]).reverse_bits();
+    }
+    let mut y = [0u32; N];
+    for k in 0..N {
+        y[k] = laine_karras(sobol_dim1_reversed(i[k]), y_seed[k]).reverse_bits();
+    }
+    for k in 0..N {
+        out[k] = Vec2::new(bits_to_unit(x[k]), bits_to_unit(y[k]));
     }
 }
 
@@ -179,6 +211,30 @@ mod tests {
                     assert_eq!(fast.x.to_bits(), plain.x.to_bits(), "x of point {j}");
                     assert_eq!(fast.y.to_bits(), plain.y.to_bits(), "y of point {j}");
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn points_side_by_side_are_the_points_one_at_a_time() {
+        let mut key = 0x51de_u64;
+        for round in 0..500u32 {
+            key = mix64(key);
+            let scrambles: [OwenSobol; 8] =
+                std::array::from_fn(|k| OwenSobol::of(mix64(key ^ k as u64), k as u64 % 3));
+            let j: [u32; 8] = std::array::from_fn(|k| match round % 3 {
+                0 => round * 8 + k as u32,
+                1 => mix64(key + k as u64) as u32,
+                _ => u32::MAX - k as u32,
+            });
+            let mut out = [Vec2::ZERO; 8];
+            points_side_by_side(&scrambles, &j, &mut out);
+            for k in 0..8 {
+                let one = scrambles[k].point(j[k]);
+                assert_eq!(
+                    out[k].to_array().map(f32::to_bits),
+                    one.to_array().map(f32::to_bits)
+                );
             }
         }
     }

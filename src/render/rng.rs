@@ -19,7 +19,8 @@ use std::cell::OnceCell;
 
 use glam::Vec2;
 
-use super::owen_sobol::OwenSobol;
+use super::integrator::STREAM_LIGHTS;
+use super::owen_sobol::{points_side_by_side, OwenSobol};
 
 /// The samplers of one batch of one pixel: what their keys share is hashed once per pixel, not
 /// once per sample (the same values as [`Sampler::for_batch_sample`], bit for bit).
@@ -162,7 +163,17 @@ pub struct PixelSequences {
     replicate_keys: OnceCell<[u64; REPLICATES as usize]>,
     /// The scramble of the shared rounds' sequence (samples `0..SHARED_ROUNDS·REPLICATES`).
     shared_key: u64,
+    /// The scrambles of the [`CACHED_POINT_STREAMS`] of each sequence (indexed by the slot of
+    /// [`PixelSequences::sequence_of`]), each derived at its first point and kept for the
+    /// pixel's later runs: before, each run of up to 8 samples derived them again (two 64-bit
+    /// hashes a sequence and stream, 5.7% of an adaptive profile with the points themselves,
+    /// docs/quality.md, thirteenth session).
+    scrambles: [[OnceCell<OwenSobol>; REPLICATES as usize + 1]; CACHED_POINT_STREAMS.len()],
 }
+
+/// The streams whose points [`PixelSequences::points_2d`] takes run after run (the sub-pixel
+/// position, and the light point of `render::rect_lit`): their scrambles are kept per pixel.
+const CACHED_POINT_STREAMS: [u64; 2] = [STREAM_SUBPIXEL, STREAM_LIGHTS];
 
 /// Independent replicates of an adaptive pixel's samples.
 pub const REPLICATES: u32 = 4;
@@ -178,6 +189,7 @@ impl PixelSequences {
             pixel_hash,
             replicate_keys: OnceCell::new(),
             shared_key: mix64(key_of(pixel_hash, u32::MAX - REPLICATES) ^ 0x2f1d_83a5_c3b9_0e47),
+            scrambles: Default::default(),
         }
     }
 
@@ -208,17 +220,43 @@ impl PixelSequences {
 
     /// Stream `stream`'s points of samples `samples` into `out` (as many as both hold), each
     /// exactly `self.sampler(g).point_2d(stream, index)` for its sample `g`. The scramble of
-    /// each sequence is derived once for the run of samples, not once per sample, and the
+    /// each sequence is derived once for the pixel (the [`CACHED_POINT_STREAMS`]) or for the
+    /// run of samples (any other stream), not once per sample; the points of up to eight
+    /// samples are computed side by side (`owen_sobol::points_side_by_side`, vectorised where
+    /// this is inlined into `render::rect_lit`'s AVX2 kernel); and the
     /// points are taken apart from the rays that use them: the adaptive pixel loop takes its
     /// sub-pixel positions so, so that a sample's camera ray does not wait on the chain of
     /// hashes behind its position (the adaptive path's own work was about 9% of a sample's
     /// cost, this point about a third of it: docs/quality.md, sixth session).
+    #[inline(always)]
     pub fn points_2d(&self, stream: u64, samples: std::ops::Range<u32>, out: &mut [Vec2]) {
-        let mut scrambles = [None::<OwenSobol>; REPLICATES as usize + 1];
-        for (g, point) in samples.zip(out) {
-            let (slot, pixel_key, index) = self.sequence_of(g);
-            let scramble = *scrambles[slot].get_or_insert_with(|| OwenSobol::of(pixel_key, stream));
-            *point = scramble.point(index);
+        let cached = CACHED_POINT_STREAMS.iter().position(|&s| s == stream);
+        let mut uncached = [None::<OwenSobol>; REPLICATES as usize + 1];
+        let mut scramble_of = |slot: usize, key: u64| match cached {
+            Some(c) => *self.scrambles[c][slot].get_or_init(|| OwenSobol::of(key, stream)),
+            None => *uncached[slot].get_or_insert_with(|| OwenSobol::of(key, stream)),
+        };
+        // Eight at a time side by side (`owen_sobol::points_side_by_side`); lanes past the
+        // samples repeat the first (computed, not read).
+        const LANES: usize = 8;
+        let mut next = samples.start;
+        for out in out.chunks_mut(LANES) {
+            let len = (samples.end.saturating_sub(next) as usize).min(out.len());
+            if len == 0 {
+                break;
+            }
+            let mut scrambles = [OwenSobol::default(); LANES];
+            let mut indices = [0u32; LANES];
+            for k in 0..LANES {
+                let g = next + if k < len { k as u32 } else { 0 };
+                let (slot, key, index) = self.sequence_of(g);
+                scrambles[k] = scramble_of(slot, key);
+                indices[k] = index;
+            }
+            let mut points = [Vec2::ZERO; LANES];
+            points_side_by_side(&scrambles, &indices, &mut points);
+            out[..len].copy_from_slice(&points[..len]);
+            next += len as u32;
         }
     }
 

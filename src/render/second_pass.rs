@@ -11,6 +11,7 @@ use super::early_stop;
 use super::estimate::{Accumulator, PixelEstimate};
 use super::integrator::RayCounts;
 use super::pooled_stop::ReplicatePool;
+use super::tile_rows::{self, TileRows};
 use super::{Cancelled, PixelWindow, Tile};
 
 /// Where an adaptive pixel is after its first whole batch.
@@ -22,13 +23,10 @@ pub(super) enum PixelState {
     Pooling { acc: Accumulator, taken: u32 },
 }
 
-/// One tile's pixel states and ray counts.
-pub(super) type SecondTileResult = (Vec<PixelState>, RayCounts);
-
 /// The states after the first whole batch over one band of rows and its margin.
 pub(super) struct SecondPass {
     area: PixelWindow,
-    /// Row-major over `area`; `None` only before assembly fills it.
+    /// Row-major over `area`; `None` only before the tiles fill it.
     pixels: Vec<Option<PixelState>>,
     /// What each pixel's replicates say ([`Accumulator::relative_replicate_variance`]),
     /// row-major over `area`.
@@ -37,17 +35,15 @@ pub(super) struct SecondPass {
 }
 
 impl SecondPass {
-    /// The states over `area`: those `before` holds, and the tiles' new ones; `Cancelled` if
-    /// a tile is missing.
-    pub(super) fn assemble(
+    /// The states over `area` that `before` holds; the others are for the tiles to write
+    /// ([`SecondPass::fresh`]) before [`SecondPass::finish`].
+    pub(super) fn start(
         area: PixelWindow,
         before: Option<&SecondPass>,
         spare: Option<SecondPass>,
-        tiles: &[Tile],
-        results: Vec<Option<SecondTileResult>>,
-    ) -> Result<SecondPass, Cancelled> {
+    ) -> SecondPass {
         let width = area.width() as usize;
-        // The band before last's buffers, reused (as `FirstBatches::assemble`'s).
+        // The band before last's buffers, reused (as `FirstBatches::start`'s).
         let (mut pixels, mut spreads) =
             spare.map_or_else(Default::default, |s| (s.pixels, s.spreads));
         pixels.clear();
@@ -69,15 +65,20 @@ impl SecondPass {
                 }
             }
         }
-        for (tile, result) in tiles.iter().zip(results) {
-            let (pixels, counts) = result.ok_or(Cancelled)?;
-            out.counts.add(&counts);
-            let tw = (tile.x1 - tile.x0) as usize;
-            for (k, state) in pixels.into_iter().enumerate() {
-                let x = (tile.x0 - area.x0) as usize + k % tw;
-                let y = (tile.y0 - area.y0) as usize + k / tw;
-                out.pixels[y * width + x] = Some(state);
-            }
+        out
+    }
+
+    /// Each of `tiles`' pixels, for its tile to write its state into (`tile_rows`).
+    pub(super) fn fresh(&mut self, tiles: &[Tile]) -> Vec<TileRows<'_, Option<PixelState>>> {
+        tile_rows::split(&mut self.pixels, self.area, tiles)
+    }
+
+    /// The band's states once the tiles have written theirs, with their ray counts
+    /// (`results`); `Cancelled` if a tile is missing.
+    pub(super) fn finish(self, results: Vec<Option<RayCounts>>) -> Result<SecondPass, Cancelled> {
+        let mut out = self;
+        for counts in results {
+            out.counts.add(&counts.ok_or(Cancelled)?);
         }
         let spreads = out.pixels.iter().map(|state| match state {
             Some(PixelState::Pooling { acc, .. }) => acc.relative_replicate_variance(),
