@@ -1960,9 +1960,10 @@ fn a_group_added_removed_or_named_by_a_rename_is_checked_in_place() {
             "object ball { material m0 }\n  group inner { object box1 { material lone } } }\n",
             true,
         ),
-        // A group whose name is taken (a duplicate: an error), and removed.
-        ("light sun", "group deck { object ball { material m0 } }\nlight sun", false),
-        ("group deck { object ball { material m0 } }\n", "", false),
+        // A group whose name is taken (a duplicate: an error), and removed: a later
+        // declaration, checked in place (2026-11-29; a full compile before).
+        ("light sun", "group deck { object ball { material m0 } }\nlight sun", true),
+        ("group deck { object ball { material m0 } }\n", "", true),
         // An object line replaced by a group.
         (
             "object ball { material m1  transform { rotate y 7deg",
@@ -3336,9 +3337,9 @@ fn seeded_second_declarations_compile_as_a_fresh_compile_does() {
 /// place: the settings path lowers every camera and light again together, their tables made
 /// anew, so the duplicate-name error comes and goes with it (found 2026-11-29, fourteenth
 /// session: the notes listed it as a full compile); the first of two removed is still a full
-/// compile. A second `group` of a name edited is
-/// checked in place too; one added or removed is still a full compile (asserted, to notice
-/// when that changes). Each compared with a fresh compile.
+/// compile. A later `group` of a name (top-level or nested) added, edited or removed is checked
+/// in place (`groups::later_groups`, 2026-11-29); one added before the first of its name, or
+/// the first removed, is still a full compile. Each compared with a fresh compile.
 #[test]
 fn a_camera_light_or_group_declared_twice_is_checked_as_the_full_check_does() {
     let sun = "light sun = point { position (0, 10, 0)  intensity 100 }\n";
@@ -3377,6 +3378,24 @@ fn a_camera_light_or_group_declared_twice_is_checked_as_the_full_check_does() {
                 true,
             ),
             ("group g3 { object ball { material m2 } }\n", "", false),
+            // Later declarations of `g3` and of the nested `h11` added, edited, removed.
+            (
+                "light sun",
+                "group g3 { object ball { material m2 } }\nlight sun",
+                true,
+            ),
+            (
+                "{ material m2 } }\nlight sun",
+                "{ material m3 } }\nlight sun",
+                true,
+            ),
+            ("group g3 { object ball { material m3 } }\n", "", true),
+            (
+                "light sun",
+                "group h11 { object box1 { material m0 } }\nlight sun",
+                true,
+            ),
+            ("group h11 { object box1 { material m0 } }\n", "", true),
         ],
     );
 }

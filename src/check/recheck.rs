@@ -330,8 +330,22 @@ impl CheckMemo {
     /// the memo's constants and tables, counting their uses. The groups are checked against an
     /// empty group table (the caller answers for their names: [`groups`]).
     fn check_objects(&mut self, sources: &SourceMap, new: &[Stmt]) -> Rechecked {
+        self.check_placements(sources, new, false)
+    }
+
+    /// [`CheckMemo::check_objects`], the groups checked against the memo's group table when
+    /// `with_groups` (later declarations of names it holds: [`groups`]).
+    fn check_placements(
+        &mut self,
+        sources: &SourceMap,
+        new: &[Stmt],
+        with_groups: bool,
+    ) -> Rechecked {
         let mut cx = self.lend(sources);
-        let groups = std::mem::take(&mut cx.tables[Namespace::Group as usize]);
+        let groups = match with_groups {
+            true => Default::default(),
+            false => std::mem::take(&mut cx.tables[Namespace::Group as usize]),
+        };
         let mut records = Vec::with_capacity(new.len());
         for stmt in new {
             if inert(stmt) {
@@ -349,7 +363,9 @@ impl CheckMemo {
                 material: material.map(|m| m as u32),
             });
         }
-        cx.tables[Namespace::Group as usize] = groups;
+        if !with_groups {
+            cx.tables[Namespace::Group as usize] = groups;
+        }
         self.take_back(&mut cx);
         Rechecked {
             diags: std::mem::take(&mut cx.diags),
