@@ -30,7 +30,8 @@
 //! intensity set to -1 (an error) and put back, and `let lens` (the camera names it) renamed
 //! and named back; (twelfth session) a second `material m5` added (a duplicate-name error)
 //! and deleted; (thirteenth session) the first `let gloss` edited while a second one stands
-//! (in process only: the duplicate-name error stands through every edit).
+//! (in process only: the duplicate-name error stands through every edit); (fourteenth
+//! session) `include "part_extra.scn"` (1,000 objects) added and deleted.
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
 //!    each edit (the text served from memory; diagnostics are ready when it returns).
@@ -164,7 +165,13 @@ fn assets() -> Vec<(&'static str, Vec<u8>)> {
     image
         .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
         .expect("a PNG in memory");
+    let mut part = String::from("scnc 1\n");
+    for i in 0..EXTRA_OBJECTS {
+        part.push_str(&object_line(i * 7, 3));
+        part.push('\n');
+    }
     vec![
+        ("part_extra.scn", part.into_bytes()),
         ("crate_a.obj", cube(0.5)),
         ("crate_b.obj", cube(0.7)),
         ("grain.png", png),
@@ -172,6 +179,8 @@ fn assets() -> Vec<(&'static str, Vec<u8>)> {
 }
 
 const HEADER: usize = 112;
+/// The objects of `part_extra.scn`, which [`Kind::Include`] includes.
+const EXTRA_OBJECTS: usize = 1000;
 /// The lines of the group, the OBJ mesh and the image texture.
 const GROUP_LINE: usize = 111;
 const OBJ_LINE: usize = 108;
@@ -311,9 +320,13 @@ enum Kind {
     /// it checked again, the second passed over; a full compile before). Every edit gives the
     /// error, so it runs in process only (`scnc watch` builds nothing while it stands).
     FirstEdited,
+    /// (Fourteenth session.) Edits 0, 2, 4, …: `include "part_extra.scn"` (1,000 objects)
+    /// inserted before the last line; 1, 3, 5, …: deleted (its statements added or removed as a
+    /// block; a full compile before). One file only (`--split` cuts the parts at fixed lines).
+    Include,
 }
 
-const KINDS: [Kind; 38] = [
+const KINDS: [Kind; 39] = [
     Kind::Object,
     Kind::Material,
     Kind::Let,
@@ -335,6 +348,7 @@ const KINDS: [Kind; 38] = [
     Kind::Paste,
     Kind::Override,
     Kind::PasteObjects,
+    Kind::Include,
     // Last: each error is taken out again (an even number of edits).
     Kind::BadValue,
     Kind::LetError,
@@ -596,6 +610,14 @@ fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String
                 1,
             );
         }
+        Kind::Include if k.is_multiple_of(2) => {
+            let at = lines.len() - 1;
+            lines.insert(at, "include \"part_extra.scn\"".to_string());
+        }
+        Kind::Include => {
+            let at = lines.len() - 2;
+            lines.remove(at);
+        }
         Kind::Redeclared if k.is_multiple_of(2) => {
             let line = format!(
                 "material m5 = phong {{ diffuse rgb(0.{}, 0.1, 0.1) }}",
@@ -639,6 +661,8 @@ fn checked(kind: Kind, k: usize) -> usize {
         Kind::SettingLet => 2,
         Kind::UnusedLet | Kind::NewMaterial | Kind::GroupAdded => 1 - k % 2,
         Kind::Paste | Kind::PasteObjects => 3 * (1 - k % 2),
+        // The file's header and objects and the include; removed, none.
+        Kind::Include => (EXTRA_OBJECTS + 2) * (1 - k % 2),
         Kind::Delete => 0,
         _ => 1,
     }
@@ -677,6 +701,7 @@ fn splits(kind: Kind) -> bool {
             | Kind::PasteObjects
             | Kind::Redeclared
             | Kind::FirstEdited
+            | Kind::Include
     )
 }
 
@@ -785,7 +810,11 @@ fn front_end(objects: usize, edits: usize) {
         let paired = errs(kind)
             || matches!(
                 kind,
-                Kind::NewMaterial | Kind::GroupAdded | Kind::Paste | Kind::PasteObjects
+                Kind::NewMaterial
+                    | Kind::GroupAdded
+                    | Kind::Paste
+                    | Kind::PasteObjects
+                    | Kind::Include
             );
         let count = if paired { edits + edits % 2 } else { edits };
         // A full compile of the first error, for comparison.

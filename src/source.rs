@@ -169,6 +169,12 @@ impl SourceMap {
         map
     }
 
+    /// Drops the files from the `len`th on: an included file no longer read (the incremental
+    /// compile's include removed, when it was the last file read).
+    pub fn truncate(&mut self, len: usize) {
+        self.files.truncate(len);
+    }
+
     /// The file `id` names. `id` must come from this map's [`SourceMap::add`].
     pub fn get(&self, id: FileId) -> &SourceFile {
         // ok: FileIds are only minted by `add` on this map.

@@ -34,7 +34,7 @@ pub mod vocabulary;
 
 pub use early::{Placed, PreCheck};
 pub use eval::FUNCTIONS;
-pub use recheck::{check_tracked, CheckMemo, Dependents};
+pub use recheck::{check_tracked, inert, CheckMemo, Dependents};
 
 use std::collections::HashMap;
 

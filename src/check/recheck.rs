@@ -182,6 +182,46 @@ impl CheckMemo {
         {
             return false;
         }
+        self.replace_objects(sources, old, new, shift)
+    }
+
+    /// [`CheckMemo::recheck`] of an included file's statements added or removed with the
+    /// include that reads it (`compile::Incremental`'s include edits): the old statements `old`
+    /// are `object`s but at the list indices `old_inert` (the caller found a version header or
+    /// an include there: their records must say nothing), and `new` are `object`s, version
+    /// headers and includes (checked in no phase: the driver reads them).
+    pub fn recheck_block(
+        &mut self,
+        sources: &SourceMap,
+        old: Range<usize>,
+        old_inert: &[usize],
+        new: &[Stmt],
+        shift: &Shift,
+    ) -> bool {
+        let Some(old_records) = self.records.get(old.clone()) else {
+            return false;
+        };
+        let kept = (old.clone())
+            .zip(old_records)
+            .all(|(i, r)| match old_inert.contains(&i) {
+                true => *r == StmtRecord::default(),
+                false => r.object,
+            });
+        let placed = |s: &Stmt| matches!(s, Stmt::Object(_)) || inert(s);
+        kept && new.iter().all(placed) && self.replace_objects(sources, old, new, shift)
+    }
+
+    /// The re-check of [`CheckMemo::recheck`], its statements' kinds found right.
+    fn replace_objects(
+        &mut self,
+        sources: &SourceMap,
+        old: Range<usize>,
+        new: &[Stmt],
+        shift: &Shift,
+    ) -> bool {
+        let Some(old_records) = self.records.get(old.clone()) else {
+            return false;
+        };
         let (diag_range, object_range) = self.output_ranges(&old);
         let removed: Vec<StmtRecord> = old_records.to_vec();
         let was_used = (self.used_meshes(), self.used_materials());
@@ -290,10 +330,28 @@ impl CheckMemo {
     /// the memo's constants and tables, counting their uses. The groups are checked against an
     /// empty group table (the caller answers for their names: [`groups`]).
     fn check_objects(&mut self, sources: &SourceMap, new: &[Stmt]) -> Rechecked {
+        self.check_placements(sources, new, false)
+    }
+
+    /// [`CheckMemo::check_objects`], the groups checked against the memo's group table when
+    /// `with_groups` (later declarations of names it holds: [`groups`]).
+    fn check_placements(
+        &mut self,
+        sources: &SourceMap,
+        new: &[Stmt],
+        with_groups: bool,
+    ) -> Rechecked {
         let mut cx = self.lend(sources);
-        let groups = std::mem::take(&mut cx.tables[Namespace::Group as usize]);
+        let groups = match with_groups {
+            true => Default::default(),
+            false => std::mem::take(&mut cx.tables[Namespace::Group as usize]),
+        };
         let mut records = Vec::with_capacity(new.len());
         for stmt in new {
+            if inert(stmt) {
+                records.push(StmtRecord::default());
+                continue;
+            }
             let (diags, objects) = (cx.diags.len(), cx.objects.len());
             let (mesh, material) = cx.placement(stmt);
             records.push(StmtRecord {
@@ -305,7 +363,9 @@ impl CheckMemo {
                 material: material.map(|m| m as u32),
             });
         }
-        cx.tables[Namespace::Group as usize] = groups;
+        if !with_groups {
+            cx.tables[Namespace::Group as usize] = groups;
+        }
         self.take_back(&mut cx);
         Rechecked {
             diags: std::mem::take(&mut cx.diags),
@@ -365,6 +425,12 @@ impl CheckMemo {
     fn used_materials(&self) -> Vec<bool> {
         used(&self.used_before.used_materials, &self.material_uses)
     }
+}
+
+/// Whether `s` is checked in no phase: a version header or an `include` (the driver reads
+/// them; their statement records say nothing).
+pub fn inert(s: &Stmt) -> bool {
+    matches!(s, Stmt::Version { .. } | Stmt::Include { .. })
 }
 
 fn used(before: &[bool], uses: &[u32]) -> Vec<bool> {

@@ -25,7 +25,9 @@
 //! syntax gets the full compile's diagnostics from the memo of the last text that parsed
 //! ([`super::broken`]), which stays for the edit that fixes it (diffed against that text). Anything
 //! else is a full compile, which is always correct: a file-level diagnostic (an include that
-//! cannot be read or closes a cycle), an include added, removed or edited, a syntax error in a
+//! cannot be read or closes a cycle), an include added or removed but as `include_edit`
+//! takes it (its file's statements added or removed as a block, the file read last) or
+//! edited, a syntax error in a
 //! scene with includes that loses a declaration or breaks two files (a syntax error in one
 //! file of several is answered from that file's statements, seventh session) or one
 //! [`super::broken`] declines, a `let` or `group` added or removed among declarations, an edit of a
@@ -50,6 +52,8 @@ use std::sync::Arc;
 
 use super::broken;
 use super::dependents;
+
+mod include_edit;
 use super::edit::{self, Region};
 use super::files;
 use super::{decode, reading_order, Driver, Overrides};
@@ -256,12 +260,16 @@ impl Memo {
     /// compile can (the memo is then spoiled).
     fn update(&mut self, bytes: &[u8], loader: &dyn Loader) -> Option<Reuse> {
         self.broken = None;
-        let mut reuse = self.edit(FileId(0), bytes)?;
-        for id in (1..self.scene_files).map(|i| FileId(i as u32)) {
+        let mut reuse = self.edit(FileId(0), bytes, loader)?;
+        // An edit may add or remove an include, and with it the last file.
+        let mut next = 1;
+        while next < self.scene_files {
+            let id = FileId(next as u32);
+            next += 1;
             let path = self.sources.get(id).path.clone();
             let bytes = loader.read(&path).ok()?;
             let after_broken = self.broken.is_some();
-            let edited = self.edit(id, &bytes)?;
+            let edited = self.edit(id, &bytes, loader)?;
             // A file changed after one with a syntax error: that one's sources miss it.
             if after_broken && edited != Reuse::Unchanged {
                 return None;
@@ -286,7 +294,7 @@ impl Memo {
 
     /// Brings the memo to the new text `bytes` of the scene's file `file`, or `None` when only
     /// a full compile can (the memo is then spoiled).
-    fn edit(&mut self, file: FileId, bytes: &[u8]) -> Option<Reuse> {
+    fn edit(&mut self, file: FileId, bytes: &[u8], loader: &dyn Loader) -> Option<Reuse> {
         let text = decode(bytes).ok()?;
         if text.trim().is_empty() {
             return None;
@@ -314,11 +322,8 @@ impl Memo {
         if file_range.start == 0 && (!new.is_empty() || !file_range.is_empty()) && !header {
             return None;
         }
-        // An include added, removed or edited changes which files the scene reads.
+        // An include added or removed changes which files the scene reads (`include_edit`).
         let include = |s: &Stmt| matches!(s, Stmt::Include { .. });
-        if new.iter().any(include) {
-            return None;
-        }
         let old_range = match &several {
             Some(view) => view.list_range(file_range.clone())?,
             None => file_range.clone(),
@@ -343,8 +348,13 @@ impl Memo {
             new.len()
         } else {
             let old_stmts = parse_old(file, &old, spans, file_range)?;
-            if old_stmts.iter().any(include) {
-                return None;
+            if old_stmts.iter().chain(&new).any(include) {
+                let checked =
+                    self.include_edit(file, loader, &region, old_range, &old_stmts, &new, sources);
+                return Some(Reuse::Statements {
+                    parsed: parsed_count,
+                    checked: checked?,
+                });
             }
             self.move_spans(&region, old_range.clone(), &new)?;
             let files = scene_texts(&self.spans, &self.files, self.scene_files, &sources);
@@ -469,7 +479,8 @@ impl Memo {
         self.spans.extend(tail);
         if several {
             let tail = self.files.split_off(at);
-            self.files.extend(new.iter().map(|_| shift.file));
+            // The edited file's, or an included file's added with its include.
+            self.files.extend(new.iter().map(|s| s.span().file));
             self.files.extend(tail);
         }
         self.check.order.shift(shift).then_some(())

@@ -35,6 +35,43 @@ impl ReadingOrder {
         self.key(a) < self.key(b)
     }
 
+    /// The span of the include that read `file` (`None` for the root and `--define`s).
+    pub fn included_at(&self, file: super::FileId) -> Option<Span> {
+        self.included_at.get(file.0 as usize).copied().flatten()
+    }
+
+    /// How many includes lie between the root and `file` (0 for the root).
+    pub fn depth(&self, file: super::FileId) -> usize {
+        let mut file = file;
+        let mut depth = 0;
+        // Bounded as `key`'s walk is.
+        for _ in 0..self.included_at.len() {
+            match self.included_at(file) {
+                Some(at) => {
+                    depth += 1;
+                    file = at.file;
+                }
+                None => break,
+            }
+        }
+        depth
+    }
+
+    /// `file` read by the include whose file name is at `at` (an include added: the
+    /// incremental compile reads the file it names as the last one).
+    pub fn set(&mut self, file: super::FileId, at: Span) {
+        let i = file.0 as usize;
+        if self.included_at.len() <= i {
+            self.included_at.resize(i + 1, None);
+        }
+        self.included_at[i] = Some(at);
+    }
+
+    /// Forgets the files from the `len`th on (an include removed that read the last file).
+    pub fn truncate(&mut self, len: usize) {
+        self.included_at.truncate(len);
+    }
+
     /// Whether any file was included (else byte offsets of file 0 order everything).
     pub fn has_includes(&self) -> bool {
         self.included_at.iter().any(Option::is_some)
@@ -101,6 +138,16 @@ mod tests {
             "a define after everything"
         );
         assert!(order.has_includes());
+        assert_eq!((order.depth(FileId(0)), order.depth(FileId(2))), (0, 2));
+        assert_eq!(
+            order.included_at(FileId(1)),
+            Some(Span::new(FileId(0), 28, 40))
+        );
+        let mut fewer = order.clone();
+        fewer.truncate(2);
+        fewer.set(FileId(2), Span::new(FileId(1), 18, 30));
+        let three = ReadingOrder::new(order.included_at[..3].to_vec());
+        assert_eq!(fewer, three, "file 3 (the define) gone, file 2 read again");
         assert!(!ReadingOrder::default().has_includes());
     }
 }

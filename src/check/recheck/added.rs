@@ -44,7 +44,9 @@ fn decls_among(stmts: &[Stmt]) -> Option<Vec<&Decl>> {
     for s in stmts {
         match s {
             Stmt::Decl(d) => decls.push(&**d),
-            Stmt::Object(_) => {}
+            // A version header and an include: an included file added or removed with the
+            // include that reads it (they are checked in no phase).
+            Stmt::Object(_) | Stmt::Version { .. } | Stmt::Include { .. } => {}
             _ => return None,
         }
     }
@@ -112,13 +114,16 @@ impl CheckMemo {
                     return None;
                 }
                 let named = dependents.naming(&d.name.name)?;
-                naming.extend(named.into_iter().filter(|(i, _)| !own.contains(i)));
+                let named = named.into_iter().filter(|(_, s)| !super::inert(s));
+                naming.extend(named.filter(|(i, _)| !own.contains(i)));
             }
             // A group naming an added one counted its objects' uses under the names that
             // resolved: those are taken out now (the tables are the old ones), and its uses
             // counted anew when it is checked again (`redo`'s `fresh`).
             fresh = self.forget_group_uses(sources, &naming)?;
-            let pasted = (old.start..).zip(new).filter(|(i, _)| !own.contains(i));
+            let pasted = (old.start..)
+                .zip(new)
+                .filter(|(i, s)| !own.contains(i) && !super::inert(s));
             naming.extend(pasted.map(|(i, s)| (i, s.clone())));
         } else {
             // `object`s removed with them: their uses and output go.
@@ -126,7 +131,8 @@ impl CheckMemo {
             // What names a removed one: checked again once they are out (src/check/recheck/
             // removed.rs), its uses taken out first.
             for d in &decls {
-                naming.extend(dependents.naming(&d.name.name)?);
+                let named = dependents.naming(&d.name.name)?;
+                naming.extend(named.into_iter().filter(|(_, s)| !super::inert(s)));
             }
             if !naming.is_empty() {
                 self.may_remove_named().then_some(())?;

@@ -78,7 +78,13 @@ impl CheckMemo {
         if old.len() != old_stmts.len() || !placements(old_stmts) || !placements(new) {
             return None;
         }
-        let renamed = self.rename_groups(old_stmts, new)?;
+        // Later declarations of group names added, edited or removed (2026-11-29): the table
+        // keeps its firsts; added ones are checked against it, for their duplicate-name errors.
+        let later = self.later_groups(old_stmts, new, shift);
+        let renamed = match later {
+            Some(_) => Vec::new(),
+            None => self.rename_groups(old_stmts, new)?,
+        };
         self.records.get(old.clone())?; // `old` lies inside the memo: `output_ranges` indexes it
         let (diag_range, object_range) = self.output_ranges(&old);
         let was_used = (self.used_meshes(), self.used_materials());
@@ -89,7 +95,7 @@ impl CheckMemo {
             (old_spans.iter()).any(|o| o.file == s.file && (o.start..o.end).contains(&s.start))
         };
         self.dropped.unresolved.retain(|(s, _, _)| !inside_old(s));
-        let rechecked = self.check_objects(sources, new);
+        let rechecked = self.check_placements(sources, new, later == Some(true));
         let unresolved = self.unresolved_in_groups(&rechecked.records, &rechecked.objects);
         let used_changed = was_used != (self.used_meshes(), self.used_materials());
         // The group table's spans: the renamed entries take the new statements' spans.
@@ -107,6 +113,31 @@ impl CheckMemo {
             return None;
         }
         Some(new.len())
+    }
+
+    /// Whether `new` declares groups (they are checked against the table), when every group
+    /// name `old` and `new` declare (nested ones too; added, edited or removed) is a later
+    /// declaration of a name the table holds: its first read before it (in the edited
+    /// file, before the edited bytes, so that the table's old offset orders it). Then the
+    /// table stays as it is (the check declares a name at its first declaration only), and
+    /// the groups' duplicate-name errors lie in their own output: an added one's made by
+    /// checking it against the table, a removed one's cut out with it.
+    fn later_groups(&self, old: &[Stmt], new: &[Stmt], shift: &Shift) -> Option<bool> {
+        let (was, now) = (declared_groups(old), declared_groups(new));
+        if was.is_empty() && now.is_empty() {
+            return None;
+        }
+        let adding = !now.is_empty();
+        let names = was.iter().chain(&now);
+        let groups = &self.tables[Namespace::Group as usize];
+        let later = |&(name, span): &(&str, Span)| {
+            let first = groups.get(name).and_then(|at| groups.spans.get(at));
+            first.is_some_and(|&first| {
+                let unmoved = first.file != shift.file || first.start < shift.start;
+                first != span && unmoved && self.order.before(first, span)
+            })
+        };
+        names.into_iter().all(later).then_some(adding)
     }
 
     /// Puts the group names `new` declares in place of those `old` declares (as many, each old

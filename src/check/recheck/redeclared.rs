@@ -22,7 +22,10 @@
 //! is an ordinary declaration edit ([`super::decls`]), whose re-check of what names a changed
 //! constant passes a second declaration over ([`super::redo`]; 2026-11-29).
 //!
-//! Still a full check: a `camera`, `light` or `group` declared twice, a second declaration
+//! A `camera` or `light` declared twice is the settings path's ([`super::settings`]: the
+//! tables made anew), a later `group` of a name [`super::groups`]' (2026-11-29).
+//!
+//! Still a full check: a second declaration
 //! renamed, several statements at once, the first declaration of a duplicated name added,
 //! removed or renamed, and any of these in a scene with includes.
 

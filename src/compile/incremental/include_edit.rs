@@ -1,0 +1,250 @@
+//! The incremental compile's include edits: an `include "part.scn"` line added or removed in a
+//! scene file (2026-11-29, fourteenth session; a full compile before). `scnc watch` on a scene
+//! split over files, a part typed in or taken out.
+//!
+//! The driver expands an include in place: the included file's statements stand before the
+//! include statement, and the file gets the next file id when it is first read. So an include
+//! added is a block of added statements (the file's, then the include) at the include's
+//! place, and an include removed a block of removed statements, checked by the paths that add
+//! or remove statements: `object`s alone ([`CheckMemo::recheck_block`]), or `material`, `mesh`
+//! and `texture` declarations with them ([`CheckMemo::add_or_remove_decl`]); the version
+//! header and the include are checked in no phase.
+//!
+//! Taken only where the file ids stay those of a fresh compile and no other file changes its
+//! reading: the file added is read last of the scene's files (no file is first read after the
+//! include) and the one removed was the last read, by this include, and no other include names
+//! it (its file name occurs in no other scene file); no `--define` (its file comes after the
+//! scene's). Declined (a full compile, which reports them): an include that cannot be read,
+//! closes a cycle, names a file read already or nests too deep; an included file with a
+//! syntax error, an include of its own, or a `let`, `group`, camera, light or render block
+//! (statements these paths do not add).
+
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use super::{scene_texts, supported_header, Memo};
+use crate::assets::Loader;
+use crate::check::{inert, CheckMemo};
+use crate::compile::dependents::SceneStatements;
+use crate::compile::edit::Region;
+use crate::compile::{decode, normalise, MAX_INCLUDE_DEPTH};
+use crate::source::{FileId, SourceMap};
+use crate::syntax::{self, Expr, ExprKind, Stmt};
+
+impl Memo {
+    /// The edit of `file` that replaced its old statements `old_stmts` (list indices `old`) by
+    /// `new`, when one of them is an include added or removed alone; `sources` holds the new
+    /// text. The number of statements checked again, or `None` when only a full compile can
+    /// (the memo is then spoiled).
+    #[allow(clippy::too_many_arguments)] // the edit's parts, as `Memo::edit` found them
+    pub(super) fn include_edit(
+        &mut self,
+        file: FileId,
+        loader: &dyn Loader,
+        region: &Region,
+        old: Range<usize>,
+        old_stmts: &[Stmt],
+        new: &[Stmt],
+        sources: SourceMap,
+    ) -> Option<usize> {
+        // A `--define`'s file is read after the scene's: a file added or removed moves its id.
+        if self.sources.files().count() != self.scene_files {
+            return None;
+        }
+        self.chunks_whole = None;
+        match (old_stmts, new) {
+            ([], [include @ Stmt::Include { path, .. }]) => {
+                self.include_added(file, loader, region, old, include, path, sources)
+            }
+            ([include @ Stmt::Include { path, .. }], []) => {
+                self.include_removed(file, region, old, include, path, sources)
+            }
+            _ => None,
+        }
+    }
+
+    /// `include` (its file name `name`) added in `file` at the list index `old.start`.
+    #[allow(clippy::too_many_arguments)] // as `include_edit`
+    fn include_added(
+        &mut self,
+        file: FileId,
+        loader: &dyn Loader,
+        region: &Region,
+        old: Range<usize>,
+        include: &Stmt,
+        name: &Expr,
+        mut sources: SourceMap,
+    ) -> Option<usize> {
+        let path = resolve(&self.sources, file, name)?;
+        // Read already (elsewhere, or a cycle), or too deep: the driver's business.
+        let depth = self.check.order.depth(file);
+        if self.sources.find(&path).is_some() || depth + 1 >= MAX_INCLUDE_DEPTH {
+            return None;
+        }
+        if !none_first_read_from(&self.files, old.start) {
+            return None;
+        }
+        let bytes = loader.read(&path).ok()?;
+        let text = decode(&bytes).ok()?;
+        if text.trim().is_empty() {
+            return None;
+        }
+        let id = FileId(self.scene_files as u32);
+        let (parsed, diags) = syntax::parse(id, text).into_parts();
+        let mut block = parsed?.statements;
+        match block.split_first() {
+            Some((header, rest)) if diags.is_empty() && supported_header(header) => {
+                rest.iter().all(|s| !inert(s)).then_some(())?
+            }
+            _ => return None,
+        }
+        let shown = path.display().to_string();
+        sources.add(path, shown, Arc::<str>::from(text));
+        block.push(include.clone());
+        if self.files.is_empty() {
+            self.files = vec![FileId(0); self.spans.len()];
+        }
+        self.move_spans(region, old.clone(), &block)?;
+        self.check.order.set(id, name.span);
+        self.scene_files += 1;
+        let checked = self.check_block(&sources, old, &[], &block, &region.shift)?;
+        self.sources = sources;
+        Some(checked)
+    }
+
+    /// `include` (its file name `name`, the list index `old.start`) removed from `file`.
+    fn include_removed(
+        &mut self,
+        file: FileId,
+        region: &Region,
+        old: Range<usize>,
+        include: &Stmt,
+        name: &Expr,
+        mut sources: SourceMap,
+    ) -> Option<usize> {
+        let path = resolve(&self.sources, file, name)?;
+        let id = self.sources.find(&path)?;
+        // The last file read, and read by this include (not one before it of the same file).
+        let last = id.0 as usize + 1 == self.scene_files && id != FileId(0);
+        if !last || self.check.order.included_at(id) != Some(name.span) {
+            return None;
+        }
+        // No other include reads it once this one is gone.
+        let needle = path.file_name()?.to_str()?.as_bytes();
+        let named = |(f, text): (FileId, &str)| {
+            f != id && memchr::memmem::find(text.as_bytes(), needle).is_some()
+        };
+        let texts = sources.files().map(|(f, s)| (f, &*s.text));
+        if texts.take(self.scene_files).any(named) {
+            return None;
+        }
+        // Its statements: a run of the list just before the include (it includes nothing).
+        let first = self.files.iter().position(|&f| f == id)?;
+        let own = self.files.iter().filter(|&&f| f == id).count();
+        if first + own != old.start {
+            return None;
+        }
+        let block = first..old.end;
+        let old_text = self.sources.get(id).text.clone();
+        let records = self.check.records.get(first..old.start)?;
+        let objects = records.iter().skip(1).all(|r| r.object);
+        // The removed statements: parsed only when they are more than `object`s (the records
+        // tell those; the first is the version header, which the driver requires).
+        let old_stmts = match objects {
+            true => None,
+            false => {
+                let (parsed, diags) = syntax::parse(id, &old_text).into_parts();
+                let mut stmts = parsed?.statements;
+                let whole = diags.is_empty() && stmts.len() == own;
+                (whole && stmts.iter().skip(1).all(|s| !inert(s))).then_some(())?;
+                stmts.push(include.clone());
+                Some(stmts)
+            }
+        };
+        self.check.order.truncate(id.0 as usize);
+        sources.truncate(id.0 as usize);
+        self.move_spans(region, block.clone(), &[])?;
+        self.scene_files -= 1;
+        if self.scene_files == 1 {
+            self.files.clear();
+        }
+        let checked = match old_stmts {
+            None => {
+                let shift = &region.shift;
+                let inert_at = [first, old.start];
+                (self.check)
+                    .recheck_block(&sources, block, &inert_at, &[], shift)
+                    .then_some(0)?
+            }
+            Some(stmts) => self.check_block(&sources, block, &stmts, &[], &region.shift)?,
+        };
+        self.sources = sources;
+        Some(checked)
+    }
+
+    /// Checks the block `new` in place of the old statements `old` (`old_stmts`): `object`s
+    /// alone, or declarations with them. The number of statements checked again.
+    fn check_block(
+        &mut self,
+        sources: &SourceMap,
+        old: Range<usize>,
+        old_stmts: &[Stmt],
+        new: &[Stmt],
+        shift: &crate::source::Shift,
+    ) -> Option<usize> {
+        let placed = |s: &&Stmt| !inert(s);
+        let mut kinds = old_stmts.iter().chain(new).filter(placed);
+        if kinds.all(|s| matches!(s, Stmt::Object(_))) {
+            let inert_at: Vec<usize> = (old.start..)
+                .zip(old_stmts)
+                .filter(|(_, s)| inert(s))
+                .map(|(i, _)| i)
+                .collect();
+            let check = &mut self.check;
+            return check
+                .recheck_block(sources, old, &inert_at, new, shift)
+                .then_some(new.len());
+        }
+        let files = scene_texts(&self.spans, &self.files, self.scene_files, sources);
+        let mut naming = SceneStatements(files);
+        let check = &mut self.check;
+        CheckMemo::add_or_remove_decl(check, sources, old, old_stmts, new, shift, &mut naming)
+    }
+}
+
+/// The path an include's file name `name` in `from` reads, as the driver resolves it.
+fn resolve(sources: &SourceMap, from: FileId, name: &Expr) -> Option<PathBuf> {
+    let ExprKind::Str(written) = &name.kind else {
+        return None;
+    };
+    let file = &sources.get(from).path;
+    let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
+    Some(normalise(&dir.join(written)))
+}
+
+/// Whether every statement from the list index `at` on is of a file read before `at` (`files`:
+/// each statement's file, empty for one file): then a file included at `at` is the last read.
+fn none_first_read_from(files: &[FileId], at: usize) -> bool {
+    let (before, after) = files.split_at(at.min(files.len()));
+    let mut seen: Vec<FileId> = before.to_vec();
+    seen.sort_unstable();
+    seen.dedup();
+    after.iter().all(|f| seen.binary_search(f).is_ok())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_file_included_is_read_last_when_no_file_is_first_read_after_it() {
+        // File 0: statements 0, 1, (file 1: 2, 3), 4 (the include), 5; then (file 2: 6), 7.
+        let files = [0, 0, 1, 1, 0, 0, 2, 0].map(FileId);
+        assert!(!none_first_read_from(&files, 1), "files 1 and 2 after");
+        assert!(!none_first_read_from(&files, 5), "file 2 after");
+        assert!(none_first_read_from(&files, 7));
+        assert!(none_first_read_from(&files, 8));
+        assert!(none_first_read_from(&[], 3), "one file");
+    }
+}
