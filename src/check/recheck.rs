@@ -174,15 +174,7 @@ impl CheckMemo {
         new: &[Stmt],
         shift: &Shift,
     ) -> bool {
-        let Some(old_records) = self.records.get(old.clone()) else {
-            return false;
-        };
-        if !old_records.iter().all(|r| r.object)
-            || !new.iter().all(|s| matches!(s, Stmt::Object(_)))
-        {
-            return false;
-        }
-        self.replace_objects(sources, old, new, shift)
+        self.only_objects(old.clone(), new) && self.replace_objects(sources, old, new, shift)
     }
 
     /// [`CheckMemo::recheck`] of an included file's statements added or removed with the
