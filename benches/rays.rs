@@ -352,6 +352,9 @@ struct Args {
     tests: Vec<TriangleTest>,
     /// `--stacks thread`: every query reaches the thread-local stacks.
     thread_stacks: bool,
+    /// `--primary-only`: the primary set alone (a profile of primary rays without the
+    /// secondary sets mixed in).
+    primary_only: bool,
 }
 
 fn parse_args() -> Args {
@@ -364,6 +367,7 @@ fn parse_args() -> Args {
         embree: std::env::var_os("SCNC_BENCH_EMBREE").map(PathBuf::from),
         tests: vec![TriangleTest::Watertight, TriangleTest::MollerTrumbore],
         thread_stacks: false,
+        primary_only: false,
     };
     let mut it = std::env::args().skip(1);
     while let Some(s) = it.next() {
@@ -379,6 +383,7 @@ fn parse_args() -> Args {
             "--reps" => a.reps = it.next().and_then(|r| r.parse().ok()).unwrap_or(3).max(1),
             "--embree" => a.embree = it.next().map(PathBuf::from),
             "--stacks" => a.thread_stacks = it.next().as_deref() == Some("thread"),
+            "--primary-only" => a.primary_only = true,
             "--tests" => {
                 a.tests = match it.next().as_deref() {
                     Some("mt") => vec![TriangleTest::MollerTrumbore],
@@ -486,6 +491,18 @@ fn main() {
                 args.thread_stacks,
                 &mut hits,
             );
+            if args.primary_only {
+                let e = eb("primary");
+                println!(
+                    "| {} | {:?} | primary | {} | {} | {mp:.2} | {} | - |",
+                    scene.name,
+                    test,
+                    scene.primary.len(),
+                    cp.hits,
+                    e.map_or("-".into(), |e| format!("{:.2}", e.0)),
+                );
+                continue;
+            }
             let (shadow, incoherent) = secondary(&scene, &hits);
             let (ms, cs) = trace(
                 &accel,
