@@ -455,34 +455,15 @@ impl NoiseStats {
     }
 }
 
-/// Whether the first whole batch is taken in two halves of [`BATCH`]` / 2` at `target`: where
-/// a pixel may stop on its own count after them (`min_samples(target)` ≤ 12: targets of 1/12
-/// and looser), so that pixels whose block's pooled replicate spread is within the target after
-/// 12 samples stop there instead of at 20 (`render::pooled_stop`; docs/quality.md, fifteenth
-/// session). Tighter targets keep the whole batch: no pixel may stop at 12 there.
-pub fn splits_first_whole_batch(target: f64) -> bool {
-    min_samples(target) <= REPLICATES + BATCH / 2
-}
-
 /// The batch sizes of an adaptive pixel with cap `max_samples`: the shared first round in two
 /// halves ([`FIRST_BATCH`] each), then batches of [`BATCH`] (a 4-point block of each
-/// replicate's own sequence) until the cap is reached or passed, the first of them in two
-/// halves (a 2-point net of each replicate's sequence each) if `split`
-/// ([`splits_first_whole_batch`]). The totals after each batch past 12 are the same either way.
-pub fn batch_sizes(max_samples: u32, split: bool) -> Vec<u32> {
+/// replicate's own sequence) until the cap is reached or passed.
+pub fn batch_sizes(max_samples: u32) -> Vec<u32> {
     let mut sizes = vec![FIRST_BATCH];
     let mut total = FIRST_BATCH;
     if total < max_samples {
         sizes.push(REPLICATES - FIRST_BATCH);
         total = REPLICATES;
-    }
-    if split {
-        for _ in 0..2 {
-            if total < max_samples {
-                sizes.push(BATCH / 2);
-                total += BATCH / 2;
-            }
-        }
     }
     while total < max_samples {
         sizes.push(BATCH);
@@ -626,19 +607,12 @@ mod tests {
         // samples before it may stop.
         assert!(a.relative_error() < 1e-3, "{}", a.relative_error());
         assert!((b.relative_error() - 1.0 / 16.0).abs() < 1e-9);
-        assert_eq!(batch_sizes(2, false), vec![2]);
-        assert_eq!(batch_sizes(4, false), vec![2, 2]);
-        assert_eq!(batch_sizes(8, false), vec![2, 2, 16]);
-        assert_eq!(batch_sizes(20, false), vec![2, 2, 16]);
-        assert_eq!(batch_sizes(21, false), vec![2, 2, 16, 16]);
-        assert_eq!(batch_sizes(4096, false).iter().sum::<u32>(), 4100);
-        assert_eq!(batch_sizes(4, true), vec![2, 2]);
-        assert_eq!(batch_sizes(8, true), vec![2, 2, 8]);
-        assert_eq!(batch_sizes(20, true), vec![2, 2, 8, 8]);
-        assert_eq!(batch_sizes(21, true), vec![2, 2, 8, 8, 16]);
-        assert_eq!(batch_sizes(4096, true).iter().sum::<u32>(), 4100);
-        assert!(splits_first_whole_batch(0.1) && splits_first_whole_batch(1.0 / 12.0));
-        assert!(!splits_first_whole_batch(0.05) && !splits_first_whole_batch(0.02));
+        assert_eq!(batch_sizes(2), vec![2]);
+        assert_eq!(batch_sizes(4), vec![2, 2]);
+        assert_eq!(batch_sizes(8), vec![2, 2, 16]);
+        assert_eq!(batch_sizes(20), vec![2, 2, 16]);
+        assert_eq!(batch_sizes(21), vec![2, 2, 16, 16]);
+        assert_eq!(batch_sizes(4096).iter().sum::<u32>(), 4100);
         assert_eq!(emitter_min_samples(0.1), 80);
         assert_eq!(black_min_samples(0.1), 30);
         assert!(b.is_black() && !a.is_black());

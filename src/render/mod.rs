@@ -202,11 +202,7 @@ pub fn render_window(
     let adaptive = settings.noise.map(|target| Adaptive {
         target: target as f64,
         coverage: EmitterCoverage::find(scene, &camera, &emitter_pixels),
-        batch_sizes: estimate::batch_sizes(
-            max_samples,
-            estimate::splits_first_whole_batch(target as f64),
-        ),
-        split: estimate::splits_first_whole_batch(target as f64),
+        batch_sizes: estimate::batch_sizes(max_samples),
         emitter_min: estimate::emitter_min_samples(target as f64),
         min: estimate::min_samples(target as f64),
         black_min: estimate::black_min_samples(target as f64),
@@ -412,10 +408,6 @@ struct Adaptive {
     target: f64,
     /// Samples of each batch, in order (`estimate::batch_sizes`).
     batch_sizes: Vec<u32>,
-    /// The first whole batch is taken in two halves (`estimate::splits_first_whole_batch`):
-    /// the pooled stop decides after the first (12 samples, on the pool alone) and again after
-    /// the second (20), with the neighbours' spreads at 12.
-    split: bool,
     /// The fewest samples a pixel that may see an area light takes
     /// (`estimate::emitter_min_samples`).
     emitter_min: u32,
@@ -429,17 +421,6 @@ struct Adaptive {
     /// The luminance below which a pixel's error is judged against it
     /// (`estimate::dim_floor`).
     dim_floor: f64,
-}
-
-/// What an adaptive pixel's stop decides on besides its own samples and rules.
-#[derive(Clone, Copy)]
-enum Look<'p> {
-    /// Its own estimate (and before `1/target` samples the early stops).
-    Own,
-    /// Its block's replicate spreads pooled (`pooled_stop`), then its own estimate.
-    Pooled(&'p ReplicatePool),
-    /// The pooled spreads alone: after 12 samples of a split first whole batch.
-    PooledOnly(&'p ReplicatePool),
 }
 
 /// What decides an adaptive pixel's stops besides its own samples.
@@ -802,7 +783,7 @@ impl Job<'_> {
             if batch == POOL_BATCH {
                 return PixelState::Pooling { acc, taken };
             }
-            if let Some(e) = self.decide(a, &rules, &acc, taken, Look::Own) {
+            if let Some(e) = self.decide(a, &rules, &acc, taken, None) {
                 return PixelState::Done(e);
             }
         }
@@ -830,14 +811,8 @@ impl Job<'_> {
             PixelState::Pooling { acc, taken } => (acc, taken),
         };
         let rules = self.rules(a, x, y, first);
-        let pool = pooling.pool(x, y, acc.relative_replicate_variance());
-        // After the first half of a split first whole batch, the pooled stop alone: the pixel's
-        // own replicates (2 points each) decide nothing there (docs/quality.md).
-        let look = match a.split {
-            true => Look::PooledOnly(&pool),
-            false => Look::Pooled(&pool),
-        };
-        if let Some(e) = self.decide(a, &rules, &acc, taken, look) {
+        let pool = pooling.pool(x, y);
+        if let Some(e) = self.decide(a, &rules, &acc, taken, Some(&pool)) {
             return e;
         }
         let sequences = rng::PixelSequences::new(self.scene.settings.seed, x, y);
@@ -852,27 +827,22 @@ impl Job<'_> {
                 &mut acc,
                 (&mut *counts, &mut *scratch),
             );
-            // The second half: the pixel's own spread now, its neighbours' at 12 (which
-            // over-state their stratified error at 20, as a per-sample variance would).
-            let pool = (a.split && batch == POOL_BATCH + 1)
-                .then(|| pooling.pool(x, y, acc.relative_replicate_variance()));
-            let look = pool.as_ref().map_or(Look::Own, Look::Pooled);
-            if let Some(e) = self.decide(a, &rules, &acc, taken, look) {
+            if let Some(e) = self.decide(a, &rules, &acc, taken, None) {
                 return e;
             }
         }
         acc.finish(taken, true)
     }
 
-    /// The pixel's estimate if it may stop after `taken` samples; `None` if it goes on. `look`:
-    /// whether its block's replicate spreads are pooled there (`pooled_stop`).
+    /// The pixel's estimate if it may stop after `taken` samples; `None` if it goes on. `pool`:
+    /// its block's replicate spreads, after its first whole batch (`pooled_stop`).
     fn decide(
         &self,
         a: &Adaptive,
         rules: &PixelRules,
         acc: &Accumulator,
         taken: u32,
-        look: Look<'_>,
+        pool: Option<&ReplicatePool>,
     ) -> Option<PixelEstimate> {
         let black = acc.is_black() && taken < a.black_min;
         let unseen = rules
@@ -900,17 +870,10 @@ impl Job<'_> {
         // on (docs/quality.md).
         // Pixels darker than the dim floor judged against it (`estimate::dim_scale`).
         let target = a.target * estimate::dim_scale(acc.mean_luminance(), a.dim_floor);
-        let pool = match look {
-            Look::Own => None,
-            Look::Pooled(p) | Look::PooledOnly(p) => Some(p),
-        };
         if taken >= a.min {
             if let Some(e) = pool.and_then(|p| pooled_stop::pooled_error(acc, p, target)) {
                 return Some(acc.finish_with(taken, false, e));
             }
-        }
-        if let Look::PooledOnly(_) = look {
-            return None;
         }
         let error = match taken >= a.min {
             true => acc.stopping_error(),

@@ -1,8 +1,6 @@
 //! Stage 4: the stop after an adaptive pixel's first whole batch (its first round and one
 //! 4-point block of each replicate: 20 samples), on its own and its neighbours' replicate
-//! spreads pooled; at targets of 1/12 and looser also after its first half (12 samples, a
-//! 2-point net of each replicate), where the second pass ends, and the stop at 20 pools the
-//! pixel's own spread with its neighbours' at 12 (since 2026-11-29, docs/quality.md).
+//! spreads pooled.
 //!
 //! Syntax: no syntax of its own; it decides for `render { noise 0.1 }` / `--noise 0.1`.
 //!
@@ -27,9 +25,7 @@ use super::early_stop::posterior_mean;
 use super::estimate::{Accumulator, REL_FLOOR};
 
 /// The batch (index into `estimate::batch_sizes`) after which the pooled stop decides: the
-/// first whole batch of the replicates, after the first round's two halves, or its first half
-/// (12 samples) where it is split (`estimate::splits_first_whole_batch`: targets of 1/12 and
-/// looser), when the pooled stop alone decides there and again after the second half.
+/// first whole batch of the replicates, after the first round's two halves.
 pub const POOL_BATCH: usize = 2;
 
 /// The fewest pooled degrees of freedom the stop decides on (the pixel's own 3 and at least

@@ -103,18 +103,14 @@ impl SecondPass {
         Some((y - a.y0) as usize * a.width() as usize + (x - a.x0) as usize)
     }
 
-    /// The replicate spreads of the block within [`early_stop::RADIUS`] of (`x`, `y`), pooled
-    /// in a fixed order: the neighbours' from this pass, the pixel's own `own` (its spread
-    /// now, which is this pass's until it samples on).
-    pub(super) fn pool(&self, x: u32, y: u32, own: Option<(f64, f64)>) -> ReplicatePool {
+    /// The replicate spreads of the block within [`early_stop::RADIUS`] of (`x`, `y`), its
+    /// own included, pooled in a fixed order.
+    pub(super) fn pool(&self, x: u32, y: u32) -> ReplicatePool {
         let r = early_stop::RADIUS as i64;
         let (x, y) = (i64::from(x), i64::from(y));
         let block = (-r..=r)
             .flat_map(move |dy| (-r..=r).map(move |dx| (dx, dy)))
             .filter_map(|(dx, dy)| {
-                if (dx, dy) == (0, 0) {
-                    return own;
-                }
                 let (nx, ny) = (u32::try_from(x + dx).ok()?, u32::try_from(y + dy).ok()?);
                 *self.spreads.get(self.index(nx, ny)?)?
             });
