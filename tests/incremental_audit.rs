@@ -287,19 +287,9 @@ const STILL_FULL: &[&str] = &[
     "let comment out middle",
     "let delete first",
     "let delete last",
-    "let duplicate first",
-    "let duplicate last",
-    "let duplicate middle",
     "let uncomment first",
     "let uncomment last",
     "let uncomment middle",
-    "material duplicate first",
-    "material duplicate last",
-    "material duplicate middle",
-    "mesh duplicate first",
-    "mesh duplicate last",
-    "mesh duplicate middle",
-    "texture duplicate first",
 ];
 
 #[test]
