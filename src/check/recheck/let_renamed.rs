@@ -119,7 +119,7 @@ impl CheckMemo {
     /// unknown-name diagnostic (its label moved by `shift` into the new text, which `sources`
     /// holds; its did-you-mean lists the constants). `None` when one cannot be parsed alone or
     /// a label lies in the edited bytes.
-    fn reading(
+    pub(super) fn reading(
         &self,
         sources: &SourceMap,
         names: &[&str],
