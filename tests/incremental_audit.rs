@@ -304,6 +304,8 @@ fn every_one_line_edit_compiles_as_a_fresh_compile_does_and_the_full_ones_are_li
             .or_default()
             .push((case.place, fast));
     }
+    let edits: usize = table.values().map(Vec::len).sum();
+    println!("{edits} one-line edits, {} full compiles", full.len());
     println!("| statement | edit | incremental | full compile |\n|---|---|---|---|");
     for ((kind, edit), places) in &table {
         let list = |want: bool| -> String {
