@@ -284,7 +284,6 @@ const STILL_FULL: &[&str] = &[
     "include value first",
     "let comment out last",
     "let comment out middle",
-    "let uncomment first",
     "let uncomment last",
     "let uncomment middle",
 ];
@@ -345,6 +344,9 @@ fn the_fifteenth_session_paths_chain_as_a_full_compile_does() {
     let object =
         "object ball { material m1  transform { rotate y 7deg  translate (1.5, lift, 1) } }\n";
     let edits: &[(&str, String)] = &[
+        ("let k = 2\n", "// let k = 2\n".into()),
+        ("translate (2.5, 1, 2)", "translate (2.5, 1, 3)".into()),
+        ("// let k = 2\n", "let k = 2\n".into()),
         ("let lift = k + 1\n", String::new()),
         ("translate (3.5, k, 3)", "translate (3.5, k, 2)".into()),
         (object, format!("// {object}")),
@@ -383,6 +385,7 @@ fn the_fifteenth_session_paths_chain_as_a_full_compile_does() {
         fast += usize::from(matches!(inc.reuse, Reuse::Statements { .. }));
         println!("{label}");
     }
-    // The first three (a named `let` removed, an object edited, one commented out) at least.
-    assert!(fast >= 3, "{fast} of {} incremental", edits.len());
+    // The first six (a named `let` commented out, an object edited, the `let` uncommented, a
+    // named `let` removed, an object edited, one commented out) at least.
+    assert!(fast >= 6, "{fast} of {} incremental", edits.len());
 }

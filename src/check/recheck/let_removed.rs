@@ -1,10 +1,12 @@
 //! Stage 2, check, incrementally: a `let` removed that other statements name (`let k = 2`
-//! deleted or commented out while objects' transforms name `k`; 2026-11-29, fifteenth session:
-//! a full check before). The constant leaves the table and what reads its name is checked
+//! deleted or commented out while objects' transforms name `k`), or added (uncommented) while
+//! they name it (2026-11-29, fifteenth session: a full check before). The constant leaves the table and what reads its name is checked
 //! again in place: an object naming `k` now gets an "unknown name" error with a did-you-mean;
 //! a `let` naming it now fails (poisoned, as the check leaves it), so what names that one
 //! fails quietly ([`super::redo`] follows the chain through the constants whose value
-//! changed).
+//! changed). An added one is the second half of a rename: evaluated against the constants
+//! before it (no diagnostic, a name not taken, reserved or poisoned), and what reads its name
+//! (an unknown name until now) checked again.
 //!
 //! Why the result is the full check's: it is the first half of a `let` renamed
 //! ([`super::let_renamed`], whose argument it shares): a constant's value is read by name only,
@@ -22,6 +24,8 @@
 
 use std::ops::Range;
 
+use super::super::StmtRecord;
+use super::let_renamed::evaluate_renamed;
 use super::redo::redo;
 use super::reevaluate::Failing;
 use super::{CheckMemo, Dependents, Rechecked};
@@ -74,12 +78,6 @@ impl CheckMemo {
         if !self.splice(0..0, 0..0, old, nothing, shift) {
             return None;
         }
-        let unmoved = Shift {
-            file: FileId(0),
-            start: u32::MAX,
-            old_end: u32::MAX,
-            new_end: u32::MAX,
-        };
         let was_used = (self.used_meshes(), self.used_materials());
         let mut cx = self.lend(sources);
         let (records, textures) = (&self.records, &self.material_textures);
@@ -98,6 +96,73 @@ impl CheckMemo {
         self.normal_maps_unchanged(&redone.relowered.textures, dependents)?;
         let used_changed = was_used != (self.used_meshes(), self.used_materials());
         let settings = self.settings_named(sources, &mut redone, false, dependents)?;
-        self.splice_decls(sources, redone, &unmoved, used_changed, settings)
+        self.splice_decls(sources, redone, &unmoved(), used_changed, settings)
+    }
+    /// Adds the `let` `new` (one statement, at list index `old.start`; `old` is empty) that
+    /// other statements name, and checks again what reads its name, as
+    /// [`CheckMemo::remove_named_let`] does for one removed.
+    pub(super) fn add_named_let(
+        &mut self,
+        sources: &SourceMap,
+        old: Range<usize>,
+        new: &[Stmt],
+        shift: &Shift,
+        dependents: &mut dyn Dependents,
+    ) -> Option<usize> {
+        let [Stmt::Let {
+            name: now, value, ..
+        }] = new
+        else {
+            return None;
+        };
+        let twice = (self.diagnostics.iter()).any(|d| d.code == Code::CheckDuplicateName);
+        let reserved = matches!(now.name.as_str(), "true" | "false" | "frame");
+        let taken = self.lets.contains_key(&now.name) || self.poisoned.contains(&now.name);
+        if !old.is_empty() || !self.defines.is_empty() || twice || reserved || taken {
+            return None;
+        }
+        let own = old.start;
+        let mut changed = self.reading(sources, &[&now.name], shift, dependents)?;
+        changed.remove(&own);
+        let nothing = Rechecked {
+            diags: Vec::new(),
+            objects: Vec::new(),
+            records: vec![StmtRecord::default()],
+        };
+        if !self.splice(0..0, 0..0, old, nothing, shift) {
+            return None;
+        }
+        let was_used = (self.used_meshes(), self.used_materials());
+        let mut cx = self.lend(sources);
+        let redone = evaluate_renamed(&mut cx, now, value).and_then(|()| {
+            let (records, textures) = (&self.records, &self.material_textures);
+            redo(
+                &mut cx,
+                changed,
+                records,
+                textures,
+                Failing::Unknowns,
+                dependents,
+                None,
+                &[],
+            )
+        });
+        self.take_back(&mut cx);
+        let mut redone = redone?;
+        redone.checked += 1;
+        self.normal_maps_unchanged(&redone.relowered.textures, dependents)?;
+        let used_changed = was_used != (self.used_meshes(), self.used_materials());
+        let settings = self.settings_named(sources, &mut redone, false, dependents)?;
+        self.splice_decls(sources, redone, &unmoved(), used_changed, settings)
+    }
+}
+
+/// A shift that moves nothing (every span already the new text's).
+fn unmoved() -> Shift {
+    Shift {
+        file: FileId(0),
+        start: u32::MAX,
+        old_end: u32::MAX,
+        new_end: u32::MAX,
     }
 }

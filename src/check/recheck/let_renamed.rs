@@ -133,7 +133,7 @@ impl CheckMemo {
 
 /// The renamed `let` (its name `now`, its value `value`) evaluated into the constants lent to
 /// `cx`: it names only constants declared before it and gives no diagnostic, else `None`.
-fn evaluate_renamed(cx: &mut Checker, now: &Ident, value: &Expr) -> Option<()> {
+pub(super) fn evaluate_renamed(cx: &mut Checker, now: &Ident, value: &Expr) -> Option<()> {
     if !names_only_earlier(cx, value, now.span) {
         return None;
     }
