@@ -4,7 +4,7 @@
 //!
 //! The scene of issue 22: 100,000 `object` statements, each with a rotate and a translate, over
 //! three meshes, an OBJ mesh and an image texture (placed by the group) and 100 materials that
-//! name one constant, `gloss`, and one `group` (about 9 MB). Thirty-eight kinds
+//! name one constant, `gloss`, and one `group` (about 9 MB). Forty-two kinds
 //! of edit, one line each: one object's translate in the middle of the file (a person nudging one
 //! object), one material's colour, the value of `gloss` (its 100 materials re-checked), an
 //! `object` line inserted, one deleted, an object's material misspelt then put back (every
@@ -31,7 +31,9 @@
 //! and named back; (twelfth session) a second `material m5` added (a duplicate-name error)
 //! and deleted; (thirteenth session) the first `let gloss` edited while a second one stands
 //! (in process only: the duplicate-name error stands through every edit); (fourteenth
-//! session) `include "part_extra.scn"` (1,000 objects) added and deleted.
+//! session) `include "part_extra.scn"` (1,000 objects) added and deleted; (fifteenth session)
+//! an object's line, the unused `material spare`'s and `let gloss`'s commented out and
+//! uncommented.
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
 //!    each edit (the text served from memory; diagnostics are ready when it returns).
@@ -324,9 +326,20 @@ enum Kind {
     /// inserted before the last line; 1, 3, 5, …: deleted (its statements added or removed as a
     /// block; a full compile before). One file only (`--split` cuts the parts at fixed lines).
     Include,
+    /// (Fifteenth session.) Edits 0, 2, 4, …: an `object` line near the middle commented out
+    /// (`// ` typed before it); 1, 3, 5, …: uncommented (a full compile before, the comment
+    /// out: the region's parse did not arrive at the commented statement's start).
+    CommentOut,
+    /// (Fifteenth session.) Edits 0, 2, 4, …: the line of `material spare` (nothing names it)
+    /// commented out; 1, 3, 5, …: uncommented (the same full compile before).
+    CommentSpare,
+    /// (Fifteenth session.) Edits 0, 2, 4, …: `let gloss` (its 100 materials name it)
+    /// commented out (the materials get unknown-name errors); 1, 3, 5, …: uncommented (full
+    /// compiles before).
+    GlossCommented,
 }
 
-const KINDS: [Kind; 39] = [
+const KINDS: [Kind; 42] = [
     Kind::Object,
     Kind::Material,
     Kind::Let,
@@ -368,6 +381,9 @@ const KINDS: [Kind; 39] = [
     Kind::FirstEdited,
     // Last: it leaves a material line per pair before the last `let`.
     Kind::GroupNamesAdded,
+    Kind::CommentOut,
+    Kind::CommentSpare,
+    Kind::GlossCommented,
 ];
 
 /// Kinds whose even edits make an error (`scnc watch` builds nothing then: its figure is save →
@@ -390,6 +406,7 @@ fn errs(kind: Kind) -> bool {
             | Kind::SettingError
             | Kind::LensRenamed
             | Kind::Redeclared
+            | Kind::GlossCommented
     )
 }
 
@@ -629,6 +646,17 @@ fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String
             lines.remove(FIRST_MATERIAL + 100);
         }
         Kind::FirstEdited => lines[LET_LINE] = let_line(1 + k % 89),
+        Kind::CommentOut | Kind::CommentSpare | Kind::GlossCommented => {
+            let at = match kind {
+                Kind::CommentOut => HEADER + objects / 2 + (k / 2 * 7919) % (objects / 4),
+                Kind::GlossCommented => LET_LINE,
+                _ => FIRST_MATERIAL + 100,
+            };
+            lines[at] = match lines[at].strip_prefix("// ") {
+                Some(line) => line.to_string(),
+                None => format!("// {}", lines[at]),
+            };
+        }
         Kind::LensRenamed => {
             let at = lines.len() - 2;
             let (from, to) = match k % 2 {
@@ -664,6 +692,7 @@ fn checked(kind: Kind, k: usize) -> usize {
         // The file's header and objects and the include; removed, none.
         Kind::Include => (EXTRA_OBJECTS + 2) * (1 - k % 2),
         Kind::Delete => 0,
+        Kind::CommentOut | Kind::CommentSpare => k % 2,
         _ => 1,
     }
 }
@@ -870,8 +899,11 @@ fn front_end(objects: usize, edits: usize) {
                         | Kind::GroupNamesAdded
                         | Kind::Removed
                         | Kind::Redeclared
+                        | Kind::GlossCommented
                 );
                 let checked = match kind {
+                    // The 100 materials that name `gloss`; put back, the `let` too.
+                    Kind::GlossCommented => 100 + k % 2,
                     Kind::LetError => checked(Kind::Let, k),
                     // The material and the objects that name `m5` (or `m5x`).
                     Kind::Rename => 1 + objects / 100 + usize::from(objects % 100 > 5),

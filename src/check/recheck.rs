@@ -30,6 +30,7 @@ mod added;
 mod compact;
 mod decls;
 mod groups;
+mod let_removed;
 mod let_renamed;
 mod lets;
 mod redeclared;

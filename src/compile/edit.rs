@@ -64,6 +64,28 @@ pub(super) fn region(file: FileId, old: &str, new: &str, spans: &[(u32, u32)]) -
     })
 }
 
+/// `region` taken one statement further (`None` when it reaches the file's end): for an edit
+/// that changes how the statement starting right after the edited bytes reads (`// ` typed
+/// before a line comments that statement out), so the region's parse does not arrive at its
+/// start. The statement after it starts after the edited bytes too, so the region up to it,
+/// parsed to exactly its moved start, is as good a region (with one statement more).
+pub(super) fn widened(region: &Region, spans: &[(u32, u32)], new_len: usize) -> Option<Region> {
+    let after = region.stmts.end;
+    if after >= spans.len() {
+        return None;
+    }
+    let shift = &region.shift;
+    let end = match spans.get(after + 1) {
+        Some(&(s, _)) => (s - shift.old_end + shift.new_end) as usize,
+        None => new_len,
+    };
+    Some(Region {
+        shift: *shift,
+        stmts: region.stmts.start..after + 1,
+        bytes: region.bytes.start..end,
+    })
+}
+
 /// Which old statements of `region` changed, and what replaced them: the region's statements
 /// as parsed again (`parsed`) less those at its ends that are the old ones (same bytes, same
 /// extent), before or after the edited bytes.
@@ -232,6 +254,24 @@ pub(super) mod tests {
         let deleted = region(FileId(0), new, old, &spans_of(new)).expect("an edit");
         assert_eq!(deleted.shift.start, 17);
         assert_eq!((deleted.shift.old_end, deleted.shift.new_end), (27, 17));
+    }
+
+    #[test]
+    fn a_line_commented_out_is_parsed_in_a_region_one_statement_wider() {
+        let old = "scnc 1\nlet a = 1\nlet b = 2\nlet c = 3\n";
+        let new = "scnc 1\nlet a = 1\n// let b = 2\nlet c = 3\n";
+        let spans = spans_of(old);
+        let r = region(FileId(0), old, new, &spans).expect("an edit");
+        // The region ends where `let b` starts, moved: inside the comment.
+        let parse =
+            |r: &Region| crate::syntax::parse_region(FileId(0), new, r.bytes.start, r.bytes.end);
+        assert!(parse(&r).is_none());
+        let wider = widened(&r, &spans, new.len()).expect("a statement after it");
+        assert!(new[wider.bytes.clone()].ends_with("let a = 1\n// let b = 2\n"));
+        let (old_range, replaced) = changed(&wider, &spans, parse(&wider).expect("parses"));
+        // `let a`'s span takes the comment after it (blanks), so it is one of the changed.
+        assert_eq!(old_range.end, 3);
+        assert!(replaced.len() < old_range.len());
     }
 
     #[test]

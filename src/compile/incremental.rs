@@ -307,9 +307,18 @@ impl Memo {
         let several =
             (!self.files.is_empty()).then(|| files::of_file(&self.spans, &self.files, file));
         let spans = several.as_ref().map_or(&self.spans[..], |v| &v.spans[..]);
-        let region = edit::region(file, &old, text, spans)?;
-        let Some(parsed) = syntax::parse_region(file, text, region.bytes.start, region.bytes.end)
-        else {
+        let mut region = edit::region(file, &old, text, spans)?;
+        let mut parsed = syntax::parse_region(file, text, region.bytes.start, region.bytes.end);
+        if parsed.is_none() {
+            // `// ` typed before a statement: the region must take that statement too.
+            if let Some(wider) = edit::widened(&region, spans, text.len()) {
+                parsed = syntax::parse_region(file, text, wider.bytes.start, wider.bytes.end);
+                if parsed.is_some() {
+                    region = wider;
+                }
+            }
+        }
+        let Some(parsed) = parsed else {
             // A scene of several files: that file's statements (seventh session).
             let view = several.as_ref().map(|v| &v.spans[..]);
             return self.broken(file, &old, text, &region, view);

@@ -119,7 +119,7 @@ impl CheckMemo {
     /// unknown-name diagnostic (its label moved by `shift` into the new text, which `sources`
     /// holds; its did-you-mean lists the constants). `None` when one cannot be parsed alone or
     /// a label lies in the edited bytes.
-    fn reading(
+    pub(super) fn reading(
         &self,
         sources: &SourceMap,
         names: &[&str],
@@ -133,7 +133,7 @@ impl CheckMemo {
 
 /// The renamed `let` (its name `now`, its value `value`) evaluated into the constants lent to
 /// `cx`: it names only constants declared before it and gives no diagnostic, else `None`.
-fn evaluate_renamed(cx: &mut Checker, now: &Ident, value: &Expr) -> Option<()> {
+pub(super) fn evaluate_renamed(cx: &mut Checker, now: &Ident, value: &Expr) -> Option<()> {
     if !names_only_earlier(cx, value, now.span) {
         return None;
     }

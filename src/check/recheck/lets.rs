@@ -39,6 +39,19 @@ impl CheckMemo {
         shift: &Shift,
         dependents: &mut dyn Dependents,
     ) -> Option<usize> {
+        // One that something names: what names it is checked again (`let_removed`).
+        if let ([Stmt::Let { name, .. }], []) = (old_stmts, new) {
+            if !dependents.naming(&name.name)?.is_empty() {
+                return self.remove_named_let(sources, old, old_stmts, new, shift, dependents);
+            }
+        }
+        // One added that something names (an uncommented line): the same, the other way.
+        if let ([], [Stmt::Let { name, .. }]) = (old_stmts, new) {
+            let named = dependents.naming(&name.name)?;
+            if named.iter().any(|(i, _)| *i != old.start) {
+                return self.add_named_let(sources, old, new, shift, dependents);
+            }
+        }
         let lets = |s: &[Stmt]| s.iter().all(|s| matches!(s, Stmt::Let { .. }));
         let one_side = old_stmts.is_empty() != new.is_empty();
         if !(one_side || renamed_let(old_stmts, new))

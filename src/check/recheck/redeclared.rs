@@ -27,7 +27,13 @@
 //!
 //! Still a full check: a second declaration
 //! renamed, several statements at once, the first declaration of a duplicated name added,
-//! removed or renamed, and any of these in a scene with includes.
+//! removed or renamed.
+//!
+//! In a scene with includes (2026-11-29, fifteenth session; declined before): a second
+//! declaration is taken as added only after the first of its name in the same file (bytes
+//! order a file's statements as the reading order does); its error's place among the memo's
+//! diagnostics need not be the reading order's, since the compile's result sorts them by file
+//! and offset (`compile::reading_order`) and no other diagnostic lies at the new name.
 
 use std::ops::Range;
 
@@ -116,7 +122,7 @@ impl CheckMemo {
         new: &[Stmt],
         shift: &Shift,
     ) -> Option<Redeclared> {
-        if self.order.has_includes() || old.len() != old_stmts.len() {
+        if old.len() != old_stmts.len() {
             return None;
         }
         let plain = |r: &StmtRecord| *r == StmtRecord::default();

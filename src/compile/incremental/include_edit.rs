@@ -133,7 +133,8 @@ impl Memo {
         // No other include reads it once this one is gone.
         let needle = path.file_name()?.to_str()?.as_bytes();
         let named = |(f, text): (FileId, &str)| {
-            f != id && memchr::memmem::find(text.as_bytes(), needle).is_some()
+            let mut hits = memchr::memmem::find_iter(text.as_bytes(), needle);
+            f != id && hits.any(|at| !in_line_comment(text, at))
         };
         let texts = sources.files().map(|(f, s)| (f, &*s.text));
         if texts.take(self.scene_files).any(named) {
@@ -231,6 +232,23 @@ fn none_first_read_from(files: &[FileId], at: usize) -> bool {
     seen.sort_unstable();
     seen.dedup();
     after.iter().all(|f| seen.binary_search(f).is_ok())
+}
+
+/// Whether byte `at` of `text` lies in a line comment that reads nothing: its line starts
+/// (after blanks) with `//`, the line before it does not end with `\` (a string's escaped
+/// newline), and the text has no `/*` (a block comment could close on that line and an include
+/// follow). The include line commented out (`// include "part.scn"`) still names its file; this
+/// tells that such a mention is not an include (fifteenth session).
+fn in_line_comment(text: &str, at: usize) -> bool {
+    if memchr::memmem::find(text.as_bytes(), b"/*").is_some() {
+        return false;
+    }
+    let Some(head) = text.get(..at) else {
+        return false;
+    };
+    let start = head.rfind('\n').map_or(0, |i| i + 1);
+    let escaped = head[..start].trim_end_matches(['\n', '\r']).ends_with('\\');
+    head[start..].trim_start().starts_with("//") && !escaped
 }
 
 #[cfg(test)]
