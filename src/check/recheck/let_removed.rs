@@ -22,6 +22,7 @@
 //! not the one the table holds (it failed, or is a second declaration), and where the re-check
 //! of the statements declines.
 
+use std::collections::BTreeMap;
 use std::ops::Range;
 
 use super::super::StmtRecord;
@@ -31,7 +32,7 @@ use super::reevaluate::Failing;
 use super::{CheckMemo, Dependents, Rechecked};
 use crate::diag::Code;
 use crate::source::{FileId, Shift, SourceMap};
-use crate::syntax::Stmt;
+use crate::syntax::{Expr, Ident, Stmt};
 
 impl CheckMemo {
     /// Removes the `let` `old` (one statement; `old_stmts`, as parsed from the old text; `new`
@@ -78,25 +79,7 @@ impl CheckMemo {
         if !self.splice(0..0, 0..0, old, nothing, shift) {
             return None;
         }
-        let was_used = (self.used_meshes(), self.used_materials());
-        let mut cx = self.lend(sources);
-        let (records, textures) = (&self.records, &self.material_textures);
-        let redone = redo(
-            &mut cx,
-            changed,
-            records,
-            textures,
-            Failing::Unknowns,
-            dependents,
-            None,
-            &[],
-        );
-        self.take_back(&mut cx);
-        let mut redone = redone?;
-        self.normal_maps_unchanged(&redone.relowered.textures, dependents)?;
-        let used_changed = was_used != (self.used_meshes(), self.used_materials());
-        let settings = self.settings_named(sources, &mut redone, false, dependents)?;
-        self.splice_decls(sources, redone, &unmoved(), used_changed, settings)
+        self.redo_readers(sources, None, changed, dependents)
     }
     /// Adds the `let` `new` (one statement, at list index `old.start`; `old` is empty) that
     /// other statements name, and checks again what reads its name, as
@@ -132,9 +115,27 @@ impl CheckMemo {
         if !self.splice(0..0, 0..0, old, nothing, shift) {
             return None;
         }
+        self.redo_readers(sources, Some((now, value)), changed, dependents)
+    }
+
+    /// The shared tail of [`CheckMemo::remove_named_let`] and [`CheckMemo::add_named_let`],
+    /// once the `let`'s statement is spliced out or in: evaluates the added `let` (`added`, its
+    /// name and value; counted among the statements checked), checks `changed` (what reads the
+    /// name) again against the constants, and splices the result in.
+    fn redo_readers(
+        &mut self,
+        sources: &SourceMap,
+        added: Option<(&Ident, &Expr)>,
+        changed: BTreeMap<usize, Stmt>,
+        dependents: &mut dyn Dependents,
+    ) -> Option<usize> {
         let was_used = (self.used_meshes(), self.used_materials());
         let mut cx = self.lend(sources);
-        let redone = evaluate_renamed(&mut cx, now, value).and_then(|()| {
+        let evaluated = match added {
+            Some((name, value)) => evaluate_renamed(&mut cx, name, value),
+            None => Some(()),
+        };
+        let redone = evaluated.and_then(|()| {
             let (records, textures) = (&self.records, &self.material_textures);
             redo(
                 &mut cx,
@@ -149,7 +150,7 @@ impl CheckMemo {
         });
         self.take_back(&mut cx);
         let mut redone = redone?;
-        redone.checked += 1;
+        redone.checked += usize::from(added.is_some());
         self.normal_maps_unchanged(&redone.relowered.textures, dependents)?;
         let used_changed = was_used != (self.used_meshes(), self.used_materials());
         let settings = self.settings_named(sources, &mut redone, false, dependents)?;
