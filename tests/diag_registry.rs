@@ -400,7 +400,9 @@ fn write_codes() -> Vec<Code> {
     let dir = std::env::temp_dir().join("scnc_diag_registry_no_such_dir");
     [dir.join("out.unknown"), dir.join("out.png")]
         .iter()
-        .filter_map(|p| scnc::film::write_image(&film, p, &settings).err())
+        .filter_map(|p| {
+            scnc::film::write_image(&film, p, &settings, scnc::film::Durability::Synced).err()
+        })
         .map(|e| e.code())
         .collect()
 }

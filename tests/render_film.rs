@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 use scnc::film::{
-    format_for_path, write_atomic_with, write_image as write, Film, WriteError, WriteSettings,
+    format_for_path, write_atomic_with, write_image, Durability, Film, WriteError, WriteSettings,
 };
 use scnc::ir::{OutputFormat, ToneMap};
 
@@ -99,24 +99,36 @@ fn pfm_is_little_endian_bottom_row_first() {
     assert_eq!(Vec3::new(floats[9], floats[10], floats[11]), film.get(0, 0));
 }
 
+/// `scnc render`'s write: synced.
+fn write(film: &Film, path: &std::path::Path, settings: &WriteSettings) -> Result<(), WriteError> {
+    write_image(film, path, settings, Durability::Synced)
+}
+
 #[test]
 fn a_failing_write_leaves_the_previous_file_and_no_temp() {
-    let dir = scratch("atomic");
-    let target = dir.join("image.png");
-    fs::write(&target, b"previous image").expect("writable");
-    let err = write_atomic_with(&target, |f| {
-        use std::io::Write;
-        f.write_all(b"half an ima")?;
-        Err(std::io::Error::other("disk full"))
-    })
-    .expect_err("the fill failed");
-    assert_eq!(err.to_string(), "disk full");
-    assert_eq!(fs::read(&target).expect("still there"), b"previous image");
-    assert!(leftovers(&dir).is_empty(), "{:?}", leftovers(&dir));
+    for durability in [Durability::Synced, Durability::Replaced] {
+        let dir = scratch(&format!("atomic-{durability:?}"));
+        let target = dir.join("image.png");
+        fs::write(&target, b"previous image").expect("writable");
+        let err = write_atomic_with(&target, durability, |f| {
+            use std::io::Write;
+            f.write_all(b"half an ima")?;
+            Err(std::io::Error::other("disk full"))
+        })
+        .expect_err("the fill failed");
+        assert_eq!(err.to_string(), "disk full");
+        assert_eq!(fs::read(&target).expect("still there"), b"previous image");
+        assert!(leftovers(&dir).is_empty(), "{:?}", leftovers(&dir));
 
-    // A real write replaces it.
-    write(&gradient(2, 2), &target, &WriteSettings::default()).expect("writable");
-    assert!(image::open(&target).is_ok());
+        // A real write replaces it, the same bytes either way.
+        let film = gradient(2, 2);
+        write_image(&film, &target, &WriteSettings::default(), durability).expect("writable");
+        assert!(image::open(&target).is_ok());
+        let synced = dir.join("synced.png");
+        write(&film, &synced, &WriteSettings::default()).expect("writable");
+        assert_eq!(fs::read(&target).unwrap(), fs::read(&synced).unwrap());
+        assert!(leftovers(&dir).is_empty(), "{:?}", leftovers(&dir));
+    }
 }
 
 #[test]

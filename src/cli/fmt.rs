@@ -12,7 +12,7 @@ use similar::TextDiff;
 
 use super::report::{print_diagnostic_list, DiagnosticFormat, JsonTo};
 use crate::diag::{Code, Diagnostic};
-use crate::film::write_atomic_with;
+use crate::film::{write_atomic_with, Durability};
 use crate::source::SourceMap;
 
 /// `scnc fmt`'s arguments.
@@ -113,7 +113,7 @@ fn format_path(path: &Path, check: bool) -> Outcome {
         print!("{}", unified_diff(path, &old, &new));
         return Outcome::Changed;
     }
-    match write_atomic_with(path, |f| f.write_all(new.as_bytes())) {
+    match write_atomic_with(path, Durability::Synced, |f| f.write_all(new.as_bytes())) {
         Ok(()) => Outcome::Changed,
         Err(e) => {
             eprintln!("error: cannot write {}: {e}", path.display());

@@ -12,7 +12,7 @@ use super::report::{exit_code, report, DiagArgs, JsonTo};
 use crate::diag::{Code, Diagnostic, Staged};
 use crate::film::merge::{merge, Part};
 use crate::film::tile::{decode_tile, TileError};
-use crate::film::{self};
+use crate::film::{self, Durability};
 use crate::source::SourceMap;
 
 /// `scnc merge`'s arguments.
@@ -33,7 +33,8 @@ pub struct MergeArgs {
 pub fn run(args: &MergeArgs) -> ExitCode {
     let sources = SourceMap::new();
     let merged = read_parts(&args.tiles).and_then(|parts| merge(&parts));
-    let written = merged.and_then(|m| film::write(&m.film, &args.output, &m.output, None));
+    let written = merged
+        .and_then(|m| film::write(&m.film, &args.output, &m.output, Durability::Synced, None));
     report(&written, &sources, &args.diag, JsonTo::Stdout);
     if written.value.is_some() {
         eprintln!(

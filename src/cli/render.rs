@@ -38,7 +38,7 @@ use crate::cli::targets::{camera_index, output_targets};
 use crate::cli::tile::{self, TilePlan};
 use crate::compile::{compile_with, Overrides};
 use crate::diag::{Diagnostic, Staged};
-use crate::film::{self, WriteSettings};
+use crate::film::{self, Durability, WriteSettings};
 use crate::ir::{self, Quality, SettingFlags};
 use crate::render::{self, RenderOptions, RenderStats};
 use crate::scene::{self, BuildCache, BuildOptions, Scene};
@@ -356,7 +356,7 @@ fn write_outputs(
                 film::tile::write_tile(&rendered.film, p.window, &p.header, &path)
                     .map_err(|e| e.to_diagnostic(span)),
             ),
-            None => film::write(&rendered.film, &path, &settings, span),
+            None => film::write(&rendered.film, &path, &settings, Durability::Synced, span),
         };
         if written.value.is_some() {
             lines.push(format!("wrote {}", path.display()));
@@ -365,7 +365,13 @@ fn write_outputs(
     }
     if let Some(path) = &args.variance_out {
         // Float formats store the values as they are: the settings only matter for PNG.
-        let written = film::write(&rendered.std_error, path, &WriteSettings::default(), None);
+        let written = film::write(
+            &rendered.std_error,
+            path,
+            &WriteSettings::default(),
+            Durability::Synced,
+            None,
+        );
         if written.value.is_some() {
             lines.push(format!(
                 "wrote {} (standard error of each pixel)",

@@ -18,7 +18,7 @@ use glam::Vec3;
 /// PNG bytes in memory (the preview server serves them).
 pub use encode::png as encode_png;
 pub use write::{
-    format_for_path, write, write_atomic_with, write_image, WriteError, WriteSettings,
+    format_for_path, write, write_atomic_with, write_image, Durability, WriteError, WriteSettings,
 };
 
 /// Linear RGB radiance per pixel, row-major, row 0 at the top.

@@ -23,7 +23,7 @@ use exr::prelude::*;
 use glam::Vec3;
 use std::result::Result;
 
-use super::{write_atomic_with, Film, WriteError, WriteSettings};
+use super::{write_atomic_with, Durability, Film, WriteError, WriteSettings};
 use crate::ir::identity::Identity;
 use crate::ir::ToneMap;
 use crate::render::PixelWindow;
@@ -149,9 +149,11 @@ pub fn write_tile(
         path: path.to_path_buf(),
         message,
     })?;
-    write_atomic_with(path, |f| f.write_all(&bytes)).map_err(|source| WriteError::Io {
-        path: path.to_path_buf(),
-        source,
+    write_atomic_with(path, Durability::Synced, |f| f.write_all(&bytes)).map_err(|source| {
+        WriteError::Io {
+            path: path.to_path_buf(),
+            source,
+        }
     })
 }
 

@@ -2,9 +2,12 @@
 //!
 //! Syntax: `render { output "out.png" }` or `scnc render -o out.exr`. The bytes are encoded in
 //! memory first, then written to a temporary file next to the target (same directory, so the
-//! rename cannot cross file systems), fsynced and renamed over the target. On any error the
-//! temporary file is removed and the previous image, if any, is untouched; an interrupted run
-//! leaves at worst a stray `.NAME.*.tmp` file, never a truncated image.
+//! rename cannot cross file systems), fsynced ([`Durability::Synced`]) and renamed over the
+//! target. On any error the temporary file is removed and the previous image, if any, is
+//! untouched; an interrupted run leaves at worst a stray `.NAME.*.tmp` file, never a truncated
+//! image. `scnc watch`'s previews skip the syncs ([`Durability::Replaced`]): the rename alone
+//! keeps them whole against an interrupted run, and a sync, tens of milliseconds to seconds on
+//! a busy disk, would hold back the next preview.
 
 use std::fs::{self, File, OpenOptions};
 use std::io::{self, Write};
@@ -109,12 +112,25 @@ pub fn format_for_path(path: &Path) -> Option<OutputFormat> {
 
 /// Stage entry: [`write_image`] as a pipeline stage, its error a diagnostic labelled at
 /// `span` (the scene's `output "…"` literal, when the path came from there).
-pub fn write(film: &Film, path: &Path, settings: &WriteSettings, span: Option<Span>) -> Staged<()> {
-    Staged::from_result(write_image(film, path, settings).map_err(|e| e.to_diagnostic(span)))
+pub fn write(
+    film: &Film,
+    path: &Path,
+    settings: &WriteSettings,
+    durability: Durability,
+    span: Option<Span>,
+) -> Staged<()> {
+    Staged::from_result(
+        write_image(film, path, settings, durability).map_err(|e| e.to_diagnostic(span)),
+    )
 }
 
 /// Encodes `film` in the format `path`'s extension names and writes it atomically.
-pub fn write_image(film: &Film, path: &Path, settings: &WriteSettings) -> Result<(), WriteError> {
+pub fn write_image(
+    film: &Film,
+    path: &Path,
+    settings: &WriteSettings,
+    durability: Durability,
+) -> Result<(), WriteError> {
     let format = format_for_path(path).ok_or_else(|| WriteError::UnknownFormat {
         path: path.to_path_buf(),
     })?;
@@ -128,19 +144,35 @@ pub fn write_image(film: &Film, path: &Path, settings: &WriteSettings) -> Result
         path: path.to_path_buf(),
         message,
     })?;
-    write_atomic_with(path, |f| f.write_all(&bytes)).map_err(|source| WriteError::Io {
+    write_atomic_with(path, durability, |f| f.write_all(&bytes)).map_err(|source| WriteError::Io {
         path: path.to_path_buf(),
         source,
     })
 }
 
+/// Whether a written file is forced to the disk around the rename that puts it in place.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Durability {
+    /// The file is fsynced before the rename and its directory after it: from the moment the
+    /// call returns the new file survives a power loss or an OS crash, and until then the old
+    /// one does. For what a run leaves behind (`render`, `merge`, tiles, `fmt`, bench caches).
+    Synced,
+    /// The rename alone: an interrupted process still never leaves a half-written file at the
+    /// path, but a power loss or OS crash soon after may lose the new file (on file systems
+    /// that do not order a replacing rename after its data, leave it empty). For `watch`'s
+    /// previews, written again at every edit, whose syncs measured 0.05-2.4 s per image on a
+    /// busy disk (docs/watch.md, sixteenth session) and would delay the next preview.
+    Replaced,
+}
+
 static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
 
 /// Writes `path` atomically: `fill` writes a fresh temporary file in the same directory, which
-/// is then fsynced and renamed over `path`. If `fill`, the sync or the rename fails, the
-/// temporary file is removed and `path` is left as it was.
+/// is then fsynced (when `durability` asks) and renamed over `path`. If `fill`, the sync or the
+/// rename fails, the temporary file is removed and `path` is left as it was.
 pub fn write_atomic_with(
     path: &Path,
+    durability: Durability,
     fill: impl FnOnce(&mut File) -> io::Result<()>,
 ) -> io::Result<()> {
     let name = path.file_name().ok_or_else(|| {
@@ -160,8 +192,9 @@ pub fn write_atomic_with(
         .write(true)
         .create_new(true)
         .open(&temp)?;
+    let synced = durability == Durability::Synced;
     let result = fill(&mut file)
-        .and_then(|()| file.sync_all())
+        .and_then(|()| if synced { file.sync_all() } else { Ok(()) })
         .and_then(|()| {
             drop(file);
             fs::rename(&temp, path)
@@ -172,8 +205,10 @@ pub fn write_atomic_with(
         return Err(e);
     }
     // Make the rename itself durable where the platform allows syncing a directory.
-    if let Ok(d) = File::open(dir) {
-        let _ = d.sync_all();
+    if synced {
+        if let Ok(d) = File::open(dir) {
+            let _ = d.sync_all();
+        }
     }
     Ok(())
 }

@@ -245,7 +245,13 @@ fn reference(scene: &mut Scene, path: &Path, args: &QualityArgs) -> Result<Film,
         stats.wall.as_secs_f64(),
         path.display()
     );
-    film::write_image(&film, path, &WriteSettings::default()).map_err(|e| e.to_string())?;
+    film::write_image(
+        &film,
+        path,
+        &WriteSettings::default(),
+        film::Durability::Synced,
+    )
+    .map_err(|e| e.to_string())?;
     Ok(film)
 }
 
@@ -369,8 +375,10 @@ fn fmt_time(t: Option<f64>) -> String {
 
 /// Writes atomically, like the images.
 fn write_file(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    film::write_atomic_with(path, |f| std::io::Write::write_all(f, bytes))
-        .map_err(|e| e.to_string())
+    film::write_atomic_with(path, film::Durability::Synced, |f| {
+        std::io::Write::write_all(f, bytes)
+    })
+    .map_err(|e| e.to_string())
 }
 
 /// FNV-1a, 64-bit: a hash that is the same on every run and platform (the cache key).

@@ -12,7 +12,7 @@ use std::thread::JoinHandle;
 use super::server::Preview;
 use super::session::Ready;
 use super::status::Status;
-use crate::film;
+use crate::film::{self, Durability};
 use crate::render::{self, RenderOptions};
 use crate::scene::Scene;
 use crate::source::SourceMap;
@@ -92,15 +92,16 @@ fn run(
         let Ok((film, stats)) = rendered else {
             return;
         };
-        for (path, span) in &ready.outputs {
-            let written = film::write(&film, path, &ready.write, *span);
-            for d in &written.diagnostics {
-                status.write_failed(d, sources);
-            }
-        }
+        // The browser's preview first: it waits on nothing but the encoding.
         if let Some(p) = preview {
             if let Ok(png) = film::encode_png(&film, &ready.write) {
                 p.set_image(png);
+            }
+        }
+        for (path, span) in &ready.outputs {
+            let written = film::write(&film, path, &ready.write, Durability::Replaced, *span);
+            for d in &written.diagnostics {
+                status.write_failed(d, sources);
             }
         }
         status.pass(
