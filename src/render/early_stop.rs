@@ -235,8 +235,23 @@ pub fn confident_error(
     spread: &FirstBatchSpread,
     target: f64,
 ) -> Option<f64> {
+    confident_error_with(acc, prior.samples, spread, || prior, target)
+}
+
+/// [`confident_error`] with the neighbours' first-batch samples (`neighbour_samples`, the
+/// prior's count) given, and the prior asked for only where the rule reads it: after the first
+/// batch a pixel stops or not on the spread alone, so the 10% render, most of whose pixels
+/// stop there, pools no neighbours' variances (`render::Job::decide`). The same value as
+/// [`confident_error`] for the prior whose count is `neighbour_samples`.
+pub fn confident_error_with<'p>(
+    acc: &Accumulator,
+    neighbour_samples: u32,
+    spread: &FirstBatchSpread,
+    prior: impl FnOnce() -> &'p NeighbourPrior,
+    target: f64,
+) -> Option<f64> {
     let n = acc.count() as f64;
-    if !may_look(acc.count(), prior.samples, target) {
+    if !may_look(acc.count(), neighbour_samples, target) {
         return None;
     }
     if acc.count() == FIRST_BATCH {
@@ -253,6 +268,8 @@ pub fn confident_error(
         }
     }
     let (own, own_dof) = acc.relative_sample_variance()?;
+    let prior = prior();
+    debug_assert_eq!(prior.samples, neighbour_samples);
     let dof = own_dof + prior.dof;
     let pooled = (own * own_dof + prior.relative_variance * prior.dof) / dof;
     // The floor term of `Accumulator::relative_error`, relative.
