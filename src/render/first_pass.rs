@@ -189,7 +189,7 @@ impl FirstBatches {
     /// included ([`FirstBatchSpread`]).
     pub(super) fn spread(&self, x: u32, y: u32) -> FirstBatchSpread {
         if let Some(block) = self.interior_block(x, y) {
-            return FirstBatchSpread::fit(block.map(|(dx, dy, s)| (dx, dy, s.mean_luminance)));
+            return FirstBatchSpread::fit_whole_block(block.map(|(_, _, s)| s.mean_luminance));
         }
         let block = self
             .block(x, y)
