@@ -206,6 +206,45 @@ impl FirstBatchSpread {
     }
 }
 
+impl FirstBatchSpread {
+    /// [`FirstBatchSpread::fit`] of a whole 3×3 block (`RADIUS` 1), its mean luminances row by
+    /// row from offset (−1, −1): the same bits, the normal equations solved in closed form.
+    /// Over the whole block the offsets' sums are exact small integers (k = 9, Σdx = Σdy =
+    /// Σdx·dy = 0, Σdx² = Σdy² = 6), so `fit`'s Cramer determinants reduce term by term to
+    /// `det = 324`, `sm·36`, `9·(sxm·6)` and `9·(sym·6)` (every other term a product with an
+    /// exact zero, which adds or subtracts a zero: nothing, the sums being finite and never
+    /// −0); the data sums are accumulated as `fit` does, in the same order. What nearly every
+    /// pixel's first look computes (`render::first_pass`), where the general fit's
+    /// determinants were about a tenth of the adaptive path's bookkeeping.
+    pub fn fit_whole_block(means: [f64; 9]) -> FirstBatchSpread {
+        const _: () = assert!(RADIUS == 1);
+        let (mut sm, mut sxm, mut sym, mut smm) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+        for (k, m) in means.into_iter().enumerate() {
+            let (dx, dy) = ((k % 3) as f64 - 1.0, (k / 3) as f64 - 1.0);
+            sm += m;
+            sxm += dx * m;
+            sym += dy * m;
+            smm += m * m;
+        }
+        let mean = sm / 9.0;
+        if mean <= REL_FLOOR {
+            return FirstBatchSpread::default();
+        }
+        let det = 324.0;
+        let coef = [
+            (sm * 36.0) / det,
+            (9.0 * (sxm * 6.0)) / det,
+            (9.0 * (6.0 * sym)) / det,
+        ];
+        let rss = (smm - coef[0] * sm - coef[1] * sxm - coef[2] * sym).max(0.0);
+        let dof = 6.0;
+        FirstBatchSpread {
+            relative_variance: rss / dof / (mean * mean),
+            dof,
+        }
+    }
+}
+
 /// The lower `1 − CONFIDENCE` quantile of the chi-square distribution with `dof` degrees of
 /// freedom (Wilson–Hilferty: within 2% of the exact value from 3 degrees of freedom on; 0.577
 /// against 0.584 at 3).
@@ -235,8 +274,23 @@ pub fn confident_error(
     spread: &FirstBatchSpread,
     target: f64,
 ) -> Option<f64> {
+    confident_error_with(acc, prior.samples, spread, || prior, target)
+}
+
+/// [`confident_error`] with the neighbours' first-batch samples (`neighbour_samples`, the
+/// prior's count) given, and the prior asked for only where the rule reads it: after the first
+/// batch a pixel stops or not on the spread alone, so the 10% render, most of whose pixels
+/// stop there, pools no neighbours' variances (`render::Job::decide`). The same value as
+/// [`confident_error`] for the prior whose count is `neighbour_samples`.
+pub fn confident_error_with<'p>(
+    acc: &Accumulator,
+    neighbour_samples: u32,
+    spread: &FirstBatchSpread,
+    prior: impl FnOnce() -> &'p NeighbourPrior,
+    target: f64,
+) -> Option<f64> {
     let n = acc.count() as f64;
-    if !may_look(acc.count(), prior.samples, target) {
+    if !may_look(acc.count(), neighbour_samples, target) {
         return None;
     }
     if acc.count() == FIRST_BATCH {
@@ -253,6 +307,8 @@ pub fn confident_error(
         }
     }
     let (own, own_dof) = acc.relative_sample_variance()?;
+    let prior = prior();
+    debug_assert_eq!(prior.samples, neighbour_samples);
     let dof = own_dof + prior.dof;
     let pooled = (own * own_dof + prior.relative_variance * prior.dof) / dof;
     // The floor term of `Accumulator::relative_error`, relative.
@@ -347,6 +403,40 @@ mod tests {
             acc.add_replicate(Vec3::splat(v), Some(g % 4));
         }
         acc
+    }
+
+    #[test]
+    fn a_whole_blocks_closed_form_fit_is_the_general_fit_bit_for_bit() {
+        let mut h = 0x0f1e_2d3c_u64;
+        for round in 0..20_000 {
+            let means: [f64; 9] = std::array::from_fn(|k| {
+                h = crate::render::rng::mix64(h ^ k as u64);
+                let u = (h >> 11) as f64 / (1u64 << 53) as f64;
+                match round % 4 {
+                    0 => u,
+                    1 => 0.3 + 0.01 * u,
+                    2 if k == 4 => 0.0,
+                    2 => u * u * 5.0,
+                    _ => (u * 4.0).floor() * 0.25,
+                }
+            });
+            let cells = means
+                .iter()
+                .enumerate()
+                .map(|(k, &m)| ((k % 3) as f64 - 1.0, (k / 3) as f64 - 1.0, m));
+            let (general, closed) = (
+                FirstBatchSpread::fit(cells),
+                FirstBatchSpread::fit_whole_block(means),
+            );
+            assert_eq!(
+                general.relative_variance.to_bits(),
+                closed.relative_variance.to_bits(),
+                "{means:?}"
+            );
+            assert_eq!(general.dof.to_bits(), closed.dof.to_bits());
+        }
+        let black = FirstBatchSpread::fit_whole_block([0.0; 9]);
+        assert_eq!(black, FirstBatchSpread::default());
     }
 
     #[test]

@@ -15,6 +15,8 @@ use super::{Cancelled, PixelWindow, Tile};
 /// Side of the block of pixels a pixel pools ([`early_stop::RADIUS`] each way), and its pixels.
 const BLOCK_SIDE: usize = 2 * early_stop::RADIUS as usize + 1;
 const BLOCK_PIXELS: usize = BLOCK_SIDE * BLOCK_SIDE;
+/// The pixel's own place in its block, row by row.
+const CENTRE: usize = BLOCK_PIXELS / 2;
 
 /// The first batches of an adaptive render's pixels in one band of rows and its margin
 /// ([`early_stop::RADIUS`]), with the rays taken for the ones new to this band.
@@ -118,6 +120,38 @@ impl FirstBatches {
         block.into_iter().flatten()
     }
 
+    /// The block around (`x`, `y`) as [`FirstBatches::block`] gives it, when it lies wholly
+    /// inside `area` (every pixel's but at the area's border): the summaries row by row at
+    /// their offsets, as an array, without the per-pixel `Option`s and offsets of the general
+    /// walk. What a pixel's early stop reads nearly always (`render::Job::decide`): once per
+    /// pixel, where the general walk was a tenth of an adaptive 10% render's bookkeeping.
+    fn interior_block(
+        &self,
+        x: u32,
+        y: u32,
+    ) -> Option<[(f64, f64, &FirstBatchSummary); BLOCK_PIXELS]> {
+        let r = early_stop::RADIUS;
+        let a = &self.area;
+        if !(x >= a.x0 + r && x + r < a.x1 && y >= a.y0 + r && y + r < a.y1) {
+            return None;
+        }
+        let width = a.width() as usize;
+        let corner = (y - r - a.y0) as usize * width + (x - r - a.x0) as usize;
+        let mut rows: [&[FirstBatchSummary]; BLOCK_SIDE] = [&[]; BLOCK_SIDE];
+        for (k, row) in rows.iter_mut().enumerate() {
+            let start = corner + k * width;
+            *row = self.summaries.get(start..start + BLOCK_SIDE)?;
+        }
+        let centre = &rows[r as usize][r as usize];
+        let mut block = [(0.0, 0.0, centre); BLOCK_PIXELS];
+        for (k, cell) in block.iter_mut().enumerate() {
+            let (kx, ky) = (k % BLOCK_SIDE, k / BLOCK_SIDE);
+            let (dx, dy) = (kx as f64 - r as f64, ky as f64 - r as f64);
+            *cell = (dx, dy, &rows[ky][kx]);
+        }
+        Some(block)
+    }
+
     /// Where the pixel at (`dx`, `dy`) from (`x`, `y`) is in `summaries`; `None` outside `area`.
     fn neighbour_index(&self, x: u32, y: u32, dx: i64, dy: i64) -> Option<usize> {
         let nx = u32::try_from(i64::from(x) + dx).ok()?;
@@ -127,6 +161,10 @@ impl FirstBatches {
 
     /// What the neighbours of (`x`, `y`) within [`early_stop::RADIUS`] say, in a fixed order.
     pub(super) fn prior(&self, x: u32, y: u32) -> NeighbourPrior {
+        if let Some(block) = self.interior_block(x, y) {
+            let neighbours = block.iter().enumerate().filter(|&(k, _)| k != CENTRE);
+            return NeighbourPrior::pool_summaries(neighbours.map(|(_, &(_, _, s))| *s));
+        }
         let neighbours = self
             .block(x, y)
             .filter(|&(dx, dy, _)| (dx, dy) != (0, 0))
@@ -137,6 +175,10 @@ impl FirstBatches {
     /// The samples of the first batches of the neighbours of (`x`, `y`) within
     /// [`early_stop::RADIUS`]: [`FirstBatches::prior`]'s count, without its pooling.
     pub(super) fn neighbour_samples(&self, x: u32, y: u32) -> u32 {
+        if let Some(block) = self.interior_block(x, y) {
+            let neighbours = block.iter().enumerate().filter(|&(k, _)| k != CENTRE);
+            return neighbours.map(|(_, &(_, _, s))| s.samples).sum();
+        }
         self.block(x, y)
             .filter(|&(dx, dy, _)| (dx, dy) != (0, 0))
             .map(|(_, _, summary)| summary.samples)
@@ -146,6 +188,9 @@ impl FirstBatches {
     /// The scatter of the first-batch means over the block around (`x`, `y`), its own
     /// included ([`FirstBatchSpread`]).
     pub(super) fn spread(&self, x: u32, y: u32) -> FirstBatchSpread {
+        if let Some(block) = self.interior_block(x, y) {
+            return FirstBatchSpread::fit_whole_block(block.map(|(_, _, s)| s.mean_luminance));
+        }
         let block = self
             .block(x, y)
             .map(|(dx, dy, summary)| (dx as f64, dy as f64, summary.mean_luminance));

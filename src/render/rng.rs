@@ -232,31 +232,65 @@ impl PixelSequences {
     pub fn points_2d(&self, stream: u64, samples: std::ops::Range<u32>, out: &mut [Vec2]) {
         let cached = CACHED_POINT_STREAMS.iter().position(|&s| s == stream);
         let mut uncached = [None::<OwenSobol>; REPLICATES as usize + 1];
-        let mut scramble_of = |slot: usize, key: u64| match cached {
-            Some(c) => *self.scrambles[c][slot].get_or_init(|| OwenSobol::of(key, stream)),
-            None => *uncached[slot].get_or_insert_with(|| OwenSobol::of(key, stream)),
+        let scramble = |slot: usize| OwenSobol::of(self.key_of_slot(slot), stream);
+        let mut scramble_of = |slot: usize| match cached {
+            Some(c) => *self.scrambles[c][slot].get_or_init(|| scramble(slot)),
+            None => *uncached[slot].get_or_insert_with(|| scramble(slot)),
         };
         // Eight at a time side by side (`owen_sobol::points_side_by_side`); lanes past the
         // samples repeat the first (computed, not read).
         const LANES: usize = 8;
+        const SLOTS: usize = REPLICATES as usize + 1;
         let mut next = samples.start;
         for out in out.chunks_mut(LANES) {
             let len = (samples.end.saturating_sub(next) as usize).min(out.len());
             if len == 0 {
                 break;
             }
-            let mut scrambles = [OwenSobol::default(); LANES];
+            // Each sequence the run touches resolved once (its cell read, its key derived
+            // only if the cell is empty), then handed to its lanes: not a cell and a key per
+            // lane.
+            let mut slots = [0usize; LANES];
             let mut indices = [0u32; LANES];
+            let mut used = [false; SLOTS];
             for k in 0..LANES {
                 let g = next + if k < len { k as u32 } else { 0 };
-                let (slot, key, index) = self.sequence_of(g);
-                scrambles[k] = scramble_of(slot, key);
-                indices[k] = index;
+                let (slot, index) = Self::slot_of(g);
+                (slots[k], indices[k]) = (slot, index);
+                used[slot] = true;
             }
+            let mut table = [OwenSobol::default(); SLOTS];
+            for (slot, scramble) in table.iter_mut().enumerate() {
+                if used[slot] {
+                    *scramble = scramble_of(slot);
+                }
+            }
+            let scrambles: [OwenSobol; LANES] = std::array::from_fn(|k| table[slots[k]]);
             let mut points = [Vec2::ZERO; LANES];
             points_side_by_side(&scrambles, &indices, &mut points);
             out[..len].copy_from_slice(&points[..len]);
             next += len as u32;
+        }
+    }
+
+    /// Sample `global`'s slot among the replicates' sequences and the shared one's
+    /// ([`PixelSequences::sequence_of`]'s), and its index in that sequence.
+    #[inline]
+    fn slot_of(global: u32) -> (usize, u32) {
+        let r = (global % REPLICATES) as usize;
+        match global / REPLICATES {
+            round if round < SHARED_ROUNDS => (REPLICATES as usize, global),
+            round => (r, round - SHARED_ROUNDS),
+        }
+    }
+
+    /// The key of the sequence in `slot` ([`PixelSequences::slot_of`]).
+    #[inline]
+    fn key_of_slot(&self, slot: usize) -> u64 {
+        // The replicates' keys only for their own slots: the shared round never derives them.
+        match slot.checked_sub(REPLICATES as usize) {
+            Some(_) => self.shared_key,
+            None => self.replicate_keys()[slot],
         }
     }
 
