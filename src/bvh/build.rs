@@ -80,7 +80,7 @@ pub struct Built {
 }
 
 /// Subtrees with more primitives than this are built with `rayon::join`.
-const PARALLEL_MIN: usize = 8 * 1024;
+pub(super) const PARALLEL_MIN: usize = 8 * 1024;
 /// Below this depth SAH decides; beyond it only median splits (so depth stays ≤ MAX_DEPTH).
 const SAH_MAX_DEPTH: usize = MAX_DEPTH - 34;
 /// Cost of one traversal step relative to one primitive test.

@@ -14,6 +14,7 @@
 
 use super::build::{
     build, build_children, right_start, slots_for, step, Built, PrimRef, SplitNode, Step,
+    PARALLEL_MIN,
 };
 use super::node::Node;
 
@@ -106,12 +107,18 @@ impl Walk<'_> {
             }
             return self.copy(old_at, out, at);
         }
-        let (bounds, new_step) = step(refs, depth, self.block);
+        // Both inputs stepped at once on a large node (the two cores a full build would use;
+        // each step is a function of its own input, so the result does not depend on it).
+        let block = self.block;
+        let ((bounds, new_step), (_, old_step)) = if n >= PARALLEL_MIN {
+            rayon::join(|| step(refs, depth, block), || step(old, depth, block))
+        } else {
+            (step(refs, depth, block), step(old, depth, block))
+        };
         let Step::Split { mid, axis } = new_step else {
             out[0] = Node::leaf(&bounds, base, n as u32);
             return 1;
         };
-        let (_, old_step) = step(old, depth, self.block);
         let earlier_node = self.earlier.nodes.get(old_at as usize);
         let paired = old_step == new_step
             && earlier_node.is_some_and(|e| !e.is_leaf())
