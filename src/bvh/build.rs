@@ -38,7 +38,7 @@ impl PrimBox {
 /// 32 bytes (Embree's layout: the id in the fourth lane of the lower corner): the references
 /// are the largest temporary of a build, alive while the nodes are made, so their size is
 /// the build's memory peak (two `Vec3A` and an id would take 48).
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, bytemuck::Zeroable, bytemuck::Pod)]
 #[repr(C, align(16))]
 pub struct PrimRef {
     min: [f32; 3],
@@ -80,7 +80,7 @@ pub struct Built {
 }
 
 /// Subtrees with more primitives than this are built with `rayon::join`.
-const PARALLEL_MIN: usize = 8 * 1024;
+pub(super) const PARALLEL_MIN: usize = 8 * 1024;
 /// Below this depth SAH decides; beyond it only median splits (so depth stays ≤ MAX_DEPTH).
 const SAH_MAX_DEPTH: usize = MAX_DEPTH - 34;
 /// Cost of one traversal step relative to one primitive test.
@@ -110,7 +110,7 @@ pub fn build(mut refs: Vec<PrimRef>, block: u32) -> Built {
 }
 
 /// Most nodes a tree over `n ≥ 1` primitives can have: one primitive per leaf, `2n − 1`.
-fn slots_for(n: usize) -> usize {
+pub(super) fn slots_for(n: usize) -> usize {
     2 * n - 1
 }
 
@@ -252,23 +252,23 @@ fn partition(refs: &mut [PrimRef], mut goes_left: impl FnMut(&PrimRef) -> bool) 
     mid
 }
 
-/// Builds the subtree over `refs` (which sit at `base` in the final order) into `out`, whose
-/// first slot is node `at` of the whole array and which has room for `slots_for(refs.len())`
-/// nodes. Returns how many slots from the start of `out` the subtree spans.
-fn build_node(
-    refs: &mut [PrimRef],
-    base: u32,
-    depth: usize,
-    out: &mut [Node],
-    at: u32,
-    block: u32,
-) -> usize {
+/// What [`build_node`] does at a node: make it a leaf, or split its primitives (reordered in
+/// place) into `..mid` and `mid..` on `axis`. A function of the primitives (in their order) and
+/// the depth alone, so a rebuild (`rebuild.rs`) can ask it of an earlier build's input too.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Step {
+    Leaf,
+    Split { mid: usize, axis: usize },
+}
+
+/// The node's bounds and [`Step`] for `refs` (at least one) at `depth`; a split leaves `refs`
+/// partitioned.
+pub(super) fn step(refs: &mut [PrimRef], depth: usize, block: u32) -> (Aabb, Step) {
     let n = refs.len();
     let (lo, hi, clo, chi) = bounds_of(refs);
     let bounds = to_aabb(lo, hi);
     if n == 1 {
-        out[0] = Node::leaf(&bounds, base, 1);
-        return 1;
+        return (bounds, Step::Leaf);
     }
     let sah = if depth < SAH_MAX_DEPTH {
         find_sah_split(refs, clo, chi, block)
@@ -284,8 +284,7 @@ fn build_node(
         None => true,
     };
     if n <= MAX_LEAF as usize && sah_says_leaf {
-        out[0] = Node::leaf(&bounds, base, n as u32);
-        return 1;
+        return (bounds, Step::Leaf);
     }
     let (mid, axis) = match sah {
         Some(s) => {
@@ -302,12 +301,81 @@ fn build_node(
         }
         None => median_split(refs, clo, chi),
     };
+    (bounds, Step::Split { mid, axis })
+}
+
+/// Where a split node's second child starts, relative to the node: right after the first
+/// child's largest possible tree for a subtree built in parallel (fixed slots, whatever the
+/// threads), else right after the first child as built (`left_used` slots).
+pub(super) fn right_start(n: usize, mid: usize, left_used: usize) -> usize {
+    if n >= PARALLEL_MIN {
+        1 + slots_for(mid)
+    } else {
+        1 + left_used
+    }
+}
+
+/// Builds the subtree over `refs` (which sit at `base` in the final order) into `out`, whose
+/// first slot is node `at` of the whole array and which has room for `slots_for(refs.len())`
+/// nodes. Returns how many slots from the start of `out` the subtree spans.
+pub(super) fn build_node(
+    refs: &mut [PrimRef],
+    base: u32,
+    depth: usize,
+    out: &mut [Node],
+    at: u32,
+    block: u32,
+) -> usize {
+    let n = refs.len();
+    match step(refs, depth, block) {
+        (bounds, Step::Leaf) => {
+            out[0] = Node::leaf(&bounds, base, n as u32);
+            1
+        }
+        (bounds, Step::Split { mid, axis }) => {
+            let split = SplitNode {
+                bounds,
+                mid,
+                axis,
+                base,
+                depth,
+                at,
+                block,
+            };
+            build_children(refs, &split, out)
+        }
+    }
+}
+
+/// A node split by [`step`], where it sits, for [`build_children`].
+pub(super) struct SplitNode {
+    pub bounds: Aabb,
+    pub mid: usize,
+    pub axis: usize,
+    pub base: u32,
+    pub depth: usize,
+    pub at: u32,
+    pub block: u32,
+}
+
+/// Builds both children of a split node (its `refs` partitioned at `split.mid`) and the node
+/// itself into `out`; returns the slots spanned, as [`build_node`].
+pub(super) fn build_children(refs: &mut [PrimRef], split: &SplitNode, out: &mut [Node]) -> usize {
+    let &SplitNode {
+        mid,
+        base,
+        depth,
+        at,
+        block,
+        ..
+    } = split;
+    let n = refs.len();
     let (left, right) = refs.split_at_mut(mid);
     let right_base = base + mid as u32;
     let (head, rest) = out.split_at_mut(1);
     let spans = if n >= PARALLEL_MIN {
         // The right subtree starts where the left one's largest possible tree would end.
-        let right_start = 1 + slots_for(mid);
+        let right_start = right_start(n, mid, 0);
         let (left_out, right_out) = rest.split_at_mut(right_start - 1);
         let (_, right_used) = rayon::join(
             || build_node(left, base, depth + 1, left_out, at + 1, block),
@@ -325,7 +393,7 @@ fn build_node(
         (right_start, right_used)
     } else {
         let left_used = build_node(left, base, depth + 1, rest, at + 1, block);
-        let right_start = 1 + left_used;
+        let right_start = right_start(n, mid, left_used);
         let right_out = &mut rest[left_used..];
         let right_used = build_node(
             right,
@@ -337,6 +405,6 @@ fn build_node(
         );
         (right_start, right_used)
     };
-    head[0] = Node::interior(&bounds, at + spans.0 as u32, axis);
+    head[0] = Node::interior(&split.bounds, at + spans.0 as u32, split.axis);
     spans.0 + spans.1
 }

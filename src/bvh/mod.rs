@@ -20,6 +20,7 @@ mod mesh_bvh;
 mod node;
 mod octant;
 mod query;
+mod rebuild;
 mod slot_hit;
 pub mod tally;
 mod traverse;
@@ -30,6 +31,7 @@ pub use brute_force::BruteForce;
 pub use dispatch::Scratch;
 pub use isa::Simd;
 pub use node::{MAX_DEPTH, MAX_LEAF};
+pub use rebuild::Trace as BuildTrace;
 pub use two_level::TwoLevel;
 
 use glam::{Affine3A, Vec3};
@@ -151,6 +153,27 @@ impl Accel {
                 let bvh = TwoLevel::build(meshes, instances, test);
                 debug_assert_eq!(check::check_two_level(&bvh, meshes), Ok(()));
                 Accel::Bvh(bvh)
+            }
+        }
+    }
+
+    /// [`Accel::build`] for a scene rebuilt after an edit: the BVH's top level reuses the
+    /// subtrees of the `earlier` build (its trace) over unchanged instances, the structure
+    /// being the same as [`Accel::build`]'s bit for bit; also the trace of this build (`None`
+    /// for brute force).
+    pub fn build_reusing(
+        meshes: &[MeshRef<'_>],
+        instances: &[Instance],
+        kind: AccelKind,
+        earlier: Option<&BuildTrace>,
+    ) -> (Accel, Option<BuildTrace>) {
+        match kind {
+            AccelKind::None => (Accel::None(BruteForce::build(meshes, instances)), None),
+            AccelKind::Bvh => {
+                let test = TriangleTest::default();
+                let (bvh, trace) = TwoLevel::build_traced(meshes, instances, test, earlier);
+                debug_assert_eq!(check::check_two_level(&bvh, meshes), Ok(()));
+                (Accel::Bvh(bvh), Some(trace))
             }
         }
     }

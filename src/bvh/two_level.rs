@@ -14,6 +14,7 @@ use super::dispatch::Path;
 use super::isa::Isa;
 use super::mesh_bvh::{MeshBvh, TriTest};
 use super::query::{TopAny, TopClosest};
+use super::rebuild::{build_like, Trace};
 use super::slot_hit::SlotHit;
 use super::traverse::{traverse, Entry, STACK_MAX};
 use super::wide::{collapse, Wide, WideNode, WideRay};
@@ -148,6 +149,18 @@ impl TwoLevel {
     /// triangle is stored twice, and a ray then traverses one tree instead of several that
     /// overlap); every other mesh gets its own BVH, shared by all its instances.
     pub fn build(meshes: &[MeshRef<'_>], instances: &[Instance], test: TriangleTest) -> TwoLevel {
+        Self::build_traced(meshes, instances, test, None).0
+    }
+
+    /// [`TwoLevel::build`], its top level built from an `earlier` build's trace where the
+    /// instances' world boxes are unchanged (the same structure, bit for bit; `rebuild.rs`),
+    /// and the trace of this build for the next.
+    pub fn build_traced(
+        meshes: &[MeshRef<'_>],
+        instances: &[Instance],
+        test: TriangleTest,
+        earlier: Option<&Trace>,
+    ) -> (TwoLevel, Trace) {
         let roles = roles(meshes, instances);
         let merged_instances: Vec<u32> = (0..instances.len() as u32)
             .filter(|&i| roles[i as usize] == Role::Merged)
@@ -182,8 +195,13 @@ impl TwoLevel {
                 PrimRef::new(bounds, i as u32)
             })
             .collect();
-        let top = build(refs, 1);
-        TwoLevel {
+        let input = refs.clone();
+        let top = match earlier {
+            Some(earlier) => build_like(refs, 1, earlier),
+            None => build(refs, 1),
+        };
+        let trace = Trace::new(input, top);
+        let two = TwoLevel {
             meshes: bvhs,
             merged_meshes: merged_instances
                 .iter()
@@ -191,10 +209,11 @@ impl TwoLevel {
                 .collect(),
             merged_instances,
             placed,
-            top: collapse(&top.nodes),
-            top_order: top.order,
+            top: collapse(trace.nodes()),
+            top_order: trace.order().to_vec(),
             path: Path::detect(test),
-        }
+        };
+        (two, trace)
     }
 
     #[inline(always)]

@@ -75,8 +75,12 @@ pub(super) fn widened(region: &Region, spans: &[(u32, u32)], new_len: usize) -> 
         return None;
     }
     let shift = &region.shift;
+    // The statement after `after` starts after the edited bytes when `region` is `region()`'s
+    // (spans are in order), so the subtraction cannot fail for it; a region made otherwise
+    // is not widened (`None`: the caller's region stays, as at the file's end) rather than
+    // wrapping in release builds or panicking in debug ones.
     let end = match spans.get(after + 1) {
-        Some(&(s, _)) => (s - shift.old_end + shift.new_end) as usize,
+        Some(&(s, _)) => s.checked_sub(shift.old_end)? as usize + shift.new_end as usize,
         None => new_len,
     };
     Some(Region {
@@ -272,6 +276,22 @@ pub(super) mod tests {
         // `let a`'s span takes the comment after it (blanks), so it is one of the changed.
         assert_eq!(old_range.end, 3);
         assert!(replaced.len() < old_range.len());
+    }
+
+    #[test]
+    fn a_region_whose_next_statement_starts_inside_the_edit_is_not_widened() {
+        let spans = [(0, 6), (7, 16), (17, 26)];
+        let region = Region {
+            shift: Shift {
+                file: FileId(0),
+                start: 10,
+                old_end: 20,
+                new_end: 12,
+            },
+            stmts: 0..1,
+            bytes: 0..7,
+        };
+        assert_eq!(widened(&region, &spans, 40), None);
     }
 
     #[test]

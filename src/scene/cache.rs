@@ -9,7 +9,9 @@
 //!   [`BuildCache::retain_current`]; an entry whose file changed is dropped, an unchanged file
 //!   is not read again.
 //! - the acceleration structure, keyed by its kind and the list of (mesh key, transform) of
-//!   every instance: a camera, material, light-colour or render-setting edit reuses it.
+//!   every instance: a camera, material, light-colour or render-setting edit reuses it. When
+//!   an instance moved, the BVH's top level is built again beside the last one's trace, which
+//!   copies the subtrees over unmoved instances (the same tree as a fresh build, bit for bit).
 //! - the environment map (`light … = environment { image(…) }`), decoded, cleaned, scaled and
 //!   with its sampling table, keyed by path, intensity and rotation and by the content hash of
 //!   the file: an edit elsewhere neither re-reads the image nor rebuilds its table.
@@ -34,7 +36,7 @@ use super::mesh::TriMesh;
 use super::texture_load::load_image_texture;
 use super::{BuildError, Scene, SceneInstance};
 use crate::assets::Loader;
-use crate::bvh::{Accel, AccelKind, Instance, MeshRef};
+use crate::bvh::{Accel, AccelKind, BuildTrace, Instance, MeshRef};
 use crate::ir::{self, AssetPath, MeshSource, TextureEncoding};
 use crate::shade::texture::image::ImageData;
 use crate::shade::EnvMap;
@@ -137,6 +139,9 @@ type AccelKey = (AccelKind, Vec<(MeshKey, Option<u64>, [u32; 12])>);
 pub struct BuildCache {
     meshes: HashMap<MeshKey, CachedMesh>,
     accel: Option<(AccelKey, Accel)>,
+    /// The trace of the last BVH built (its top level's input and nodes): the next build after
+    /// an instance moved copies its subtrees over unmoved instances (`bvh::BuildTrace`).
+    top_trace: Option<BuildTrace>,
     /// Keys (and file hashes) of the meshes of the scene built last, in its mesh order.
     current: Vec<(MeshKey, Option<u64>)>,
     /// Per entry of `current`: the other files its load read (see [`CachedMesh::deps`]).
@@ -372,7 +377,10 @@ impl BuildCache {
             .iter()
             .map(|i| Instance::new(i.mesh, i.world_from_object))
             .collect();
-        Accel::build(&refs, &accel_instances, kind)
+        let (accel, trace) =
+            Accel::build_reusing(&refs, &accel_instances, kind, self.top_trace.as_ref());
+        self.top_trace = trace;
+        accel
     }
 }
 

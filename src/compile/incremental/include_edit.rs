@@ -133,8 +133,17 @@ impl Memo {
         // No other include reads it once this one is gone.
         let needle = path.file_name()?.to_str()?.as_bytes();
         let named = |(f, text): (FileId, &str)| {
-            let mut hits = memchr::memmem::find_iter(text.as_bytes(), needle);
-            f != id && hits.any(|at| !in_line_comment(text, at))
+            if f == id {
+                return false;
+            }
+            let mut hits = memchr::memmem::find_iter(text.as_bytes(), needle).peekable();
+            // A block comment could close on a commented line and an include follow: then
+            // no hit is passed over. Searched once per file, and only when it has a hit.
+            if hits.peek().is_none() {
+                return false;
+            }
+            let block_comment = memchr::memmem::find(text.as_bytes(), b"/*").is_some();
+            hits.any(|at| block_comment || !in_line_comment(text, at))
         };
         let texts = sources.files().map(|(f, s)| (f, &*s.text));
         if texts.take(self.scene_files).any(named) {
@@ -235,14 +244,12 @@ fn none_first_read_from(files: &[FileId], at: usize) -> bool {
 }
 
 /// Whether byte `at` of `text` lies in a line comment that reads nothing: its line starts
-/// (after blanks) with `//`, the line before it does not end with `\` (a string's escaped
-/// newline), and the text has no `/*` (a block comment could close on that line and an include
-/// follow). The include line commented out (`// include "part.scn"`) still names its file; this
-/// tells that such a mention is not an include (fifteenth session).
+/// (after blanks) with `//` and the line before it does not end with `\` (a string's escaped
+/// newline). Only for a text with no `/*` (a block comment could close on that line and an
+/// include follow): the caller searches for that once per file, not once per hit. The include
+/// line commented out (`// include "part.scn"`) still names its file; this tells that such a
+/// mention is not an include (fifteenth session).
 fn in_line_comment(text: &str, at: usize) -> bool {
-    if memchr::memmem::find(text.as_bytes(), b"/*").is_some() {
-        return false;
-    }
     let Some(head) = text.get(..at) else {
         return false;
     };
