@@ -125,11 +125,7 @@ impl FirstBatches {
     /// their offsets, as an array, without the per-pixel `Option`s and offsets of the general
     /// walk. What a pixel's early stop reads nearly always (`render::Job::decide`): once per
     /// pixel, where the general walk was a tenth of an adaptive 10% render's bookkeeping.
-    fn interior_block(
-        &self,
-        x: u32,
-        y: u32,
-    ) -> Option<[(f64, f64, &FirstBatchSummary); BLOCK_PIXELS]> {
+    fn interior_block(&self, x: u32, y: u32) -> Option<[&FirstBatchSummary; BLOCK_PIXELS]> {
         let r = early_stop::RADIUS;
         let a = &self.area;
         if !(x >= a.x0 + r && x + r < a.x1 && y >= a.y0 + r && y + r < a.y1) {
@@ -137,19 +133,17 @@ impl FirstBatches {
         }
         let width = a.width() as usize;
         let corner = (y - r - a.y0) as usize * width + (x - r - a.x0) as usize;
-        let mut rows: [&[FirstBatchSummary]; BLOCK_SIDE] = [&[]; BLOCK_SIDE];
-        for (k, row) in rows.iter_mut().enumerate() {
+        let row = |k: usize| -> Option<&[FirstBatchSummary; BLOCK_SIDE]> {
             let start = corner + k * width;
-            *row = self.summaries.get(start..start + BLOCK_SIDE)?;
-        }
-        let centre = &rows[r as usize][r as usize];
-        let mut block = [(0.0, 0.0, centre); BLOCK_PIXELS];
-        for (k, cell) in block.iter_mut().enumerate() {
-            let (kx, ky) = (k % BLOCK_SIDE, k / BLOCK_SIDE);
-            let (dx, dy) = (kx as f64 - r as f64, ky as f64 - r as f64);
-            *cell = (dx, dy, &rows[ky][kx]);
-        }
-        Some(block)
+            self.summaries
+                .get(start..start + BLOCK_SIDE)?
+                .try_into()
+                .ok()
+        };
+        let rows: [&[FirstBatchSummary; BLOCK_SIDE]; BLOCK_SIDE] = [row(0)?, row(1)?, row(2)?];
+        Some(std::array::from_fn(|k| {
+            &rows[k / BLOCK_SIDE][k % BLOCK_SIDE]
+        }))
     }
 
     /// Where the pixel at (`dx`, `dy`) from (`x`, `y`) is in `summaries`; `None` outside `area`.
@@ -163,7 +157,7 @@ impl FirstBatches {
     pub(super) fn prior(&self, x: u32, y: u32) -> NeighbourPrior {
         if let Some(block) = self.interior_block(x, y) {
             let neighbours = block.iter().enumerate().filter(|&(k, _)| k != CENTRE);
-            return NeighbourPrior::pool_summaries(neighbours.map(|(_, &(_, _, s))| *s));
+            return NeighbourPrior::pool_summaries(neighbours.map(|(_, &s)| *s));
         }
         let neighbours = self
             .block(x, y)
@@ -177,7 +171,7 @@ impl FirstBatches {
     pub(super) fn neighbour_samples(&self, x: u32, y: u32) -> u32 {
         if let Some(block) = self.interior_block(x, y) {
             let neighbours = block.iter().enumerate().filter(|&(k, _)| k != CENTRE);
-            return neighbours.map(|(_, &(_, _, s))| s.samples).sum();
+            return neighbours.map(|(_, s)| s.samples).sum();
         }
         self.block(x, y)
             .filter(|&(dx, dy, _)| (dx, dy) != (0, 0))
@@ -189,7 +183,7 @@ impl FirstBatches {
     /// included ([`FirstBatchSpread`]).
     pub(super) fn spread(&self, x: u32, y: u32) -> FirstBatchSpread {
         if let Some(block) = self.interior_block(x, y) {
-            return FirstBatchSpread::fit_whole_block(block.map(|(_, _, s)| s.mean_luminance));
+            return FirstBatchSpread::fit_whole_block(block.map(|s| s.mean_luminance));
         }
         let block = self
             .block(x, y)
