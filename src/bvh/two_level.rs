@@ -144,12 +144,20 @@ fn own_placement(bvh: &MeshBvh, index: usize, inst: &Instance) -> Option<Placed>
     })
 }
 
+/// How [`TwoLevel::build_top`] builds the top level: from scratch, with or without keeping
+/// its trace, or beside an earlier build's trace.
+enum Top<'a> {
+    Fresh,
+    Traced,
+    Like(&'a Trace),
+}
+
 impl TwoLevel {
     /// Identity instances of meshes placed only once are merged into one bottom-level BVH (no
     /// triangle is stored twice, and a ray then traverses one tree instead of several that
     /// overlap); every other mesh gets its own BVH, shared by all its instances.
     pub fn build(meshes: &[MeshRef<'_>], instances: &[Instance], test: TriangleTest) -> TwoLevel {
-        Self::build_traced(meshes, instances, test, None).0
+        Self::build_top(meshes, instances, test, Top::Fresh).0
     }
 
     /// [`TwoLevel::build`], its top level built from an `earlier` build's trace where the
@@ -161,6 +169,22 @@ impl TwoLevel {
         test: TriangleTest,
         earlier: Option<&Trace>,
     ) -> (TwoLevel, Trace) {
+        let top = match earlier {
+            Some(earlier) => Top::Like(earlier),
+            None => Top::Traced,
+        };
+        let (two, trace) = Self::build_top(meshes, instances, test, top);
+        (two, trace.unwrap_or_default())
+    }
+
+    /// The build; the trace only when `top` asks for one (a plain build keeps no copy of its
+    /// input).
+    fn build_top(
+        meshes: &[MeshRef<'_>],
+        instances: &[Instance],
+        test: TriangleTest,
+        top: Top<'_>,
+    ) -> (TwoLevel, Option<Trace>) {
         let roles = roles(meshes, instances);
         let merged_instances: Vec<u32> = (0..instances.len() as u32)
             .filter(|&i| roles[i as usize] == Role::Merged)
@@ -195,12 +219,25 @@ impl TwoLevel {
                 PrimRef::new(bounds, i as u32)
             })
             .collect();
-        let input = refs.clone();
-        let top = match earlier {
-            Some(earlier) => build_like(refs, 1, earlier),
-            None => build(refs, 1),
+        let (built, trace) = match top {
+            Top::Fresh => (build(refs, 1), None),
+            Top::Traced => {
+                let input = refs.clone();
+                let built = build(refs, 1);
+                (built, Some(input))
+            }
+            Top::Like(earlier) => {
+                let input = refs.clone();
+                (build_like(refs, 1, earlier), Some(input))
+            }
         };
-        let trace = Trace::new(input, top);
+        let (top_nodes, top_order, trace) = match trace {
+            Some(input) => {
+                let trace = Trace::new(input, built);
+                (collapse(trace.nodes()), trace.order().to_vec(), Some(trace))
+            }
+            None => (collapse(&built.nodes), built.order, None),
+        };
         let two = TwoLevel {
             meshes: bvhs,
             merged_meshes: merged_instances
@@ -209,8 +246,8 @@ impl TwoLevel {
                 .collect(),
             merged_instances,
             placed,
-            top: collapse(trace.nodes()),
-            top_order: trace.order().to_vec(),
+            top: top_nodes,
+            top_order,
             path: Path::detect(test),
         };
         (two, trace)
