@@ -273,8 +273,8 @@ impl PixelSequences {
         }
     }
 
-    /// Sample `global`'s slot among the replicates' sequences and the shared one's
-    /// ([`PixelSequences::sequence_of`]'s), and its index in that sequence.
+    /// Sample `global`'s slot among the replicates' sequences and the shared one's, and its
+    /// index in that sequence.
     #[inline]
     fn slot_of(global: u32) -> (usize, u32) {
         let r = (global % REPLICATES) as usize;
@@ -288,9 +288,10 @@ impl PixelSequences {
     #[inline]
     fn key_of_slot(&self, slot: usize) -> u64 {
         // The replicates' keys only for their own slots: the shared round never derives them.
-        match slot.checked_sub(REPLICATES as usize) {
-            Some(_) => self.shared_key,
-            None => self.replicate_keys()[slot],
+        if slot == REPLICATES as usize {
+            self.shared_key
+        } else {
+            self.replicate_keys()[slot]
         }
     }
 
@@ -298,11 +299,8 @@ impl PixelSequences {
     /// its key) and its index in that sequence.
     #[inline]
     fn sequence_of(&self, global: u32) -> (usize, u64, u32) {
-        let r = (global % REPLICATES) as usize;
-        match global / REPLICATES {
-            round if round < SHARED_ROUNDS => (REPLICATES as usize, self.shared_key, global),
-            round => (r, self.replicate_keys()[r], round - SHARED_ROUNDS),
-        }
+        let (slot, index) = Self::slot_of(global);
+        (slot, self.key_of_slot(slot), index)
     }
 
     /// The replicate sample `global` belongs to; `None` for the shared rounds' samples, which
