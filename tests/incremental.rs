@@ -3401,3 +3401,33 @@ fn a_camera_light_or_group_declared_twice_is_checked_as_the_full_check_does() {
         ],
     );
 }
+
+/// A statement's span ends at its last token (a `let`'s value, a block-less declaration's
+/// constructor), not at the blanks and comments after it (2026-11-29, seventeenth session): a
+/// line commented out or uncommented right after a `let` (or a block-less `mesh`) is an edit
+/// of that line's statement alone, not of the one before it too, and takes the fast path.
+#[test]
+fn a_line_commented_out_after_a_let_is_an_edit_of_that_line_alone() {
+    let edits = [
+        ("camera main", "let lift = k + 1\ncamera main", true),
+        ("translate (0.5, k, 0)", "translate (0.5, lift, 0)", true),
+        // Named by an object, after a `let`.
+        ("let lift = k + 1\n", "// let lift = k + 1\n", true),
+        ("// let lift = k + 1\n", "let lift = k + 1\n", true),
+        // Named by nothing, between two `let`s.
+        ("let spin = 15deg\n", "// let spin = 15deg\n", true),
+        ("// let spin = 15deg\n", "let spin = 15deg\n", true),
+        // A comment typed after a `let`'s value, and taken away.
+        ("let k = 2\n", "let k = 2 // two\n", true),
+        ("let k = 2 // two\n", "let k = 2\n", true),
+        // A block-less `mesh`, and the line after it commented out and back.
+        (
+            "mesh spare = box { size 1 }\n",
+            "mesh spare = box { size 1 }\nmesh plain = quad\n",
+            true,
+        ),
+        ("texture board", "// texture board", true),
+        ("// texture board", "texture board", true),
+    ];
+    replay_edits(base_scene(), &edits);
+}

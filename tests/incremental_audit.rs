@@ -281,10 +281,6 @@ const STILL_FULL: &[&str] = &[
     "include insert middle",
     "include insert start",
     "include value first",
-    "let comment out last",
-    "let comment out middle",
-    "let uncomment last",
-    "let uncomment middle",
 ];
 
 #[test]
