@@ -33,6 +33,7 @@
 //! (in process only: the duplicate-name error stands through every edit); (fourteenth
 //! session) `include "part_extra.scn"` (1,000 objects) added and deleted; (fifteenth session)
 //! an object's line, the unused `material spare`'s and `let gloss`'s commented out and
+//! uncommented; (seventeenth session) a `let` right after `let gloss` commented out and
 //! uncommented.
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
@@ -337,9 +338,17 @@ enum Kind {
     /// commented out (the materials get unknown-name errors); 1, 3, 5, …: uncommented (full
     /// compiles before).
     GlossCommented,
+    /// (Seventeenth session.) `let unused = 0.5` stands right after `let gloss` (put in
+    /// before the kind's edits and taken out after, neither measured); edits 0, 2, 4, …
+    /// comment it out; 1, 3, 5, …: uncomment it (full compiles before: `let gloss`'s span
+    /// took the comment).
+    LetCommented,
 }
 
-const KINDS: [Kind; 42] = [
+/// The line of [`Kind::LetCommented`]'s `let`, right after `let gloss`.
+const LET_AFTER_LET: &str = "let unused = 0.5";
+
+const KINDS: [Kind; 43] = [
     Kind::Object,
     Kind::Material,
     Kind::Let,
@@ -384,6 +393,7 @@ const KINDS: [Kind; 42] = [
     Kind::CommentOut,
     Kind::CommentSpare,
     Kind::GlossCommented,
+    Kind::LetCommented,
 ];
 
 /// Kinds whose even edits make an error (`scnc watch` builds nothing then: its figure is save →
@@ -646,10 +656,11 @@ fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String
             lines.remove(FIRST_MATERIAL + 100);
         }
         Kind::FirstEdited => lines[LET_LINE] = let_line(1 + k % 89),
-        Kind::CommentOut | Kind::CommentSpare | Kind::GlossCommented => {
+        Kind::CommentOut | Kind::CommentSpare | Kind::GlossCommented | Kind::LetCommented => {
             let at = match kind {
                 Kind::CommentOut => HEADER + objects / 2 + (k / 2 * 7919) % (objects / 4),
                 Kind::GlossCommented => LET_LINE,
+                Kind::LetCommented => LET_LINE + 1,
                 _ => FIRST_MATERIAL + 100,
             };
             lines[at] = match lines[at].strip_prefix("// ") {
@@ -692,7 +703,7 @@ fn checked(kind: Kind, k: usize) -> usize {
         // The file's header and objects and the include; removed, none.
         Kind::Include => (EXTRA_OBJECTS + 2) * (1 - k % 2),
         Kind::Delete => 0,
-        Kind::CommentOut | Kind::CommentSpare => k % 2,
+        Kind::CommentOut | Kind::CommentSpare | Kind::LetCommented => k % 2,
         _ => 1,
     }
 }
@@ -731,6 +742,7 @@ fn splits(kind: Kind) -> bool {
             | Kind::Redeclared
             | Kind::FirstEdited
             | Kind::Include
+            | Kind::LetCommented
     )
 }
 
@@ -861,6 +873,13 @@ fn front_end(objects: usize, edits: usize) {
             let r = inc.compile(path, &loader, &mut SourceMap::new());
             assert!(r.value.is_none(), "a duplicate-name error");
         }
+        if kind == Kind::LetCommented {
+            lines.insert(LET_LINE + 1, LET_AFTER_LET.to_string());
+            let text = lines.join("\n") + "\n";
+            let loader = loader_with(&files(&text), &assets);
+            let r = inc.compile(path, &loader, &mut SourceMap::new());
+            assert!(r.value.is_some(), "the `let` put in compiles");
+        }
         for k in 0..count {
             let loader = loader_with(&files(&edit(&mut lines, objects, kind, k)), &assets);
             if (errs(kind) || kind == Kind::FirstEdited) && k == 0 {
@@ -962,6 +981,13 @@ fn front_end(objects: usize, edits: usize) {
             let r = inc.compile(path, &loader, &mut SourceMap::new());
             assert!(r.value.is_some(), "the duplicate taken out");
             continue;
+        }
+        if kind == Kind::LetCommented {
+            lines.remove(LET_LINE + 1);
+            let text = lines.join("\n") + "\n";
+            let loader = loader_with(&files(&text), &assets);
+            let r = inc.compile(path, &loader, &mut SourceMap::new());
+            assert!(r.value.is_some(), "the `let` taken out");
         }
         let [mut total, mut assets, mut accel] = build;
         if errs(kind) {
@@ -1115,6 +1141,12 @@ fn watch(objects: usize, edits: usize, how: Save) {
         let mut incremental = 0;
         // What the cached builds made again (`rebuilt` of the `compiled` events), all edits.
         let mut rebuilt = std::collections::BTreeSet::new();
+        if kind == Kind::LetCommented {
+            lines.insert(LET_LINE + 1, LET_AFTER_LET.to_string());
+            save_all(&(lines.join("\n") + "\n"));
+            wait("compiled", false);
+            wait("pass", true);
+        }
         for k in 0..edits {
             let text = edit(&mut lines, objects, kind, 1000 + k);
             let t0 = Instant::now();
@@ -1154,6 +1186,12 @@ fn watch(objects: usize, edits: usize, how: Save) {
             median(&mut build),
             median(&mut pass)
         );
+        if kind == Kind::LetCommented {
+            lines.remove(LET_LINE + 1);
+            save_all(&(lines.join("\n") + "\n"));
+            wait("compiled", false);
+            wait("pass", true);
+        }
     }
     // The errors, each then taken out: save -> the `error` event (the diagnostics; nothing is
     // built) and, for the edit taking it out, save -> `checked`, and the first pass after it.
