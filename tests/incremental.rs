@@ -3431,3 +3431,61 @@ fn a_line_commented_out_after_a_let_is_an_edit_of_that_line_alone() {
     ];
     replay_edits(base_scene(), &edits);
 }
+
+/// An include of a file read wholly before it reads nothing (the driver reads each file once):
+/// added or removed, it is one statement no phase checks (2026-11-29, seventeenth session; a
+/// full compile before). In the split scene (root `edit.scn` includes `blocks/b0.scn`,
+/// `b1.scn` (which includes `inner.scn`) and `b2.scn`, read last): `b0.scn` included again
+/// after `b2.scn`, `b1.scn` and `inner.scn` included from `b2.scn`, each taken out again, are
+/// incremental; an include of a file read later (`b2.scn` from `b1.scn`), of the file itself
+/// or of one that includes it (a cycle) is not.
+#[test]
+fn an_include_of_a_file_read_before_it_is_an_inert_statement() {
+    let path = Path::new("scenes/edit.scn");
+    let mut scene = split_scene();
+    let b2 = "include \"blocks/b2.scn\"\n";
+    let b2_again = "include \"blocks/b2.scn\"\ninclude \"blocks/b0.scn\"\n";
+    // (file, from, to, fast): the first `from` in the file (of `split_scene`'s list) replaced.
+    let edits: &[(usize, &str, &str, bool)] = &[
+        (0, b2, b2_again, true),
+        (0, b2_again, b2, true),
+        (3, "scnc 1\n", "scnc 1\ninclude \"b1.scn\"\n", true),
+        (3, "include \"b1.scn\"\n", "", true),
+        (3, "scnc 1\n", "scnc 1\ninclude \"inner.scn\"\n", true),
+        (3, "include \"inner.scn\"\n", "", true),
+        // `b2.scn` is read after `b1.scn`: every later file's place moves.
+        (
+            2,
+            "let lift = k + 1\n",
+            "let lift = k + 1\ninclude \"b2.scn\"\n",
+            false,
+        ),
+        (2, "include \"b2.scn\"\n", "", false),
+        // Cycles: the file itself, and the file that includes it.
+        (1, "scnc 1\n", "scnc 1\ninclude \"b0.scn\"\n", false),
+        (1, "include \"b0.scn\"\n", "", false),
+        (4, "scnc 1\n", "scnc 1\ninclude \"b1.scn\"\n", false),
+    ];
+    let mut inc = Incremental::new(Overrides::default());
+    for (step, &(file, from, to, fast)) in [(0, "", "", false)].iter().chain(edits).enumerate() {
+        if step > 0 {
+            let text = &mut scene[file].1;
+            let edited = text.replacen(from, to, 1);
+            assert_ne!(&edited, text, "{from}");
+            *text = edited;
+        }
+        let mut loader = MemLoader::new();
+        for (name, text) in scene.iter() {
+            loader.insert(Path::new("scenes").join(name), text.clone());
+        }
+        let mut sources = SourceMap::new();
+        let got = inc.compile(path, &loader, &mut sources);
+        let label = format!("step {step}: {to:?} in file {file} ({:?})", inc.reuse);
+        let root = &scene[0].1;
+        assert_as_full_compile(&label, &got, &sources, &loader, &Overrides::default(), root);
+        if step > 0 {
+            let took = matches!(inc.reuse, Reuse::Statements { .. });
+            assert_eq!(took, fast, "{label}");
+        }
+    }
+}

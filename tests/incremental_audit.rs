@@ -277,7 +277,6 @@ fn cases() -> Vec<Case> {
 /// The one-line edits that still go to the full compile, as `kind edit place`. Each is named
 /// with why in docs/watch.md (step 11 and the fifteenth session's table).
 const STILL_FULL: &[&str] = &[
-    "include duplicate first",
     "include insert middle",
     "include insert start",
     "include value first",
