@@ -3489,3 +3489,62 @@ fn an_include_of_a_file_read_before_it_is_an_inert_statement() {
         }
     }
 }
+
+/// An include pointed at another file: the old file's removal, then the new file's addition
+/// at the same place (2026-11-29, seventeenth session; a full compile before), taken where
+/// each half is (the old file read last by this include, the new one not read or read wholly
+/// before it).
+#[test]
+fn an_include_pointed_at_another_file_is_a_removal_and_an_addition() {
+    let path = Path::new("scenes/edit.scn");
+    let mut scene = split_scene();
+    let b2 = "include \"blocks/b2.scn\"\n";
+    let objs = "include \"objs.scn\"\n";
+    let extra = "include \"extra.scn\"\n";
+    let b0 = "include \"blocks/b0.scn\"\n";
+    let edits: &[(usize, &str, &str, bool)] = &[
+        // `objs.scn` included after `b2.scn` (read last), then pointed at `extra.scn` (a
+        // material) and back.
+        (0, b2, &format!("{b2}{objs}"), true),
+        (0, objs, extra, true),
+        (0, extra, objs, true),
+        // To a file read before it (`objs.scn` removed, the include reads nothing), and from
+        // there to a file not read (nothing removed, `extra.scn` added).
+        (0, objs, "include \"blocks/b1.scn\"\n", true),
+        (
+            0,
+            "b2.scn\"\ninclude \"blocks/b1.scn\"",
+            "b2.scn\"\ninclude \"extra.scn\"",
+            true,
+        ),
+        // `b0.scn` is not the last read (every later file's id would move), and `b2.scn` holds
+        // groups (which the removal does not take out).
+        (0, b0, objs, false),
+        (0, objs, b0, false),
+        (0, b2, "include \"blocks/b1.scn\"\n", false),
+    ];
+    let mut inc = Incremental::new(Overrides::default());
+    for (step, &(file, from, to, fast)) in [(0, "", "", false)].iter().chain(edits).enumerate() {
+        if step > 0 {
+            let text = &mut scene[file].1;
+            let edited = text.replacen(from, to, 1);
+            assert_ne!(&edited, text, "{from}");
+            *text = edited;
+        }
+        let mut loader = MemLoader::new();
+        for (name, text) in scene.iter() {
+            loader.insert(Path::new("scenes").join(name), text.clone());
+        }
+        loader.insert("scenes/extra.scn", INCLUDED);
+        loader.insert("scenes/objs.scn", INCLUDED_OBJECTS);
+        let mut sources = SourceMap::new();
+        let got = inc.compile(path, &loader, &mut sources);
+        let label = format!("step {step}: {to:?} in file {file} ({:?})", inc.reuse);
+        let root = &scene[0].1;
+        assert_as_full_compile(&label, &got, &sources, &loader, &Overrides::default(), root);
+        if step > 0 {
+            let took = matches!(inc.reuse, Reuse::Statements { .. });
+            assert_eq!(took, fast, "{label}");
+        }
+    }
+}

@@ -12,7 +12,9 @@
 //!
 //! An include of a file read wholly before it (a line duplicated below itself: the driver reads
 //! each file once) reads nothing: added or removed, it is one statement no phase checks, its
-//! place kept (2026-11-29, seventeenth session).
+//! place kept (2026-11-29, seventeenth session). An include pointed at another file is the old
+//! file's removal, then the new file's addition at the same place (with no shift: the edit's
+//! moved every span already), each taken as above.
 //!
 //! Taken only where the file ids stay those of a fresh compile and no other file changes its
 //! reading: the file added is read last of the scene's files (no file is first read after the
@@ -63,6 +65,30 @@ impl Memo {
             }
             ([include @ Stmt::Include { path, .. }], []) => {
                 self.include_removed(file, region, old, include, path, sources)
+            }
+            ([was @ Stmt::Include { path: from, .. }], [now @ Stmt::Include { path: to, .. }]) => {
+                // Pointed at another file: the old one's removal, then the new one's addition
+                // at the same place, each as above (a fresh compile gives the new file the id
+                // the old one had, when that was the last read).
+                let before = self.spans.len();
+                let removed =
+                    self.include_removed(file, region, old.clone(), was, from, sources)?;
+                // The list index the removed block (the file's statements and the include) began at.
+                let at = old.end.checked_sub(before - self.spans.len())?;
+                let place = now.span().start;
+                let none = Region {
+                    shift: crate::source::Shift {
+                        file,
+                        start: place,
+                        old_end: place,
+                        new_end: place,
+                    },
+                    stmts: at..at,
+                    bytes: place as usize..place as usize,
+                };
+                let sources = self.sources.clone();
+                let added = self.include_added(file, loader, &none, at..at, now, to, sources)?;
+                Some(removed + added)
             }
             _ => None,
         }
