@@ -34,7 +34,7 @@
 //! session) `include "part_extra.scn"` (1,000 objects) added and deleted; (fifteenth session)
 //! an object's line, the unused `material spare`'s and `let gloss`'s commented out and
 //! uncommented; (seventeenth session) a `let` right after `let gloss` commented out and
-//! uncommented.
+//! uncommented, and an include pointed at another file and back.
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
 //!    each edit (the text served from memory; diagnostics are ready when it returns).
@@ -173,8 +173,14 @@ fn assets() -> Vec<(&'static str, Vec<u8>)> {
         part.push_str(&object_line(i * 7, 3));
         part.push('\n');
     }
+    let mut other = String::from("scnc 1\n");
+    for i in 0..EXTRA_OBJECTS {
+        other.push_str(&object_line(i * 7 + 3, 5));
+        other.push('\n');
+    }
     vec![
         ("part_extra.scn", part.into_bytes()),
+        ("part_other.scn", other.into_bytes()),
         ("crate_a.obj", cube(0.5)),
         ("crate_b.obj", cube(0.7)),
         ("grain.png", png),
@@ -343,12 +349,27 @@ enum Kind {
     /// comment it out; 1, 3, 5, …: uncomment it (full compiles before: `let gloss`'s span
     /// took the comment).
     LetCommented,
+    /// (Seventeenth session.) `include "part_extra.scn"` stands before the last line (put in
+    /// before the kind's edits and taken out after, neither measured); each edit points it at
+    /// the other of `part_extra.scn` and `part_other.scn` (1,000 objects each; a full compile
+    /// before).
+    IncludeRetarget,
+}
+
+/// The line a kind's edits stand beside, put in before them and taken out after (neither
+/// measured): its place in `lines` and its text.
+fn standing(kind: Kind, lines: &[String]) -> Option<(usize, String)> {
+    match kind {
+        Kind::LetCommented => Some((LET_LINE + 1, LET_AFTER_LET.to_string())),
+        Kind::IncludeRetarget => Some((lines.len() - 1, "include \"part_extra.scn\"".into())),
+        _ => None,
+    }
 }
 
 /// The line of [`Kind::LetCommented`]'s `let`, right after `let gloss`.
 const LET_AFTER_LET: &str = "let unused = 0.5";
 
-const KINDS: [Kind; 43] = [
+const KINDS: [Kind; 44] = [
     Kind::Object,
     Kind::Material,
     Kind::Let,
@@ -394,6 +415,7 @@ const KINDS: [Kind; 43] = [
     Kind::CommentSpare,
     Kind::GlossCommented,
     Kind::LetCommented,
+    Kind::IncludeRetarget,
 ];
 
 /// Kinds whose even edits make an error (`scnc watch` builds nothing then: its figure is save →
@@ -656,6 +678,13 @@ fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String
             lines.remove(FIRST_MATERIAL + 100);
         }
         Kind::FirstEdited => lines[LET_LINE] = let_line(1 + k % 89),
+        Kind::IncludeRetarget => {
+            let at = lines.len() - 2;
+            lines[at] = match lines[at].contains("part_extra") {
+                true => "include \"part_other.scn\"".into(),
+                false => "include \"part_extra.scn\"".into(),
+            };
+        }
         Kind::CommentOut | Kind::CommentSpare | Kind::GlossCommented | Kind::LetCommented => {
             let at = match kind {
                 Kind::CommentOut => HEADER + objects / 2 + (k / 2 * 7919) % (objects / 4),
@@ -704,6 +733,9 @@ fn checked(kind: Kind, k: usize) -> usize {
         Kind::Include => (EXTRA_OBJECTS + 2) * (1 - k % 2),
         Kind::Delete => 0,
         Kind::CommentOut | Kind::CommentSpare | Kind::LetCommented => k % 2,
+        // The old file's objects cut out (not counted), the new file's header, objects and
+        // include checked.
+        Kind::IncludeRetarget => EXTRA_OBJECTS + 2,
         _ => 1,
     }
 }
@@ -743,6 +775,7 @@ fn splits(kind: Kind) -> bool {
             | Kind::FirstEdited
             | Kind::Include
             | Kind::LetCommented
+            | Kind::IncludeRetarget
     )
 }
 
@@ -873,12 +906,13 @@ fn front_end(objects: usize, edits: usize) {
             let r = inc.compile(path, &loader, &mut SourceMap::new());
             assert!(r.value.is_none(), "a duplicate-name error");
         }
-        if kind == Kind::LetCommented {
-            lines.insert(LET_LINE + 1, LET_AFTER_LET.to_string());
+        let stands = standing(kind, &lines);
+        if let Some((at, line)) = &stands {
+            lines.insert(*at, line.clone());
             let text = lines.join("\n") + "\n";
             let loader = loader_with(&files(&text), &assets);
             let r = inc.compile(path, &loader, &mut SourceMap::new());
-            assert!(r.value.is_some(), "the `let` put in compiles");
+            assert!(r.value.is_some(), "the line put in compiles");
         }
         for k in 0..count {
             let loader = loader_with(&files(&edit(&mut lines, objects, kind, k)), &assets);
@@ -982,12 +1016,12 @@ fn front_end(objects: usize, edits: usize) {
             assert!(r.value.is_some(), "the duplicate taken out");
             continue;
         }
-        if kind == Kind::LetCommented {
-            lines.remove(LET_LINE + 1);
+        if let Some((at, _)) = stands {
+            lines.remove(at);
             let text = lines.join("\n") + "\n";
             let loader = loader_with(&files(&text), &assets);
             let r = inc.compile(path, &loader, &mut SourceMap::new());
-            assert!(r.value.is_some(), "the `let` taken out");
+            assert!(r.value.is_some(), "the line taken out");
         }
         let [mut total, mut assets, mut accel] = build;
         if errs(kind) {
@@ -1141,8 +1175,9 @@ fn watch(objects: usize, edits: usize, how: Save) {
         let mut incremental = 0;
         // What the cached builds made again (`rebuilt` of the `compiled` events), all edits.
         let mut rebuilt = std::collections::BTreeSet::new();
-        if kind == Kind::LetCommented {
-            lines.insert(LET_LINE + 1, LET_AFTER_LET.to_string());
+        let stands = standing(kind, &lines);
+        if let Some((at, line)) = &stands {
+            lines.insert(*at, line.clone());
             save_all(&(lines.join("\n") + "\n"));
             wait("compiled", false);
             wait("pass", true);
@@ -1186,8 +1221,8 @@ fn watch(objects: usize, edits: usize, how: Save) {
             median(&mut build),
             median(&mut pass)
         );
-        if kind == Kind::LetCommented {
-            lines.remove(LET_LINE + 1);
+        if let Some((at, _)) = stands {
+            lines.remove(at);
             save_all(&(lines.join("\n") + "\n"));
             wait("compiled", false);
             wait("pass", true);
