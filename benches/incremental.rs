@@ -33,7 +33,8 @@
 //! (in process only: the duplicate-name error stands through every edit); (fourteenth
 //! session) `include "part_extra.scn"` (1,000 objects) added and deleted; (fifteenth session)
 //! an object's line, the unused `material spare`'s and `let gloss`'s commented out and
-//! uncommented.
+//! uncommented; (seventeenth session) a `let` right after `let gloss` commented out and
+//! uncommented, and an include pointed at another file and back.
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
 //!    each edit (the text served from memory; diagnostics are ready when it returns).
@@ -172,8 +173,14 @@ fn assets() -> Vec<(&'static str, Vec<u8>)> {
         part.push_str(&object_line(i * 7, 3));
         part.push('\n');
     }
+    let mut other = String::from("scnc 1\n");
+    for i in 0..EXTRA_OBJECTS {
+        other.push_str(&object_line(i * 7 + 3, 5));
+        other.push('\n');
+    }
     vec![
         ("part_extra.scn", part.into_bytes()),
+        ("part_other.scn", other.into_bytes()),
         ("crate_a.obj", cube(0.5)),
         ("crate_b.obj", cube(0.7)),
         ("grain.png", png),
@@ -337,9 +344,32 @@ enum Kind {
     /// commented out (the materials get unknown-name errors); 1, 3, 5, …: uncommented (full
     /// compiles before).
     GlossCommented,
+    /// (Seventeenth session.) `let unused = 0.5` stands right after `let gloss` (put in
+    /// before the kind's edits and taken out after, neither measured); edits 0, 2, 4, …
+    /// comment it out; 1, 3, 5, …: uncomment it (full compiles before: `let gloss`'s span
+    /// took the comment).
+    LetCommented,
+    /// (Seventeenth session.) `include "part_extra.scn"` stands before the last line (put in
+    /// before the kind's edits and taken out after, neither measured); each edit points it at
+    /// the other of `part_extra.scn` and `part_other.scn` (1,000 objects each; a full compile
+    /// before).
+    IncludeRetarget,
 }
 
-const KINDS: [Kind; 42] = [
+/// The line a kind's edits stand beside, put in before them and taken out after (neither
+/// measured): its place in `lines` and its text.
+fn standing(kind: Kind, lines: &[String]) -> Option<(usize, String)> {
+    match kind {
+        Kind::LetCommented => Some((LET_LINE + 1, LET_AFTER_LET.to_string())),
+        Kind::IncludeRetarget => Some((lines.len() - 1, "include \"part_extra.scn\"".into())),
+        _ => None,
+    }
+}
+
+/// The line of [`Kind::LetCommented`]'s `let`, right after `let gloss`.
+const LET_AFTER_LET: &str = "let unused = 0.5";
+
+const KINDS: [Kind; 44] = [
     Kind::Object,
     Kind::Material,
     Kind::Let,
@@ -384,6 +414,8 @@ const KINDS: [Kind; 42] = [
     Kind::CommentOut,
     Kind::CommentSpare,
     Kind::GlossCommented,
+    Kind::LetCommented,
+    Kind::IncludeRetarget,
 ];
 
 /// Kinds whose even edits make an error (`scnc watch` builds nothing then: its figure is save →
@@ -646,10 +678,18 @@ fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String
             lines.remove(FIRST_MATERIAL + 100);
         }
         Kind::FirstEdited => lines[LET_LINE] = let_line(1 + k % 89),
-        Kind::CommentOut | Kind::CommentSpare | Kind::GlossCommented => {
+        Kind::IncludeRetarget => {
+            let at = lines.len() - 2;
+            lines[at] = match lines[at].contains("part_extra") {
+                true => "include \"part_other.scn\"".into(),
+                false => "include \"part_extra.scn\"".into(),
+            };
+        }
+        Kind::CommentOut | Kind::CommentSpare | Kind::GlossCommented | Kind::LetCommented => {
             let at = match kind {
                 Kind::CommentOut => HEADER + objects / 2 + (k / 2 * 7919) % (objects / 4),
                 Kind::GlossCommented => LET_LINE,
+                Kind::LetCommented => LET_LINE + 1,
                 _ => FIRST_MATERIAL + 100,
             };
             lines[at] = match lines[at].strip_prefix("// ") {
@@ -692,7 +732,10 @@ fn checked(kind: Kind, k: usize) -> usize {
         // The file's header and objects and the include; removed, none.
         Kind::Include => (EXTRA_OBJECTS + 2) * (1 - k % 2),
         Kind::Delete => 0,
-        Kind::CommentOut | Kind::CommentSpare => k % 2,
+        Kind::CommentOut | Kind::CommentSpare | Kind::LetCommented => k % 2,
+        // The old file's objects cut out (not counted), the new file's header, objects and
+        // include checked.
+        Kind::IncludeRetarget => EXTRA_OBJECTS + 2,
         _ => 1,
     }
 }
@@ -731,6 +774,8 @@ fn splits(kind: Kind) -> bool {
             | Kind::Redeclared
             | Kind::FirstEdited
             | Kind::Include
+            | Kind::LetCommented
+            | Kind::IncludeRetarget
     )
 }
 
@@ -861,6 +906,14 @@ fn front_end(objects: usize, edits: usize) {
             let r = inc.compile(path, &loader, &mut SourceMap::new());
             assert!(r.value.is_none(), "a duplicate-name error");
         }
+        let stands = standing(kind, &lines);
+        if let Some((at, line)) = &stands {
+            lines.insert(*at, line.clone());
+            let text = lines.join("\n") + "\n";
+            let loader = loader_with(&files(&text), &assets);
+            let r = inc.compile(path, &loader, &mut SourceMap::new());
+            assert!(r.value.is_some(), "the line put in compiles");
+        }
         for k in 0..count {
             let loader = loader_with(&files(&edit(&mut lines, objects, kind, k)), &assets);
             if (errs(kind) || kind == Kind::FirstEdited) && k == 0 {
@@ -962,6 +1015,13 @@ fn front_end(objects: usize, edits: usize) {
             let r = inc.compile(path, &loader, &mut SourceMap::new());
             assert!(r.value.is_some(), "the duplicate taken out");
             continue;
+        }
+        if let Some((at, _)) = stands {
+            lines.remove(at);
+            let text = lines.join("\n") + "\n";
+            let loader = loader_with(&files(&text), &assets);
+            let r = inc.compile(path, &loader, &mut SourceMap::new());
+            assert!(r.value.is_some(), "the line taken out");
         }
         let [mut total, mut assets, mut accel] = build;
         if errs(kind) {
@@ -1115,6 +1175,13 @@ fn watch(objects: usize, edits: usize, how: Save) {
         let mut incremental = 0;
         // What the cached builds made again (`rebuilt` of the `compiled` events), all edits.
         let mut rebuilt = std::collections::BTreeSet::new();
+        let stands = standing(kind, &lines);
+        if let Some((at, line)) = &stands {
+            lines.insert(*at, line.clone());
+            save_all(&(lines.join("\n") + "\n"));
+            wait("compiled", false);
+            wait("pass", true);
+        }
         for k in 0..edits {
             let text = edit(&mut lines, objects, kind, 1000 + k);
             let t0 = Instant::now();
@@ -1154,6 +1221,12 @@ fn watch(objects: usize, edits: usize, how: Save) {
             median(&mut build),
             median(&mut pass)
         );
+        if let Some((at, _)) = stands {
+            lines.remove(at);
+            save_all(&(lines.join("\n") + "\n"));
+            wait("compiled", false);
+            wait("pass", true);
+        }
     }
     // The errors, each then taken out: save -> the `error` event (the diagnostics; nothing is
     // built) and, for the edit taking it out, save -> `checked`, and the first pass after it.

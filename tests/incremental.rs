@@ -3401,3 +3401,150 @@ fn a_camera_light_or_group_declared_twice_is_checked_as_the_full_check_does() {
         ],
     );
 }
+
+/// A statement's span ends at its last token (a `let`'s value, a block-less declaration's
+/// constructor), not at the blanks and comments after it (2026-11-29, seventeenth session): a
+/// line commented out or uncommented right after a `let` (or a block-less `mesh`) is an edit
+/// of that line's statement alone, not of the one before it too, and takes the fast path.
+#[test]
+fn a_line_commented_out_after_a_let_is_an_edit_of_that_line_alone() {
+    let edits = [
+        ("camera main", "let lift = k + 1\ncamera main", true),
+        ("translate (0.5, k, 0)", "translate (0.5, lift, 0)", true),
+        // Named by an object, after a `let`.
+        ("let lift = k + 1\n", "// let lift = k + 1\n", true),
+        ("// let lift = k + 1\n", "let lift = k + 1\n", true),
+        // Named by nothing, between two `let`s.
+        ("let spin = 15deg\n", "// let spin = 15deg\n", true),
+        ("// let spin = 15deg\n", "let spin = 15deg\n", true),
+        // A comment typed after a `let`'s value, and taken away.
+        ("let k = 2\n", "let k = 2 // two\n", true),
+        ("let k = 2 // two\n", "let k = 2\n", true),
+        // A block-less `mesh`, and the line after it commented out and back.
+        (
+            "mesh spare = box { size 1 }\n",
+            "mesh spare = box { size 1 }\nmesh plain = quad\n",
+            true,
+        ),
+        ("texture board", "// texture board", true),
+        ("// texture board", "texture board", true),
+    ];
+    replay_edits(base_scene(), &edits);
+}
+
+/// An include of a file read wholly before it reads nothing (the driver reads each file once):
+/// added or removed, it is one statement no phase checks (2026-11-29, seventeenth session; a
+/// full compile before). In the split scene (root `edit.scn` includes `blocks/b0.scn`,
+/// `b1.scn` (which includes `inner.scn`) and `b2.scn`, read last): `b0.scn` included again
+/// after `b2.scn`, `b1.scn` and `inner.scn` included from `b2.scn`, each taken out again, are
+/// incremental; an include of a file read later (`b2.scn` from `b1.scn`), of the file itself
+/// or of one that includes it (a cycle) is not.
+#[test]
+fn an_include_of_a_file_read_before_it_is_an_inert_statement() {
+    let path = Path::new("scenes/edit.scn");
+    let mut scene = split_scene();
+    let b2 = "include \"blocks/b2.scn\"\n";
+    let b2_again = "include \"blocks/b2.scn\"\ninclude \"blocks/b0.scn\"\n";
+    // (file, from, to, fast): the first `from` in the file (of `split_scene`'s list) replaced.
+    let edits: &[(usize, &str, &str, bool)] = &[
+        (0, b2, b2_again, true),
+        (0, b2_again, b2, true),
+        (3, "scnc 1\n", "scnc 1\ninclude \"b1.scn\"\n", true),
+        (3, "include \"b1.scn\"\n", "", true),
+        (3, "scnc 1\n", "scnc 1\ninclude \"inner.scn\"\n", true),
+        (3, "include \"inner.scn\"\n", "", true),
+        // `b2.scn` is read after `b1.scn`: every later file's place moves.
+        (
+            2,
+            "let lift = k + 1\n",
+            "let lift = k + 1\ninclude \"b2.scn\"\n",
+            false,
+        ),
+        (2, "include \"b2.scn\"\n", "", false),
+        // Cycles: the file itself, and the file that includes it.
+        (1, "scnc 1\n", "scnc 1\ninclude \"b0.scn\"\n", false),
+        (1, "include \"b0.scn\"\n", "", false),
+        (4, "scnc 1\n", "scnc 1\ninclude \"b1.scn\"\n", false),
+    ];
+    let mut inc = Incremental::new(Overrides::default());
+    for (step, &(file, from, to, fast)) in [(0, "", "", false)].iter().chain(edits).enumerate() {
+        if step > 0 {
+            let text = &mut scene[file].1;
+            let edited = text.replacen(from, to, 1);
+            assert_ne!(&edited, text, "{from}");
+            *text = edited;
+        }
+        let mut loader = MemLoader::new();
+        for (name, text) in scene.iter() {
+            loader.insert(Path::new("scenes").join(name), text.clone());
+        }
+        let mut sources = SourceMap::new();
+        let got = inc.compile(path, &loader, &mut sources);
+        let label = format!("step {step}: {to:?} in file {file} ({:?})", inc.reuse);
+        let root = &scene[0].1;
+        assert_as_full_compile(&label, &got, &sources, &loader, &Overrides::default(), root);
+        if step > 0 {
+            let took = matches!(inc.reuse, Reuse::Statements { .. });
+            assert_eq!(took, fast, "{label}");
+        }
+    }
+}
+
+/// An include pointed at another file: the old file's removal, then the new file's addition
+/// at the same place (2026-11-29, seventeenth session; a full compile before), taken where
+/// each half is (the old file read last by this include, the new one not read or read wholly
+/// before it).
+#[test]
+fn an_include_pointed_at_another_file_is_a_removal_and_an_addition() {
+    let path = Path::new("scenes/edit.scn");
+    let mut scene = split_scene();
+    let b2 = "include \"blocks/b2.scn\"\n";
+    let objs = "include \"objs.scn\"\n";
+    let extra = "include \"extra.scn\"\n";
+    let b0 = "include \"blocks/b0.scn\"\n";
+    let edits: &[(usize, &str, &str, bool)] = &[
+        // `objs.scn` included after `b2.scn` (read last), then pointed at `extra.scn` (a
+        // material) and back.
+        (0, b2, &format!("{b2}{objs}"), true),
+        (0, objs, extra, true),
+        (0, extra, objs, true),
+        // To a file read before it (`objs.scn` removed, the include reads nothing), and from
+        // there to a file not read (nothing removed, `extra.scn` added).
+        (0, objs, "include \"blocks/b1.scn\"\n", true),
+        (
+            0,
+            "b2.scn\"\ninclude \"blocks/b1.scn\"",
+            "b2.scn\"\ninclude \"extra.scn\"",
+            true,
+        ),
+        // `b0.scn` is not the last read (every later file's id would move), and `b2.scn` holds
+        // groups (which the removal does not take out).
+        (0, b0, objs, false),
+        (0, objs, b0, false),
+        (0, b2, "include \"blocks/b1.scn\"\n", false),
+    ];
+    let mut inc = Incremental::new(Overrides::default());
+    for (step, &(file, from, to, fast)) in [(0, "", "", false)].iter().chain(edits).enumerate() {
+        if step > 0 {
+            let text = &mut scene[file].1;
+            let edited = text.replacen(from, to, 1);
+            assert_ne!(&edited, text, "{from}");
+            *text = edited;
+        }
+        let mut loader = MemLoader::new();
+        for (name, text) in scene.iter() {
+            loader.insert(Path::new("scenes").join(name), text.clone());
+        }
+        loader.insert("scenes/extra.scn", INCLUDED);
+        loader.insert("scenes/objs.scn", INCLUDED_OBJECTS);
+        let mut sources = SourceMap::new();
+        let got = inc.compile(path, &loader, &mut sources);
+        let label = format!("step {step}: {to:?} in file {file} ({:?})", inc.reuse);
+        let root = &scene[0].1;
+        assert_as_full_compile(&label, &got, &sources, &loader, &Overrides::default(), root);
+        if step > 0 {
+            let took = matches!(inc.reuse, Reuse::Statements { .. });
+            assert_eq!(took, fast, "{label}");
+        }
+    }
+}

@@ -240,10 +240,11 @@ pub(super) mod tests {
         let new = "scnc 1\nlet a = 1\nlet b = 2\n";
         let spans = spans_of(old);
         let r = region(FileId(0), old, new, &spans).expect("an edit");
-        // The `let`'s span takes the blanks after its value (as pest's), so it is touched too.
-        assert_eq!(spans[1], (7, 17));
-        assert_eq!(r.stmts, 0..2);
-        assert_eq!(r.bytes, 0..new.len());
+        // The `let`'s span ends at its value (not at the newline after it, as pest's does);
+        // it is the statement before the edit, parsed again for its look past its end.
+        assert_eq!(spans[1], (7, 16));
+        assert_eq!(r.stmts, 1..2);
+        assert_eq!(r.bytes, 7..new.len());
     }
 
     #[test]
@@ -273,9 +274,10 @@ pub(super) mod tests {
         let wider = widened(&r, &spans, new.len()).expect("a statement after it");
         assert!(new[wider.bytes.clone()].ends_with("let a = 1\n// let b = 2\n"));
         let (old_range, replaced) = changed(&wider, &spans, parse(&wider).expect("parses"));
-        // `let a`'s span takes the comment after it (blanks), so it is one of the changed.
-        assert_eq!(old_range.end, 3);
-        assert!(replaced.len() < old_range.len());
+        // `let a`'s span ends at its value, so the comment after it leaves it as it was: only
+        // `let b` changed (removed).
+        assert_eq!(old_range, 2..3);
+        assert!(replaced.is_empty());
     }
 
     #[test]

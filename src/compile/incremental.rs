@@ -25,9 +25,10 @@
 //! syntax gets the full compile's diagnostics from the memo of the last text that parsed
 //! ([`super::broken`]), which stays for the edit that fixes it (diffed against that text). Anything
 //! else is a full compile, which is always correct: a file-level diagnostic (an include that
-//! cannot be read or closes a cycle), an include added or removed but as `include_edit`
-//! takes it (its file's statements added or removed as a block, the file read last) or
-//! edited, a syntax error in a
+//! cannot be read or closes a cycle), an include added, removed or pointed at another file
+//! but as `include_edit` takes it (its file's statements added or removed as a block, the
+//! file read last; an include of a file read before it, which reads nothing; a retarget as a
+//! removal and an addition), a syntax error in a
 //! scene with includes that loses a declaration or breaks two files (a syntax error in one
 //! file of several is answered from that file's statements, seventh session) or one
 //! [`super::broken`] declines, a `let` or `group` added or removed among declarations, an edit of a

@@ -255,7 +255,8 @@ pub enum Stmt {
 }
 
 impl Stmt {
-    /// The whole statement's span.
+    /// The whole statement's span: from its keyword to its last token (a `let`'s value, a
+    /// block-less declaration's constructor), never the blanks or comments after it.
     pub fn span(&self) -> Span {
         match self {
             Stmt::Version { span, .. }

@@ -114,11 +114,15 @@ impl Converter {
                 path: self.top_term(part(&mut inner, "include has a path")),
                 span,
             },
-            Rule::let_stmt => Stmt::Let {
-                name: self.ident(part(&mut inner, "let has a name")),
-                value: self.top_expr(part(&mut inner, "let has a value")),
-                span,
-            },
+            Rule::let_stmt => {
+                let name = self.ident(part(&mut inner, "let has a name"));
+                let value = self.top_expr(part(&mut inner, "let has a value"));
+                Stmt::Let {
+                    span: to_last_token(span, value.span),
+                    name,
+                    value,
+                }
+            }
             Rule::camera => Stmt::Camera {
                 name: self.ident(part(&mut inner, "camera has a name")),
                 body: self.block(part(&mut inner, "camera has a block")),
@@ -140,12 +144,13 @@ impl Converter {
                 let name = self.ident(part(&mut inner, "decl has a name"));
                 let ctor = self.ctor(part(&mut inner, "decl has a constructor"));
                 let body = inner.next().map(|b| self.block(b));
+                let last = body.as_ref().map_or(ctor.span, |b| b.span);
                 Stmt::Decl(Box::new(Decl {
                     kind,
                     name,
                     ctor,
                     body,
-                    span,
+                    span: to_last_token(span, last),
                 }))
             }
             _ => unreachable!("grammar: `statement` has no other alternatives"),
@@ -257,4 +262,16 @@ fn part<'i>(pairs: &mut Pairs<'i, Rule>, what: &str) -> Pair<'i, Rule> {
         Some(pair) => pair,
         None => unreachable!("grammar: {what}"),
     }
+}
+
+/// A statement's span (`whole`, pest's) cut at the end of its last part (`last`): pest's
+/// `let_stmt` and a block-less `decl` take the blanks and comments after their last token
+/// (skipped while looking for a further operator or a `{`), and a statement must not change
+/// with what follows it (an incremental compile maps an edit to the statements it touches).
+fn to_last_token(whole: Span, last: Span) -> Span {
+    Span::new(
+        whole.file,
+        whole.start as usize,
+        last.end.max(whole.start) as usize,
+    )
 }

@@ -283,10 +283,13 @@ impl Cursor<'_> {
                 self.eat(b'=')?;
                 self.skip();
                 let value = self.top_expr()?;
+                // The statement ends at its value's last token, not at the blanks and
+                // comments the look for a further operator passed over.
+                let end = value.span.end as usize;
                 Stmt::Let {
                     name,
                     value,
-                    span: self.span(start, self.pos),
+                    span: self.span(start, end),
                 }
             }
             "camera" => {
@@ -356,20 +359,21 @@ impl Cursor<'_> {
         self.eat(b'=')?;
         self.skip();
         let ctor = self.ctor()?;
-        // Without a block the span keeps the whitespace after the constructor, as pest's
-        // `ctor ~ block?` does.
         self.skip();
         let body = if self.peek() == Some(b'{') {
             Some(self.block()?)
         } else {
             None
         };
+        // Without a block the statement ends at its constructor, not at the blanks and
+        // comments the look for a `{` passed over.
+        let end = body.as_ref().map_or(ctor.span.end, |b| b.span.end) as usize;
         Some(Decl {
             kind,
             name,
             ctor,
             body,
-            span: self.span(start, self.pos),
+            span: self.span(start, end),
         })
     }
 

@@ -10,6 +10,12 @@
 //! and `texture` declarations with them ([`CheckMemo::add_or_remove_decl`]); the version
 //! header and the include are checked in no phase.
 //!
+//! An include of a file read wholly before it (a line duplicated below itself: the driver reads
+//! each file once) reads nothing: added or removed, it is one statement no phase checks, its
+//! place kept (2026-11-29, seventeenth session). An include pointed at another file is the old
+//! file's removal, then the new file's addition at the same place (with no shift: the edit's
+//! moved every span already), each taken as above.
+//!
 //! Taken only where the file ids stay those of a fresh compile and no other file changes its
 //! reading: the file added is read last of the scene's files (no file is first read after the
 //! include) and the one removed was the last read, by this include, and no other include names
@@ -60,6 +66,30 @@ impl Memo {
             ([include @ Stmt::Include { path, .. }], []) => {
                 self.include_removed(file, region, old, include, path, sources)
             }
+            ([was @ Stmt::Include { path: from, .. }], [now @ Stmt::Include { path: to, .. }]) => {
+                // Pointed at another file: the old one's removal, then the new one's addition
+                // at the same place, each as above (a fresh compile gives the new file the id
+                // the old one had, when that was the last read).
+                let before = self.spans.len();
+                let removed =
+                    self.include_removed(file, region, old.clone(), was, from, sources)?;
+                // The list index the removed block (the file's statements and the include) began at.
+                let at = old.end.checked_sub(before - self.spans.len())?;
+                let place = now.span().start;
+                let none = Region {
+                    shift: crate::source::Shift {
+                        file,
+                        start: place,
+                        old_end: place,
+                        new_end: place,
+                    },
+                    stmts: at..at,
+                    bytes: place as usize..place as usize,
+                };
+                let sources = self.sources.clone();
+                let added = self.include_added(file, loader, &none, at..at, now, to, sources)?;
+                Some(removed + added)
+            }
             _ => None,
         }
     }
@@ -77,7 +107,12 @@ impl Memo {
         mut sources: SourceMap,
     ) -> Option<usize> {
         let path = resolve(&self.sources, file, name)?;
-        // Read already (elsewhere, or a cycle), or too deep: the driver's business.
+        if let Some(id) = self.sources.find(&path) {
+            // Read wholly before this place: the driver reads nothing for it.
+            self.read_before(id, file, old.start).then_some(())?;
+            return self.inert_include(region, old, &[], std::slice::from_ref(include), sources);
+        }
+        // Too deep: the driver's business.
         let depth = self.check.order.depth(file);
         if self.sources.find(&path).is_some() || depth + 1 >= MAX_INCLUDE_DEPTH {
             return None;
@@ -125,6 +160,11 @@ impl Memo {
     ) -> Option<usize> {
         let path = resolve(&self.sources, file, name)?;
         let id = self.sources.find(&path)?;
+        let reader = self.check.order.included_at(id) == Some(name.span);
+        if !reader && self.read_before(id, file, old.start) {
+            // A later include of a file read before it: it read nothing.
+            return self.inert_include(region, old, std::slice::from_ref(include), &[], sources);
+        }
         // The last file read, and read by this include (not one before it of the same file).
         let last = id.0 as usize + 1 == self.scene_files && id != FileId(0);
         if !last || self.check.order.included_at(id) != Some(name.span) {
@@ -189,6 +229,36 @@ impl Memo {
             }
             Some(stmts) => self.check_block(&sources, block, &stmts, &[], &region.shift)?,
         };
+        self.sources = sources;
+        Some(checked)
+    }
+
+    /// Whether the scene file `id` is read wholly before the list index `at` of `file`'s
+    /// statements (not the root, not `file`, none of its statements at or after `at`): then
+    /// it is not `file` or a file that includes it (each of those has a statement after `at`,
+    /// the include that reads the next file toward `file`), so an include of it at `at` closes
+    /// no cycle, and the driver, which reads each file once, reads nothing for it.
+    fn read_before(&self, id: FileId, file: FileId, at: usize) -> bool {
+        let (before, after) = self.files.split_at(at.min(self.files.len()));
+        id != FileId(0)
+            && id != file
+            && (id.0 as usize) < self.scene_files
+            && before.contains(&id)
+            && !after.contains(&id)
+    }
+
+    /// An include that reads nothing (`old_stmts` or `new`, one statement at the list range
+    /// `old`) removed or added: a statement no phase checks, its place alone kept.
+    fn inert_include(
+        &mut self,
+        region: &Region,
+        old: Range<usize>,
+        old_stmts: &[Stmt],
+        new: &[Stmt],
+        sources: SourceMap,
+    ) -> Option<usize> {
+        self.move_spans(region, old.clone(), new)?;
+        let checked = self.check_block(&sources, old, old_stmts, new, &region.shift)?;
         self.sources = sources;
         Some(checked)
     }

@@ -52,8 +52,8 @@ impl Cursor<'_> {
     /// `expr = term ~ (bin_op ~ term)*`, folded like the converter folds it.
     ///
     /// pest's `term ~ (bin_op ~ term)*` keeps the whitespace after the first term (the
-    /// sequence's skip) but not after a later one (a failed repetition's): the end of a `let`
-    /// statement's span shows which, so the cursor is left where pest leaves it.
+    /// sequence's skip) but not after a later one (a failed repetition's); the cursor is left
+    /// where pest leaves it (a `let` statement's span ends at its value either way).
     pub fn expr(&mut self) -> Option<Expr> {
         let first = self.term()?;
         self.skip();

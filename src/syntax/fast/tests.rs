@@ -355,3 +355,25 @@ fn a_cut_statements_failure_is_told_over_the_run_after_it() {
     eprintln!("{told} of {total} told");
     assert!(told >= 120, "only {told} of {total} told");
 }
+
+/// A `let` and a block-less declaration end at their last token (both parsers): the blanks
+/// and comments after them, which pest's rules skip while looking for more, are not theirs.
+#[test]
+fn a_statement_span_ends_at_its_last_token() {
+    let text =
+        "scnc 1\nlet a = 1  // one\n\nlet b = a + 2 /* two */\nmesh m = quad  \n\n// after\n";
+    for statements in [
+        fast::parse(FileId(0), text).map(|(s, _)| s),
+        parse_with_pest(FileId(0), text).map(|(f, _)| f.statements),
+    ] {
+        let statements = statements.expect("parses");
+        let texts: Vec<&str> = statements
+            .iter()
+            .map(|s| &text[s.span().start as usize..s.span().end as usize])
+            .collect();
+        assert_eq!(
+            texts,
+            ["scnc 1", "let a = 1", "let b = a + 2", "mesh m = quad"]
+        );
+    }
+}
