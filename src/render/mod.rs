@@ -663,6 +663,10 @@ impl Job<'_> {
     ) -> RayCounts {
         let mut counts = RayCounts::default();
         let size = estimate::FIRST_BATCH;
+        if let Some(lit) = &self.rect_lit {
+            self.first_batches_side_by_side(lit, t, rows, (&mut counts, scratch));
+            return counts;
+        }
         for y in t.y0..t.y1 {
             for x in t.x0..t.x1 {
                 let sequences = rng::PixelSequences::new(self.scene.settings.seed, x, y);
@@ -677,6 +681,48 @@ impl Job<'_> {
             }
         }
         counts
+    }
+
+    /// [`Job::first_batches`] on the rectangle-light path: several pixels' first batches a
+    /// run (`RectLit::first_batches`), in the tile's pixel order, the same sums.
+    fn first_batches_side_by_side(
+        &self,
+        lit: &RectLit<'_>,
+        t: Tile,
+        rows: &mut TileRows<'_, Accumulator>,
+        (counts, scratch): (&mut RayCounts, &mut Scratch),
+    ) {
+        const MOST: usize = crate::shade::light::rect_lanes::LANES;
+        let size = estimate::FIRST_BATCH;
+        let per_run = RectLit::first_batch_pixels(size).min(MOST);
+        let seed = self.scene.settings.seed;
+        let mut pixels = [(0, 0); MOST];
+        let mut accs = [Accumulator::default(); MOST];
+        let mut n = 0;
+        let mut flush = |pixels: &[(u32, u32)],
+                         accs: &mut [Accumulator],
+                         rows: &mut TileRows<'_, Accumulator>| {
+            accs.fill(Accumulator::default());
+            lit.first_batches(&self.camera, seed, (pixels, size), accs, counts, scratch);
+            for (&(x, y), acc) in pixels.iter().zip(accs.iter()) {
+                if let Some(out) = rows.at(x, y) {
+                    *out = *acc;
+                }
+            }
+        };
+        for y in t.y0..t.y1 {
+            for x in t.x0..t.x1 {
+                pixels[n] = (x, y);
+                n += 1;
+                if n == per_run {
+                    flush(&pixels[..n], &mut accs[..n], rows);
+                    n = 0;
+                }
+            }
+        }
+        if n > 0 {
+            flush(&pixels[..n], &mut accs[..n], rows);
+        }
     }
 
     /// Every pixel of the tile to its first whole batch, unless it stops before

@@ -265,6 +265,45 @@ impl<'a> RectLit<'a> {
         }
     }
 
+    /// The first `samples` samples (from sample 0) of each of `pixels` (at most
+    /// [`RectLit::first_batch_pixels`] of them), each added to its own accumulator in `accs`
+    /// in order: what [`RectLit::pixel`] computes for each pixel alone, in one run whose lanes
+    /// are the pixels' samples side by side (an adaptive render's first batch is 2 samples, a
+    /// run of 2 in an 8-lane kernel: four pixels take one run, not four). Each lane's
+    /// operations are the same for any run, so each pixel's sums are the same bits.
+    #[allow(clippy::too_many_arguments)] // reason: the pixels, their sinks and the tile's state
+    pub(super) fn first_batches(
+        &self,
+        camera: &PinholeCamera,
+        seed: u64,
+        (pixels, samples): (&[(u32, u32)], u32),
+        accs: &mut [Accumulator],
+        counts: &mut RayCounts,
+        scratch: &mut Scratch,
+    ) {
+        debug_assert!(pixels.len() <= Self::first_batch_pixels(samples));
+        debug_assert_eq!(pixels.len(), accs.len());
+        let kernel = FirstBatchKernel {
+            lit: self,
+            camera,
+            seed,
+            pixels,
+            samples: samples as usize,
+            accs,
+            counts,
+            scratch,
+        };
+        match self.avx2 {
+            Some(avx2) => avx2.run(kernel),
+            None => kernel.run(),
+        }
+    }
+
+    /// How many pixels' first `samples` samples [`RectLit::first_batches`] takes in one run.
+    pub(super) fn first_batch_pixels(samples: u32) -> usize {
+        (LANES / (samples as usize).max(1)).max(1)
+    }
+
     /// Traces lane `i`'s camera ray (from the eye along the run's direction) into it: a
     /// shading point (to rebuild, for a flat hit), or the radiance it sees
     /// (`integrator::radiance_scaled`'s first half).
@@ -521,6 +560,72 @@ impl PixelKernel<'_, '_> {
                 }
             }
         }
+    }
+}
+
+/// Pixels' first samples side by side ([`RectLit::first_batches`]), to run compiled for AVX2
+/// or not.
+struct FirstBatchKernel<'r, 'a> {
+    lit: &'r RectLit<'a>,
+    camera: &'r PinholeCamera,
+    seed: u64,
+    pixels: &'r [(u32, u32)],
+    /// Each pixel's, from sample 0.
+    samples: usize,
+    accs: &'r mut [Accumulator],
+    counts: &'r mut RayCounts,
+    scratch: &'r mut Scratch,
+}
+
+impl FirstBatchKernel<'_, '_> {
+    #[inline(always)]
+    fn run(self) {
+        let FirstBatchKernel {
+            lit,
+            camera,
+            seed,
+            pixels,
+            samples,
+            accs,
+            counts,
+            scratch,
+        } = self;
+        let eye = camera.eye();
+        let mut lanes = Run::default();
+        let mut offsets = [Vec2::ZERO; LANES];
+        let mut at = [Vec2::ZERO; LANES];
+        let each = samples.min(LANES);
+        if each == 0 {
+            return;
+        }
+        let mut len = 0;
+        for (&(x, y), lane) in pixels.iter().zip((0..LANES).step_by(each)) {
+            let sequences = PixelSequences::new(seed, x, y);
+            let run = 0..each as u32;
+            let lanes_of = lane..lane + each;
+            sequences.points_2d(STREAM_SUBPIXEL, run.clone(), &mut offsets[lanes_of.clone()]);
+            sequences.points_2d(STREAM_LIGHTS, run, &mut lanes.u[lanes_of.clone()]);
+            let film = Vec2::new(x as f32, y as f32);
+            for (a, o) in at[lanes_of.clone()].iter_mut().zip(&offsets[lanes_of]) {
+                *a = film + *o;
+            }
+            len = lane + each;
+        }
+        let add = |i: usize, l: Vec3| {
+            if let Some(acc) = accs.get_mut(i / each) {
+                acc.add_replicate(l, PixelSequences::replicate((i % each) as u32));
+            }
+        };
+        lit.run(camera, eye, (&at, len), &mut lanes, add, counts, scratch);
+    }
+}
+
+impl Kernel<Avx2> for FirstBatchKernel<'_, '_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn call(self, _: Avx2) {
+        self.run();
     }
 }
 
