@@ -265,31 +265,31 @@ impl<'a> RectLit<'a> {
         }
     }
 
-    /// The first `samples` samples (from sample 0) of each of `pixels` (at most
-    /// [`RectLit::first_batch_pixels`] of them), each added to its own accumulator in `accs`
-    /// in order: what [`RectLit::pixel`] computes for each pixel alone, in one run whose lanes
-    /// are the pixels' samples side by side (an adaptive render's first batch is 2 samples, a
-    /// run of 2 in an 8-lane kernel: four pixels take one run, not four). Each lane's
-    /// operations are the same for any run, so each pixel's sums are the same bits.
-    #[allow(clippy::too_many_arguments)] // reason: the pixels, their sinks and the tile's state
-    pub(super) fn first_batches(
+    /// Samples `samples` of each of `n` pixels (`pixel(k)`: the `k`th pixel and its
+    /// sequences; at most [`RectLit::pixels_a_run`] of them), each handed to
+    /// `add(k, radiance, replicate)` in order: what [`RectLit::pixel`] computes for each pixel
+    /// alone, in one run whose lanes are the pixels' samples side by side (an adaptive
+    /// render's first two batches are 2 samples each, a run of 2 in an 8-lane kernel: four
+    /// pixels take one run, not four). Each lane's operations are the same for any run, so
+    /// each pixel's sums are the same bits.
+    #[allow(clippy::too_many_arguments)] // reason: the pixels, their sink and the tile's state
+    pub(super) fn side_by_side<'s>(
         &self,
         camera: &PinholeCamera,
-        seed: u64,
-        (pixels, samples): (&[(u32, u32)], u32),
-        accs: &mut [Accumulator],
+        (n, pixel): (usize, impl Fn(usize) -> ((u32, u32), &'s PixelSequences)),
+        samples: std::ops::Range<u32>,
+        add: impl FnMut(usize, Vec3, Option<usize>),
         counts: &mut RayCounts,
         scratch: &mut Scratch,
     ) {
-        debug_assert!(pixels.len() <= Self::first_batch_pixels(samples));
-        debug_assert_eq!(pixels.len(), accs.len());
-        let kernel = FirstBatchKernel {
+        debug_assert!(n <= Self::pixels_a_run(samples.len() as u32));
+        let kernel = SideBySideKernel {
             lit: self,
             camera,
-            seed,
-            pixels,
-            samples: samples as usize,
-            accs,
+            n,
+            pixel,
+            samples,
+            add,
             counts,
             scratch,
         };
@@ -299,8 +299,9 @@ impl<'a> RectLit<'a> {
         }
     }
 
-    /// How many pixels' first `samples` samples [`RectLit::first_batches`] takes in one run.
-    pub(super) fn first_batch_pixels(samples: u32) -> usize {
+    /// How many pixels' batches of `samples` samples [`RectLit::side_by_side`] takes in one
+    /// run.
+    pub(super) fn pixels_a_run(samples: u32) -> usize {
         (LANES / (samples as usize).max(1)).max(1)
     }
 
@@ -563,64 +564,70 @@ impl PixelKernel<'_, '_> {
     }
 }
 
-/// Pixels' first samples side by side ([`RectLit::first_batches`]), to run compiled for AVX2
-/// or not.
-struct FirstBatchKernel<'r, 'a> {
+/// Pixels' batches side by side ([`RectLit::side_by_side`]), to run compiled for AVX2 or not.
+struct SideBySideKernel<'r, 'a, P, A> {
     lit: &'r RectLit<'a>,
     camera: &'r PinholeCamera,
-    seed: u64,
-    pixels: &'r [(u32, u32)],
-    /// Each pixel's, from sample 0.
-    samples: usize,
-    accs: &'r mut [Accumulator],
+    n: usize,
+    pixel: P,
+    samples: std::ops::Range<u32>,
+    add: A,
     counts: &'r mut RayCounts,
     scratch: &'r mut Scratch,
 }
 
-impl FirstBatchKernel<'_, '_> {
+impl<'s, P, A> SideBySideKernel<'_, '_, P, A>
+where
+    P: Fn(usize) -> ((u32, u32), &'s PixelSequences),
+    A: FnMut(usize, Vec3, Option<usize>),
+{
     #[inline(always)]
     fn run(self) {
-        let FirstBatchKernel {
+        let SideBySideKernel {
             lit,
             camera,
-            seed,
-            pixels,
+            n,
+            pixel,
             samples,
-            accs,
+            mut add,
             counts,
             scratch,
         } = self;
+        let each = samples.len().min(LANES);
+        if each == 0 {
+            return;
+        }
+        let run = samples.start..samples.start + each as u32;
         let eye = camera.eye();
         let mut lanes = Run::default();
         let mut offsets = [Vec2::ZERO; LANES];
         let mut at = [Vec2::ZERO; LANES];
-        let each = samples.min(LANES);
-        if each == 0 {
-            return;
-        }
         let mut len = 0;
-        for (&(x, y), lane) in pixels.iter().zip((0..LANES).step_by(each)) {
-            let sequences = PixelSequences::new(seed, x, y);
-            let run = 0..each as u32;
+        for (k, lane) in (0..n).zip((0..LANES).step_by(each)) {
+            let ((x, y), sequences) = pixel(k);
             let lanes_of = lane..lane + each;
             sequences.points_2d(STREAM_SUBPIXEL, run.clone(), &mut offsets[lanes_of.clone()]);
-            sequences.points_2d(STREAM_LIGHTS, run, &mut lanes.u[lanes_of.clone()]);
+            sequences.points_2d(STREAM_LIGHTS, run.clone(), &mut lanes.u[lanes_of.clone()]);
             let film = Vec2::new(x as f32, y as f32);
             for (a, o) in at[lanes_of.clone()].iter_mut().zip(&offsets[lanes_of]) {
                 *a = film + *o;
             }
             len = lane + each;
         }
+        let start = run.start;
         let add = |i: usize, l: Vec3| {
-            if let Some(acc) = accs.get_mut(i / each) {
-                acc.add_replicate(l, PixelSequences::replicate((i % each) as u32));
-            }
+            let replicate = PixelSequences::replicate(start + (i % each) as u32);
+            add(i / each, l, replicate);
         };
         lit.run(camera, eye, (&at, len), &mut lanes, add, counts, scratch);
     }
 }
 
-impl Kernel<Avx2> for FirstBatchKernel<'_, '_> {
+impl<'s, P, A> Kernel<Avx2> for SideBySideKernel<'_, '_, P, A>
+where
+    P: Fn(usize) -> ((u32, u32), &'s PixelSequences),
+    A: FnMut(usize, Vec3, Option<usize>),
+{
     type Output = ();
 
     #[inline(always)]
