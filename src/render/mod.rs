@@ -663,6 +663,10 @@ impl Job<'_> {
     ) -> RayCounts {
         let mut counts = RayCounts::default();
         let size = estimate::FIRST_BATCH;
+        if let Some(lit) = &self.rect_lit {
+            self.first_batches_side_by_side(lit, t, rows, (&mut counts, scratch));
+            return counts;
+        }
         for y in t.y0..t.y1 {
             for x in t.x0..t.x1 {
                 let sequences = rng::PixelSequences::new(self.scene.settings.seed, x, y);
@@ -679,6 +683,122 @@ impl Job<'_> {
         counts
     }
 
+    /// [`Job::first_batches`] on the rectangle-light path: several pixels' first batches a
+    /// run (`RectLit::side_by_side`), the same sums.
+    fn first_batches_side_by_side(
+        &self,
+        lit: &RectLit<'_>,
+        t: Tile,
+        rows: &mut TileRows<'_, Accumulator>,
+        (counts, scratch): (&mut RayCounts, &mut Scratch),
+    ) {
+        let size = estimate::FIRST_BATCH;
+        let seed = self.scene.settings.seed;
+        let pixels: Vec<(u32, u32)> = (t.y0..t.y1)
+            .flat_map(|y| (t.x0..t.x1).map(move |x| (x, y)))
+            .collect();
+        let sequences: Vec<_> = pixels
+            .iter()
+            .map(|&(x, y)| rng::PixelSequences::new(seed, x, y))
+            .collect();
+        let mut accs = vec![Accumulator::default(); pixels.len()];
+        let per_run = RectLit::pixels_a_run(size);
+        for start in (0..pixels.len()).step_by(per_run) {
+            let n = per_run.min(pixels.len() - start);
+            let pixel = |k: usize| (pixels[start + k], &sequences[start + k]);
+            let add = |k: usize, l, replicate| accs[start + k].add_replicate(l, replicate);
+            let sinks = (&mut *counts, &mut *scratch);
+            lit.side_by_side(&self.camera, (n, pixel), 0..size, add, sinks.0, sinks.1);
+        }
+        for (&(x, y), acc) in pixels.iter().zip(&accs) {
+            if let Some(out) = rows.at(x, y) {
+                *out = *acc;
+            }
+        }
+    }
+
+    /// [`Job::tile_to_pool`] on the rectangle-light path: batch by batch over the tile's
+    /// pixels, those that go on taking a batch of a few samples several pixels a run
+    /// (`RectLit::side_by_side`); each pixel's batches, looks and stop are
+    /// [`Job::pixel_to_pool`]'s, so the same bits.
+    #[allow(clippy::too_many_arguments)] // reason: the tile, its buffers and the sinks
+    fn tile_to_pool_side_by_side(
+        &self,
+        a: &Adaptive,
+        lit: &RectLit<'_>,
+        t: Tile,
+        first: &FirstBatches,
+        rows: &mut TileRows<'_, Option<PixelState>>,
+        (counts, scratch): (&mut RayCounts, &mut Scratch),
+    ) {
+        let seed = self.scene.settings.seed;
+        let pixels: Vec<(u32, u32)> = (t.y0..t.y1)
+            .flat_map(|y| (t.x0..t.x1).map(move |x| (x, y)))
+            .collect();
+        let sequences: Vec<_> = pixels
+            .iter()
+            .map(|&(x, y)| rng::PixelSequences::new(seed, x, y))
+            .collect();
+        let rules: Vec<_> = pixels
+            .iter()
+            .map(|&(x, y)| self.rules(a, x, y, first))
+            .collect();
+        let mut accs = vec![Accumulator::default(); pixels.len()];
+        let mut open: Vec<usize> = (0..pixels.len()).collect();
+        let mut taken = 0;
+        for (batch, &size) in a.batch_sizes.iter().enumerate().take(POOL_BATCH + 1) {
+            let per_run = RectLit::pixels_a_run(size);
+            if batch == 0 {
+                // Taken in the first pass, for every pixel.
+                for &i in &open {
+                    let (x, y) = pixels[i];
+                    accs[i] = first.at(x, y).copied().unwrap_or_default();
+                }
+            } else if per_run > 1 {
+                for run in open.chunks(per_run) {
+                    let pixel = |k: usize| (pixels[run[k]], &sequences[run[k]]);
+                    let add = |k: usize, l, replicate| accs[run[k]].add_replicate(l, replicate);
+                    let sinks = (&mut *counts, &mut *scratch);
+                    let samples = taken..taken + size;
+                    let n = run.len();
+                    lit.side_by_side(&self.camera, (n, pixel), samples, add, sinks.0, sinks.1);
+                }
+            } else {
+                for &i in &open {
+                    let scale = footprint_scale(taken + size);
+                    let samples = taken..taken + size;
+                    let sinks = (&mut *counts, &mut *scratch);
+                    let acc = &mut accs[i];
+                    self.progressive_batch(pixels[i], &sequences[i], samples, scale, acc, sinks);
+                }
+            }
+            taken += size;
+            open.retain(|&i| {
+                let acc = accs[i];
+                let state = match batch == POOL_BATCH {
+                    true => Some(PixelState::Pooling { acc, taken }),
+                    false => self
+                        .decide(a, &rules[i], &acc, taken, None)
+                        .map(PixelState::Done),
+                };
+                let Some(state) = state else {
+                    return true;
+                };
+                let (x, y) = pixels[i];
+                if let Some(out) = rows.at(x, y) {
+                    *out = Some(state);
+                }
+                false
+            });
+        }
+        for i in open {
+            let (x, y) = pixels[i];
+            if let Some(out) = rows.at(x, y) {
+                *out = Some(PixelState::Done(accs[i].finish(taken, true)));
+            }
+        }
+    }
+
     /// Every pixel of the tile to its first whole batch, unless it stops before
     /// ([`PixelState`]), taken before any pixel decides on it (`pooled_stop`), written into
     /// its `rows` of the band's buffer.
@@ -691,6 +811,11 @@ impl Job<'_> {
         scratch: &mut Scratch,
     ) -> RayCounts {
         let mut counts = RayCounts::default();
+        if let Some(lit) = &self.rect_lit {
+            let sinks = (&mut counts, scratch);
+            self.tile_to_pool_side_by_side(a, lit, t, first, rows, sinks);
+            return counts;
+        }
         for y in t.y0..t.y1 {
             for x in t.x0..t.x1 {
                 let state = self.pixel_to_pool(a, x, y, first, &mut counts, scratch);

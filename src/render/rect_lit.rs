@@ -265,6 +265,46 @@ impl<'a> RectLit<'a> {
         }
     }
 
+    /// Samples `samples` of each of `n` pixels (`pixel(k)`: the `k`th pixel and its
+    /// sequences; at most [`RectLit::pixels_a_run`] of them), each handed to
+    /// `add(k, radiance, replicate)` in order: what [`RectLit::pixel`] computes for each pixel
+    /// alone, in one run whose lanes are the pixels' samples side by side (an adaptive
+    /// render's first two batches are 2 samples each, a run of 2 in an 8-lane kernel: four
+    /// pixels take one run, not four). Each lane's operations are the same for any run, so
+    /// each pixel's sums are the same bits.
+    #[allow(clippy::too_many_arguments)] // reason: the pixels, their sink and the tile's state
+    pub(super) fn side_by_side<'s>(
+        &self,
+        camera: &PinholeCamera,
+        (n, pixel): (usize, impl Fn(usize) -> ((u32, u32), &'s PixelSequences)),
+        samples: std::ops::Range<u32>,
+        add: impl FnMut(usize, Vec3, Option<usize>),
+        counts: &mut RayCounts,
+        scratch: &mut Scratch,
+    ) {
+        debug_assert!(n <= Self::pixels_a_run(samples.len() as u32));
+        let kernel = SideBySideKernel {
+            lit: self,
+            camera,
+            n,
+            pixel,
+            samples,
+            add,
+            counts,
+            scratch,
+        };
+        match self.avx2 {
+            Some(avx2) => avx2.run(kernel),
+            None => kernel.run(),
+        }
+    }
+
+    /// How many pixels' batches of `samples` samples [`RectLit::side_by_side`] takes in one
+    /// run.
+    pub(super) fn pixels_a_run(samples: u32) -> usize {
+        (LANES / (samples as usize).max(1)).max(1)
+    }
+
     /// Traces lane `i`'s camera ray (from the eye along the run's direction) into it: a
     /// shading point (to rebuild, for a flat hit), or the radiance it sees
     /// (`integrator::radiance_scaled`'s first half).
@@ -521,6 +561,78 @@ impl PixelKernel<'_, '_> {
                 }
             }
         }
+    }
+}
+
+/// Pixels' batches side by side ([`RectLit::side_by_side`]), to run compiled for AVX2 or not.
+struct SideBySideKernel<'r, 'a, P, A> {
+    lit: &'r RectLit<'a>,
+    camera: &'r PinholeCamera,
+    n: usize,
+    pixel: P,
+    samples: std::ops::Range<u32>,
+    add: A,
+    counts: &'r mut RayCounts,
+    scratch: &'r mut Scratch,
+}
+
+impl<'s, P, A> SideBySideKernel<'_, '_, P, A>
+where
+    P: Fn(usize) -> ((u32, u32), &'s PixelSequences),
+    A: FnMut(usize, Vec3, Option<usize>),
+{
+    #[inline(always)]
+    fn run(self) {
+        let SideBySideKernel {
+            lit,
+            camera,
+            n,
+            pixel,
+            samples,
+            mut add,
+            counts,
+            scratch,
+        } = self;
+        let each = samples.len().min(LANES);
+        if each == 0 {
+            return;
+        }
+        let run = samples.start..samples.start + each as u32;
+        let eye = camera.eye();
+        let mut lanes = Run::default();
+        let mut offsets = [Vec2::ZERO; LANES];
+        let mut at = [Vec2::ZERO; LANES];
+        let mut len = 0;
+        for (k, lane) in (0..n).zip((0..LANES).step_by(each)) {
+            let ((x, y), sequences) = pixel(k);
+            let lanes_of = lane..lane + each;
+            sequences.points_2d(STREAM_SUBPIXEL, run.clone(), &mut offsets[lanes_of.clone()]);
+            sequences.points_2d(STREAM_LIGHTS, run.clone(), &mut lanes.u[lanes_of.clone()]);
+            let film = Vec2::new(x as f32, y as f32);
+            for (a, o) in at[lanes_of.clone()].iter_mut().zip(&offsets[lanes_of]) {
+                *a = film + *o;
+            }
+            len = lane + each;
+        }
+        let start = run.start;
+        let add = |i: usize, l: Vec3| {
+            let replicate = PixelSequences::replicate(start + (i % each) as u32);
+            add(i / each, l, replicate);
+        };
+        lit.run(camera, eye, (&at, len), &mut lanes, add, counts, scratch);
+    }
+}
+
+impl<'s, P, A> Kernel<Avx2> for SideBySideKernel<'_, '_, P, A>
+where
+    P: Fn(usize) -> ((u32, u32), &'s PixelSequences),
+    A: FnMut(usize, Vec3, Option<usize>),
+{
+    type Output = ();
+
+    #[inline(always)]
+    fn call(self, _: Avx2) {
+        self.run();
     }
 }
 
