@@ -683,6 +683,20 @@ impl Job<'_> {
         counts
     }
 
+    /// The tile's pixels in row order, each with its sample sequences (the side-by-side
+    /// paths' per-tile lists).
+    fn tile_pixels(&self, t: Tile) -> (Vec<(u32, u32)>, Vec<rng::PixelSequences>) {
+        let seed = self.scene.settings.seed;
+        let pixels: Vec<(u32, u32)> = (t.y0..t.y1)
+            .flat_map(|y| (t.x0..t.x1).map(move |x| (x, y)))
+            .collect();
+        let sequences = pixels
+            .iter()
+            .map(|&(x, y)| rng::PixelSequences::new(seed, x, y))
+            .collect();
+        (pixels, sequences)
+    }
+
     /// [`Job::first_batches`] on the rectangle-light path: several pixels' first batches a
     /// run (`RectLit::side_by_side`), the same sums.
     fn first_batches_side_by_side(
@@ -693,14 +707,7 @@ impl Job<'_> {
         (counts, scratch): (&mut RayCounts, &mut Scratch),
     ) {
         let size = estimate::FIRST_BATCH;
-        let seed = self.scene.settings.seed;
-        let pixels: Vec<(u32, u32)> = (t.y0..t.y1)
-            .flat_map(|y| (t.x0..t.x1).map(move |x| (x, y)))
-            .collect();
-        let sequences: Vec<_> = pixels
-            .iter()
-            .map(|&(x, y)| rng::PixelSequences::new(seed, x, y))
-            .collect();
+        let (pixels, sequences) = self.tile_pixels(t);
         let mut accs = vec![Accumulator::default(); pixels.len()];
         let per_run = RectLit::pixels_a_run(size);
         for start in (0..pixels.len()).step_by(per_run) {
@@ -731,14 +738,7 @@ impl Job<'_> {
         rows: &mut TileRows<'_, Option<PixelState>>,
         (counts, scratch): (&mut RayCounts, &mut Scratch),
     ) {
-        let seed = self.scene.settings.seed;
-        let pixels: Vec<(u32, u32)> = (t.y0..t.y1)
-            .flat_map(|y| (t.x0..t.x1).map(move |x| (x, y)))
-            .collect();
-        let sequences: Vec<_> = pixels
-            .iter()
-            .map(|&(x, y)| rng::PixelSequences::new(seed, x, y))
-            .collect();
+        let (pixels, sequences) = self.tile_pixels(t);
         let rules: Vec<_> = pixels
             .iter()
             .map(|&(x, y)| self.rules(a, x, y, first))
