@@ -2344,6 +2344,49 @@ fn edits_in_included_files_compile_as_a_fresh_compile_does() {
     );
 }
 
+/// The files besides a split scene that its include edits point at.
+const WITH_INCLUDED: &[(&str, &str)] = &[
+    ("scenes/extra.scn", INCLUDED),
+    ("scenes/objs.scn", INCLUDED_OBJECTS),
+];
+
+/// Compiles the files of `scene` (names under `scenes/`, with `extra` files beside them), then
+/// applies `edits` in turn, each `(file, from, to, fast)`: the first `from` in `scene[file]`
+/// replaced by `to`. Each compile must give what a fresh compile gives, and must take the
+/// incremental path exactly when `fast` says.
+fn replay_file_edits(
+    path: &Path,
+    mut scene: Vec<(String, String)>,
+    extra: &[(&str, &str)],
+    edits: &[(usize, &str, &str, bool)],
+) {
+    let mut inc = Incremental::new(Overrides::default());
+    for (step, &(file, from, to, fast)) in [(0, "", "", false)].iter().chain(edits).enumerate() {
+        if step > 0 {
+            let text = &mut scene[file].1;
+            let edited = text.replacen(from, to, 1);
+            assert_ne!(&edited, text, "{from}");
+            *text = edited;
+        }
+        let mut loader = MemLoader::new();
+        for (name, text) in scene.iter() {
+            loader.insert(Path::new("scenes").join(name), text.clone());
+        }
+        for &(name, text) in extra {
+            loader.insert(name, text);
+        }
+        let mut sources = SourceMap::new();
+        let got = inc.compile(path, &loader, &mut sources);
+        let label = format!("step {step}: {to:?} in file {file} ({:?})", inc.reuse);
+        let root = &scene[0].1;
+        assert_as_full_compile(&label, &got, &sources, &loader, &Overrides::default(), root);
+        if step > 0 {
+            let took = matches!(inc.reuse, Reuse::Statements { .. });
+            assert_eq!(took, fast, "{label}");
+        }
+    }
+}
+
 /// An include line added or removed (2026-11-29, fourteenth session): the included file's
 /// statements are added or removed as a block with it, checked in place, when the file is read
 /// last (no file's id moves) and no other include names it: a file of `object`s alone
@@ -2353,7 +2396,7 @@ fn edits_in_included_files_compile_as_a_fresh_compile_does() {
 #[test]
 fn an_include_added_or_removed_is_checked_as_a_block() {
     let path = Path::new("scenes/edit.scn");
-    let mut files = split_scene();
+    let files = split_scene();
     let one_file = vec![("edit.scn".to_string(), base_scene())];
     // (file, from, to, fast): the first `from` in the file replaced by `to`.
     let b2_head = "scnc 1\n";
@@ -2412,33 +2455,8 @@ fn an_include_added_or_removed_is_checked_as_a_block() {
         (0, "mesh spare", "include \"extra.scn\"\nmesh spare", true),
         (0, "include \"extra.scn\"\n", "", true),
     ];
-    let mut one = one_file;
-    for (scene, edits) in [(&mut files, edits), (&mut one, one_file_edits)] {
-        let mut inc = Incremental::new(Overrides::default());
-        for (step, &(file, from, to, fast)) in [(0, "", "", false)].iter().chain(edits).enumerate()
-        {
-            if step > 0 {
-                let text = &mut scene[file].1;
-                let edited = text.replacen(from, to, 1);
-                assert_ne!(&edited, text, "{from}");
-                *text = edited;
-            }
-            let mut loader = MemLoader::new();
-            for (name, text) in scene.iter() {
-                loader.insert(Path::new("scenes").join(name), text.clone());
-            }
-            loader.insert("scenes/extra.scn", INCLUDED);
-            loader.insert("scenes/objs.scn", INCLUDED_OBJECTS);
-            let mut sources = SourceMap::new();
-            let got = inc.compile(path, &loader, &mut sources);
-            let label = format!("step {step}: {to:?} in file {file} ({:?})", inc.reuse);
-            let root = &scene[0].1;
-            assert_as_full_compile(&label, &got, &sources, &loader, &Overrides::default(), root);
-            let took = matches!(inc.reuse, Reuse::Statements { .. });
-            if step > 0 {
-                assert_eq!(took, fast, "{label}");
-            }
-        }
+    for (scene, edits) in [(files, edits), (one_file, one_file_edits)] {
+        replay_file_edits(path, scene, WITH_INCLUDED, edits);
     }
 }
 
@@ -3442,7 +3460,7 @@ fn a_line_commented_out_after_a_let_is_an_edit_of_that_line_alone() {
 #[test]
 fn an_include_of_a_file_read_before_it_is_an_inert_statement() {
     let path = Path::new("scenes/edit.scn");
-    let mut scene = split_scene();
+    let scene = split_scene();
     let b2 = "include \"blocks/b2.scn\"\n";
     let b2_again = "include \"blocks/b2.scn\"\ninclude \"blocks/b0.scn\"\n";
     // (file, from, to, fast): the first `from` in the file (of `split_scene`'s list) replaced.
@@ -3466,28 +3484,7 @@ fn an_include_of_a_file_read_before_it_is_an_inert_statement() {
         (1, "include \"b0.scn\"\n", "", false),
         (4, "scnc 1\n", "scnc 1\ninclude \"b1.scn\"\n", false),
     ];
-    let mut inc = Incremental::new(Overrides::default());
-    for (step, &(file, from, to, fast)) in [(0, "", "", false)].iter().chain(edits).enumerate() {
-        if step > 0 {
-            let text = &mut scene[file].1;
-            let edited = text.replacen(from, to, 1);
-            assert_ne!(&edited, text, "{from}");
-            *text = edited;
-        }
-        let mut loader = MemLoader::new();
-        for (name, text) in scene.iter() {
-            loader.insert(Path::new("scenes").join(name), text.clone());
-        }
-        let mut sources = SourceMap::new();
-        let got = inc.compile(path, &loader, &mut sources);
-        let label = format!("step {step}: {to:?} in file {file} ({:?})", inc.reuse);
-        let root = &scene[0].1;
-        assert_as_full_compile(&label, &got, &sources, &loader, &Overrides::default(), root);
-        if step > 0 {
-            let took = matches!(inc.reuse, Reuse::Statements { .. });
-            assert_eq!(took, fast, "{label}");
-        }
-    }
+    replay_file_edits(path, scene, &[], edits);
 }
 
 /// An include pointed at another file: the old file's removal, then the new file's addition
@@ -3497,7 +3494,7 @@ fn an_include_of_a_file_read_before_it_is_an_inert_statement() {
 #[test]
 fn an_include_pointed_at_another_file_is_a_removal_and_an_addition() {
     let path = Path::new("scenes/edit.scn");
-    let mut scene = split_scene();
+    let scene = split_scene();
     let b2 = "include \"blocks/b2.scn\"\n";
     let objs = "include \"objs.scn\"\n";
     let extra = "include \"extra.scn\"\n";
@@ -3523,28 +3520,5 @@ fn an_include_pointed_at_another_file_is_a_removal_and_an_addition() {
         (0, objs, b0, false),
         (0, b2, "include \"blocks/b1.scn\"\n", false),
     ];
-    let mut inc = Incremental::new(Overrides::default());
-    for (step, &(file, from, to, fast)) in [(0, "", "", false)].iter().chain(edits).enumerate() {
-        if step > 0 {
-            let text = &mut scene[file].1;
-            let edited = text.replacen(from, to, 1);
-            assert_ne!(&edited, text, "{from}");
-            *text = edited;
-        }
-        let mut loader = MemLoader::new();
-        for (name, text) in scene.iter() {
-            loader.insert(Path::new("scenes").join(name), text.clone());
-        }
-        loader.insert("scenes/extra.scn", INCLUDED);
-        loader.insert("scenes/objs.scn", INCLUDED_OBJECTS);
-        let mut sources = SourceMap::new();
-        let got = inc.compile(path, &loader, &mut sources);
-        let label = format!("step {step}: {to:?} in file {file} ({:?})", inc.reuse);
-        let root = &scene[0].1;
-        assert_as_full_compile(&label, &got, &sources, &loader, &Overrides::default(), root);
-        if step > 0 {
-            let took = matches!(inc.reuse, Reuse::Statements { .. });
-            assert_eq!(took, fast, "{label}");
-        }
-    }
+    replay_file_edits(path, scene, WITH_INCLUDED, edits);
 }

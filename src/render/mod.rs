@@ -764,8 +764,8 @@ impl Job<'_> {
                     lit.side_by_side(&self.camera, (n, pixel), samples, add, sinks.0, sinks.1);
                 }
             } else {
+                let scale = footprint_scale(taken + size);
                 for &i in &open {
-                    let scale = footprint_scale(taken + size);
                     let samples = taken..taken + size;
                     let sinks = (&mut *counts, &mut *scratch);
                     let acc = &mut accs[i];

@@ -265,8 +265,8 @@ impl<'a> RectLit<'a> {
         }
     }
 
-    /// Samples `samples` of each of `n` pixels (`pixel(k)`: the `k`th pixel and its
-    /// sequences; at most [`RectLit::pixels_a_run`] of them), each handed to
+    /// Samples `samples` (a batch of at most eight) of each of `n` pixels (`pixel(k)`: the
+    /// `k`th pixel and its sequences; at most [`RectLit::pixels_a_run`] of them), each handed to
     /// `add(k, radiance, replicate)` in order: what [`RectLit::pixel`] computes for each pixel
     /// alone, in one run whose lanes are the pixels' samples side by side (an adaptive
     /// render's first two batches are 2 samples each, a run of 2 in an 8-lane kernel: four
@@ -282,7 +282,7 @@ impl<'a> RectLit<'a> {
         counts: &mut RayCounts,
         scratch: &mut Scratch,
     ) {
-        debug_assert!(n <= Self::pixels_a_run(samples.len() as u32));
+        debug_assert!(samples.len() <= LANES && n <= Self::pixels_a_run(samples.len() as u32));
         let kernel = SideBySideKernel {
             lit: self,
             camera,

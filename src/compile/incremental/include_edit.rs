@@ -74,7 +74,7 @@ impl Memo {
                 let removed =
                     self.include_removed(file, region, old.clone(), was, from, sources)?;
                 // The list index the removed block (the file's statements and the include) began at.
-                let at = old.end.checked_sub(before - self.spans.len())?;
+                let at = old.end.checked_sub(before.checked_sub(self.spans.len())?)?;
                 let place = now.span().start;
                 let none = Region {
                     shift: crate::source::Shift {
