@@ -19,7 +19,9 @@
 //! bound** at [`CONFIDENCE`], chi-square quantile, which kept cornell and env at 10% at 0.50–0.54×
 //! the target; the bound is still asked at the image's edge, where the block is cut and the
 //! spread has 3 degrees of freedom or fewer). An edge, a texture or a curved falloff across the
-//! block adds to the scatter: such pixels sample on.
+//! block adds to the scatter: such pixels sample on. A spread under a quarter of the target's
+//! variance is not trusted there ([`QUIET_SHARE`], since 2026-11-29, eighteenth session): the
+//! pixel takes its whole first round and looks again after 4 samples.
 //!
 //! **After 4 samples** (the whole first round, a 4-point net), it stops if the upper confidence
 //! bound of half that spread is within the target and its own per-sample estimate within twice
@@ -298,6 +300,11 @@ pub fn confident_error_with<'p>(
             true => Stop::OnEstimate,
             false => Stop::OnBound,
         };
+        if stop == Stop::OnEstimate && spread.relative_variance < QUIET_SHARE * target * target {
+            // Too quiet to trust after 2 samples: the pixel takes its whole first round and
+            // looks again (`QUIET_SHARE`).
+            return None;
+        }
         return first_batch_error(acc, spread, target, 1.0, stop);
     }
     if acc.count() == 2 * FIRST_BATCH {
@@ -317,6 +324,23 @@ pub fn confident_error_with<'p>(
     let within = |r: f64| r / n + floor <= target * target;
     (within(upper) && within(own)).then(|| (posterior_mean(pooled, dof) / n + floor).sqrt())
 }
+
+/// The share of the target's variance under which the look after the first batch (2 samples)
+/// does not trust its estimate: the pixel takes the rest of its first round (2 more samples,
+/// the 4-point net) and looks again after 4 (since 2026-11-29, eighteenth session). The
+/// estimate there is the block's 6-degree-of-freedom spread; one a quarter of the target's
+/// variance or less comes from a pixel at its target only 4% of the time (χ²₆ below 1.5), so
+/// it says mostly "lucky" or "far below the target", and the pixels that stopped on it carried
+/// more error than they reported: on cornell at 10% the rule adds 2% samples (28.7 → 29.4 a
+/// pixel, seeds 7–10 at 48×48) and takes 14% off the measured RMS relative error (0.65× →
+/// 0.56× the target), while the reported figure moves by 5% (from 0.93× to 1.02× the
+/// measured). Where the walls are truly quiet (soft_shadows' walls, lit directly by one large
+/// light, about 3% after 2 samples at a 10% target) their two more samples are cheap and they
+/// carried most of the image's squared error: samples at equal RMSE 0.90 → 0.70 of a fixed
+/// render's (docs/quality.md). Targets of 1/18 and looser only (the pixel's 2 samples and its 8
+/// neighbours' 2 each are the `1/target` an early stop asks for): tighter ones never stop
+/// after 2 samples.
+pub const QUIET_SHARE: f64 = 0.25;
 
 /// How far over the target (in variance: twice the target in standard error) a pixel's own
 /// per-sample estimate may be at the 4-sample stop on half the neighbourhood's spread. The
@@ -518,7 +542,14 @@ mod tests {
         let flat = pixel(&[1.0, 1.02]);
         let flat_prior = NeighbourPrior::pool(&[flat; 8]);
         let quiet = block(&|dx, dy| 1.0 + 0.002 * (dx - dy));
-        assert!(confident_error(&flat, &flat_prior, &quiet, 0.1).is_some());
+        let e = 0.05;
+        let middling_low = block(&|dx, dy| 1.0 + if (dx + dy) as i64 % 2 == 0 { e } else { -e });
+        assert!(confident_error(&flat, &flat_prior, &middling_low, 0.1).is_some());
+        // A spread under a quarter of the target's variance is not trusted after 2 samples
+        // (`QUIET_SHARE`): the pixel takes its whole first round and stops after 4.
+        assert_eq!(confident_error(&flat, &flat_prior, &quiet, 0.1), None);
+        let flat_four = pixel(&[1.0, 1.02, 0.99, 1.01]);
+        assert!(confident_error(&flat_four, &flat_prior, &quiet, 0.1).is_some());
         let loud = block(&|dx, dy| if dx == 1.0 && dy == 0.0 { 3.0 } else { 1.0 });
         assert_eq!(confident_error(&flat, &flat_prior, &loud, 0.1), None);
         // After the first batch a whole block's spread decides itself: ±0.06 in a checkerboard
