@@ -2348,7 +2348,19 @@ fn edits_in_included_files_compile_as_a_fresh_compile_does() {
 const WITH_INCLUDED: &[(&str, &str)] = &[
     ("scenes/extra.scn", INCLUDED),
     ("scenes/objs.scn", INCLUDED_OBJECTS),
+    ("scenes/groups.scn", INCLUDED_GROUPS),
+    ("scenes/again.scn", INCLUDED_GROUP_AGAIN),
 ];
+
+/// An included file of `group`s (one nested) and `object`s.
+const INCLUDED_GROUPS: &str = "scnc 1\n\
+     group gx { transform { translate (0, 2, 0) }  object ball { material m1 }  \
+     group gy { object box1 { material m3 } } }\n\
+     object ball { material m2  transform { translate (5, k, 1) } }\n\
+     group gz { object box1 { material m0 } }\n";
+
+/// An included file declaring a group name the split scene's `blocks/b0.scn` declares too.
+const INCLUDED_GROUP_AGAIN: &str = "scnc 1\ngroup g3 { object ball { material m2 } }\n";
 
 /// Compiles the files of `scene` (names under `scenes/`, with `extra` files beside them), then
 /// applies `edits` in turn, each `(file, from, to, fast)`: the first `from` in `scene[file]`
@@ -3515,10 +3527,11 @@ fn an_include_pointed_at_another_file_is_a_removal_and_an_addition() {
             "b2.scn\"\ninclude \"extra.scn\"",
             true,
         ),
-        // `b0.scn` is not the last read (every later file's id would move), and `b2.scn` holds
-        // groups (which the removal does not take out).
-        (0, b0, objs, false),
-        (0, objs, b0, false),
+        // `b0.scn` is not the last read (every later file's id moves: eighteenth session), and
+        // holds groups (checked as placements since then too); `b2.scn` holds groups and a
+        // material (which the removal does not take out together).
+        (0, b0, objs, true),
+        (0, objs, b0, true),
         (0, b2, "include \"blocks/b1.scn\"\n", false),
     ];
     replay_file_edits(path, scene, WITH_INCLUDED, edits);
@@ -3581,6 +3594,50 @@ fn an_include_read_before_other_files_moves_their_ids() {
         (3, b2_object, b2_moved, true),
         (2, lift, &format!("{lift}{inner}"), true),
         (3, b2_moved, b2_object, true),
+    ];
+    replay_file_edits(path, scene, WITH_INCLUDED, edits);
+}
+
+/// An included file holding `group`s (and `object`s) added, removed or pointed at
+/// (2026-11-29, eighteenth session; full compiles before): checked as an edit of placements
+/// is (`CheckMemo::recheck_placements`: the group names leave and enter the table), read last
+/// or before other files (their ids renumbered). Declined (a full compile): a file whose group
+/// name another file declares too (which declaration is the first would change). Every result
+/// compared with a fresh compile.
+#[test]
+fn an_included_file_of_groups_is_added_or_removed_in_place() {
+    let path = Path::new("scenes/edit.scn");
+    let scene = split_scene();
+    let head = "scnc 1\n";
+    let b2 = "include \"blocks/b2.scn\"\n";
+    let groups = "include \"groups.scn\"\n";
+    let objs = "include \"objs.scn\"\n";
+    let again = "include \"again.scn\"\n";
+    let edits: &[(usize, &str, &str, bool)] = &[
+        // Read last, after `b2.scn`.
+        (0, b2, &format!("{b2}{groups}"), true),
+        (3, "translate (3, k, 1)", "translate (3, k, 2)", true),
+        (0, groups, "", true),
+        // At the root's start: every included file's id moves.
+        (0, head, &format!("{head}{groups}"), true),
+        (3, "translate (3, k, 2)", "translate (3, k, 1)", true),
+        (0, groups, "", true),
+        // Pointed at from another file's include and back.
+        (0, b2, &format!("{b2}{objs}"), true),
+        (0, objs, groups, true),
+        (0, groups, objs, true),
+        (0, objs, "", true),
+        // In an included file's middle (`b1.scn`, before its include of `inner.scn`).
+        (
+            2,
+            "include \"inner.scn\"\n",
+            "include \"../groups.scn\"\ninclude \"inner.scn\"\n",
+            true,
+        ),
+        (2, "include \"../groups.scn\"\n", "", true),
+        // A group name declared in `b0.scn` too: declined.
+        (0, head, &format!("{head}{again}"), false),
+        (0, again, "", false),
     ];
     replay_file_edits(path, scene, WITH_INCLUDED, edits);
 }

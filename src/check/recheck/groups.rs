@@ -55,9 +55,11 @@ pub(super) fn declared_groups(stmts: &[Stmt]) -> Vec<(&str, Span)> {
     out
 }
 
-/// Whether `stmts` are all top-level placements (`object`s and `group`s).
+/// Whether `stmts` are all top-level placements (`object`s and `group`s), or statements the
+/// check reads in no phase: an included file's version header and the include that reads it,
+/// added or removed with its placements (`compile::Incremental`'s include edits).
 pub(super) fn placements(stmts: &[Stmt]) -> bool {
-    (stmts.iter()).all(|s| matches!(s, Stmt::Object(_) | Stmt::Group(_)))
+    (stmts.iter()).all(|s| matches!(s, Stmt::Object(_) | Stmt::Group(_)) || super::inert(s))
 }
 
 impl CheckMemo {
@@ -85,7 +87,16 @@ impl CheckMemo {
             Some(_) => Vec::new(),
             None => self.rename_groups(old_stmts, new)?,
         };
-        self.records.get(old.clone())?; // `old` lies inside the memo: `output_ranges` indexes it
+        // `old` lies inside the memo (`output_ranges` indexes it), and what the check reads in
+        // no phase gave nothing.
+        let old_records = self.records.get(old.clone())?;
+        let nothing =
+            |(s, r): (&Stmt, &StmtRecord)| !super::inert(s) || *r == StmtRecord::default();
+        old_stmts
+            .iter()
+            .zip(old_records)
+            .all(nothing)
+            .then_some(())?;
         let (diag_range, object_range) = self.output_ranges(&old);
         let was_used = (self.used_meshes(), self.used_materials());
         self.forget_uses(old_sources, old_stmts)?;

@@ -25,7 +25,9 @@
 //! removal ([`super::file_ids`]). Declined (a full compile, which reports them): an include
 //! that cannot be read, closes a cycle, names a file read already (but wholly before it) or
 //! nests too deep; an included file with a syntax error, an include of its own, or a `let`,
-//! `group`, camera, light or render block (statements these paths do not add).
+//! camera, light or render block (statements these paths do not add), or `group`s beside
+//! declarations. An included file of `group`s and `object`s is checked as an edit of them is
+//! ([`CheckMemo::recheck_placements`]; eighteenth session, a full compile before).
 
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -283,7 +285,7 @@ impl Memo {
     }
 
     /// Checks the block `new` in place of the old statements `old` (`old_stmts`): `object`s
-    /// alone, or declarations with them. The number of statements checked again.
+    /// alone, `object`s and `group`s, or declarations with `object`s. The number of statements checked again.
     fn check_block(
         &mut self,
         sources: &SourceMap,
@@ -293,8 +295,8 @@ impl Memo {
         shift: &crate::source::Shift,
     ) -> Option<usize> {
         let placed = |s: &&Stmt| !inert(s);
-        let mut kinds = old_stmts.iter().chain(new).filter(placed);
-        if kinds.all(|s| matches!(s, Stmt::Object(_))) {
+        let kinds = || old_stmts.iter().chain(new).filter(placed);
+        if kinds().all(|s| matches!(s, Stmt::Object(_))) {
             let inert_at: Vec<usize> = (old.start..)
                 .zip(old_stmts)
                 .filter(|(_, s)| inert(s))
@@ -304,6 +306,13 @@ impl Memo {
             return check
                 .recheck_block(sources, old, &inert_at, new, shift)
                 .then_some(new.len());
+        }
+        if kinds().all(|s| matches!(s, Stmt::Object(_) | Stmt::Group(_))) {
+            // `group`s among them (eighteenth session): checked as an edit of placements is, the
+            // old statements' uses counted against the old text (the memo's sources).
+            let old_sources = &self.sources;
+            let check = &mut self.check;
+            return check.recheck_placements(old_sources, sources, old, old_stmts, new, shift);
         }
         let files = scene_texts(&self.spans, &self.files, self.scene_files, sources);
         let mut naming = SceneStatements(files);
