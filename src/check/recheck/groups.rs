@@ -2,7 +2,9 @@
 //! that keeps its groups (renamed or not) — `group row { transform { translate (0, 2, 0) } ... }` →
 //! `... (0, 3, 0) ...`, an object inside a group moved, given another material, added or
 //! removed — checked again in place and spliced into the [`CheckMemo`] as
-//! [`CheckMemo::recheck`] splices `object`s.
+//! [`CheckMemo::recheck`] splices `object`s. An included file of `group`s and `object`s added or
+//! removed with its include is such an edit too, its version header and include checked in no
+//! phase (2026-11-29, eighteenth session).
 //!
 //! Why the result is the full check's: a group is checked in the placement phase, as an
 //! `object` is, and writes its diagnostics, its objects (flattened into the IR's list, one run
