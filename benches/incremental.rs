@@ -34,7 +34,8 @@
 //! session) `include "part_extra.scn"` (1,000 objects) added and deleted; (fifteenth session)
 //! an object's line, the unused `material spare`'s and `let gloss`'s commented out and
 //! uncommented; (seventeenth session) a `let` right after `let gloss` commented out and
-//! uncommented, and an include pointed at another file and back.
+//! uncommented, and an include pointed at another file and back; (eighteenth session) an
+//! include inserted at the file's start while another file is read after it, and deleted.
 //!
 //! 1. Front end, in process: a full `compile_with` beside `compile::Incremental::compile` after
 //!    each edit (the text served from memory; diagnostics are ready when it returns).
@@ -354,6 +355,12 @@ enum Kind {
     /// the other of `part_extra.scn` and `part_other.scn` (1,000 objects each; a full compile
     /// before).
     IncludeRetarget,
+    /// (Eighteenth session.) `include "part_other.scn"` stands before the last line (put in
+    /// before the kind's edits and taken out after, neither measured); edits 0, 2, 4, …:
+    /// `include "part_extra.scn"` (1,000 objects) inserted after the header, read before
+    /// `part_other.scn` (whose file id then moves up); 1, 3, 5, …: deleted (its id moves back
+    /// down). Full compiles before.
+    IncludeFirst,
 }
 
 /// The line a kind's edits stand beside, put in before them and taken out after (neither
@@ -362,6 +369,7 @@ fn standing(kind: Kind, lines: &[String]) -> Option<(usize, String)> {
     match kind {
         Kind::LetCommented => Some((LET_LINE + 1, LET_AFTER_LET.to_string())),
         Kind::IncludeRetarget => Some((lines.len() - 1, "include \"part_extra.scn\"".into())),
+        Kind::IncludeFirst => Some((lines.len() - 1, "include \"part_other.scn\"".into())),
         _ => None,
     }
 }
@@ -369,7 +377,7 @@ fn standing(kind: Kind, lines: &[String]) -> Option<(usize, String)> {
 /// The line of [`Kind::LetCommented`]'s `let`, right after `let gloss`.
 const LET_AFTER_LET: &str = "let unused = 0.5";
 
-const KINDS: [Kind; 44] = [
+const KINDS: [Kind; 45] = [
     Kind::Object,
     Kind::Material,
     Kind::Let,
@@ -416,6 +424,7 @@ const KINDS: [Kind; 44] = [
     Kind::GlossCommented,
     Kind::LetCommented,
     Kind::IncludeRetarget,
+    Kind::IncludeFirst,
 ];
 
 /// Kinds whose even edits make an error (`scnc watch` builds nothing then: its figure is save →
@@ -667,6 +676,12 @@ fn edit(lines: &mut Vec<String>, objects: usize, kind: Kind, k: usize) -> String
             let at = lines.len() - 2;
             lines.remove(at);
         }
+        Kind::IncludeFirst if k.is_multiple_of(2) => {
+            lines.insert(1, "include \"part_extra.scn\"".to_string());
+        }
+        Kind::IncludeFirst => {
+            lines.remove(1);
+        }
         Kind::Redeclared if k.is_multiple_of(2) => {
             let line = format!(
                 "material m5 = phong {{ diffuse rgb(0.{}, 0.1, 0.1) }}",
@@ -730,7 +745,7 @@ fn checked(kind: Kind, k: usize) -> usize {
         Kind::UnusedLet | Kind::NewMaterial | Kind::GroupAdded => 1 - k % 2,
         Kind::Paste | Kind::PasteObjects => 3 * (1 - k % 2),
         // The file's header and objects and the include; removed, none.
-        Kind::Include => (EXTRA_OBJECTS + 2) * (1 - k % 2),
+        Kind::Include | Kind::IncludeFirst => (EXTRA_OBJECTS + 2) * (1 - k % 2),
         Kind::Delete => 0,
         Kind::CommentOut | Kind::CommentSpare | Kind::LetCommented => k % 2,
         // The old file's objects cut out (not counted), the new file's header, objects and
@@ -776,6 +791,7 @@ fn splits(kind: Kind) -> bool {
             | Kind::Include
             | Kind::LetCommented
             | Kind::IncludeRetarget
+            | Kind::IncludeFirst
     )
 }
 
@@ -889,6 +905,7 @@ fn front_end(objects: usize, edits: usize) {
                     | Kind::Paste
                     | Kind::PasteObjects
                     | Kind::Include
+                    | Kind::IncludeFirst
             );
         let count = if paired { edits + edits % 2 } else { edits };
         // A full compile of the first error, for comparison.

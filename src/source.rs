@@ -12,8 +12,10 @@ use miette::{NamedSource, SourceSpan};
 use serde::Serialize;
 
 mod order;
+mod renumber;
 
 pub use order::ReadingOrder;
+pub use renumber::Renumber;
 
 /// Index of a file inside a [`SourceMap`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
@@ -175,6 +177,39 @@ impl SourceMap {
         self.files.truncate(len);
     }
 
+    /// Stores a file as the `at`th, every file from `at` on moving up by one (the incremental
+    /// compile's include added before other files are read: [`Renumber::Inserted`]); `None`
+    /// when `at` is past the last file.
+    pub fn insert(
+        &mut self,
+        at: FileId,
+        path: impl Into<PathBuf>,
+        name: impl Into<String>,
+        text: impl Into<Arc<str>>,
+    ) -> Option<()> {
+        let at = at.0 as usize;
+        if at > self.files.len() {
+            return None;
+        }
+        let file = SourceFile {
+            path: path.into(),
+            name: name.into(),
+            text: text.into(),
+            line_starts: Arc::default(),
+        };
+        self.files.insert(at, file);
+        Some(())
+    }
+
+    /// Drops file `id`, every later file moving down by one (an included file no longer read,
+    /// read before others: [`Renumber::Removed`]); `None` when there is no such file.
+    pub fn remove(&mut self, id: FileId) -> Option<()> {
+        let at = id.0 as usize;
+        (at < self.files.len()).then(|| {
+            self.files.remove(at);
+        })
+    }
+
     /// The file `id` names. `id` must come from this map's [`SourceMap::add`].
     pub fn get(&self, id: FileId) -> &SourceFile {
         // ok: FileIds are only minted by `add` on this map.
@@ -267,6 +302,20 @@ impl Shift {
         span.start = span.start - self.old_end + self.new_end;
         span.end = span.end - self.old_end + self.new_end;
         true
+    }
+}
+
+/// How spans move after a change of the sources: an edit's [`Shift`] (bytes of one file), or a
+/// file read before others, or no longer read, whose later files' ids move ([`Renumber`]). What
+/// holds spans (the IR, diagnostics, the check's memo) moves them through this, whichever it is.
+pub trait MoveSpans {
+    /// Moves `span` to its new place; `false` (span unchanged) when it has none.
+    fn apply(&self, span: &mut Span) -> bool;
+}
+
+impl MoveSpans for Shift {
+    fn apply(&self, span: &mut Span) -> bool {
+        Shift::apply(self, span)
     }
 }
 

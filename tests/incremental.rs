@@ -2348,7 +2348,19 @@ fn edits_in_included_files_compile_as_a_fresh_compile_does() {
 const WITH_INCLUDED: &[(&str, &str)] = &[
     ("scenes/extra.scn", INCLUDED),
     ("scenes/objs.scn", INCLUDED_OBJECTS),
+    ("scenes/groups.scn", INCLUDED_GROUPS),
+    ("scenes/again.scn", INCLUDED_GROUP_AGAIN),
 ];
+
+/// An included file of `group`s (one nested) and `object`s.
+const INCLUDED_GROUPS: &str = "scnc 1\n\
+     group gx { transform { translate (0, 2, 0) }  object ball { material m1 }  \
+     group gy { object box1 { material m3 } } }\n\
+     object ball { material m2  transform { translate (5, k, 1) } }\n\
+     group gz { object box1 { material m0 } }\n";
+
+/// An included file declaring a group name the split scene's `blocks/b0.scn` declares too.
+const INCLUDED_GROUP_AGAIN: &str = "scnc 1\ngroup g3 { object ball { material m2 } }\n";
 
 /// Compiles the files of `scene` (names under `scenes/`, with `extra` files beside them), then
 /// applies `edits` in turn, each `(file, from, to, fast)`: the first `from` in `scene[file]`
@@ -2388,11 +2400,12 @@ fn replay_file_edits(
 }
 
 /// An include line added or removed (2026-11-29, fourteenth session): the included file's
-/// statements are added or removed as a block with it, checked in place, when the file is read
-/// last (no file's id moves) and no other include names it: a file of `object`s alone
-/// (`CheckMemo::recheck_block`) or with a material (`CheckMemo::add_or_remove_decl`), in the
-/// split scene and in a scene of one file; an include before others, a cycle and a missing
-/// file are full compiles. Each compared with a fresh compile (sources, IR, diagnostics).
+/// statements are added or removed as a block with it, checked in place, when no other include
+/// names the file: a file of `object`s alone (`CheckMemo::recheck_block`) or with a material
+/// (`CheckMemo::add_or_remove_decl`), in the split scene and in a scene of one file; since the
+/// eighteenth session also a file read before others (their ids renumbered: see
+/// [`an_include_read_before_other_files_moves_their_ids`]); a cycle and a missing file are
+/// full compiles. Each compared with a fresh compile (sources, IR, diagnostics).
 #[test]
 fn an_include_added_or_removed_is_checked_as_a_block() {
     let path = Path::new("scenes/edit.scn");
@@ -2427,21 +2440,21 @@ fn an_include_added_or_removed_is_checked_as_a_block() {
         ),
         (1, "object box1 { material extra }\n", "", true),
         (0, "include \"extra.scn\"\n", "", true),
-        // Read before `b0.scn`: every later file's id moves.
+        // Read before `b0.scn`: every later file's id moves (eighteenth session: renumbered).
         (
             0,
             "include \"blocks/b0.scn\"\n",
             "include \"objs.scn\"\ninclude \"blocks/b0.scn\"\n",
-            false,
+            true,
         ),
-        (0, "include \"objs.scn\"\n", "", false),
-        // `inner.scn` is not the last file read.
-        (2, "include \"inner.scn\"\n", "", false),
+        (0, "include \"objs.scn\"\n", "", true),
+        // `inner.scn` is not the last file read (its removal moves `b2.scn`'s id down).
+        (2, "include \"inner.scn\"\n", "", true),
         (
             2,
             "let lift = k + 1\n",
             "let lift = k + 1\ninclude \"inner.scn\"\n",
-            false,
+            true,
         ),
         (3, b2_head, "scnc 1\ninclude \"../edit.scn\"\n", false),
         (3, "include \"../edit.scn\"\n", "", false),
@@ -3514,11 +3527,117 @@ fn an_include_pointed_at_another_file_is_a_removal_and_an_addition() {
             "b2.scn\"\ninclude \"extra.scn\"",
             true,
         ),
-        // `b0.scn` is not the last read (every later file's id would move), and `b2.scn` holds
-        // groups (which the removal does not take out).
-        (0, b0, objs, false),
-        (0, objs, b0, false),
+        // `b0.scn` is not the last read (every later file's id moves: eighteenth session), and
+        // holds groups (checked as placements since then too); `b2.scn` holds groups and a
+        // material (which the removal does not take out together).
+        (0, b0, objs, true),
+        (0, objs, b0, true),
         (0, b2, "include \"blocks/b1.scn\"\n", false),
+    ];
+    replay_file_edits(path, scene, WITH_INCLUDED, edits);
+}
+
+/// An include added where other files are read after it, or removed while they are
+/// (2026-11-29, eighteenth session; full compiles before): a fresh compile gives the file the
+/// id the first of them had and each of them the next, so every span of theirs (diagnostics,
+/// IR, the memo's tables and reading order) is renumbered, then the file's statements are
+/// added or removed as a block. In the split scene (root `edit.scn` includes `blocks/b0.scn`,
+/// `b1.scn` (which includes `inner.scn`) and `b2.scn`): `objs.scn` included at the root's start
+/// and in its middle (before `b0.scn`), `extra.scn` (a material: every later material's table
+/// index moves too) before `b1.scn`, `objs.scn` in the middle of an included file (`b1.scn`,
+/// before `inner.scn`), each with an object edited in a later file while it stands, and taken
+/// out again; the same while an error stands in `b2.scn` (an unknown material: its diagnostic
+/// renumbered, and sorted among the others by the new ids); `inner.scn` (not read last)
+/// removed and put back. Every result compared with a fresh compile.
+#[test]
+fn an_include_read_before_other_files_moves_their_ids() {
+    let path = Path::new("scenes/edit.scn");
+    let scene = split_scene();
+    let head = "scnc 1\n";
+    let objs = "include \"objs.scn\"\n";
+    let extra = "include \"extra.scn\"\n";
+    let b0 = "include \"blocks/b0.scn\"\n";
+    let b1 = "include \"blocks/b1.scn\"\n";
+    let inner = "include \"inner.scn\"\n";
+    let lift = "let lift = k + 1\n";
+    // An object of `b2.scn`, read after each include added.
+    let b2_object = "translate (3, k, 1)";
+    let b2_moved = "translate (3, k, 2)";
+    let b2_wrong = "material block2  transform { translate (3, k, 1)";
+    let b2_unknown = "material block9  transform { translate (3, k, 1)";
+    let edits: &[(usize, &str, &str, bool)] = &[
+        // At the root's start (after its header): every included file's id moves.
+        (0, head, &format!("{head}{objs}"), true),
+        (3, b2_object, b2_moved, true),
+        (0, objs, "", true),
+        (3, b2_moved, b2_object, true),
+        // In the root's middle, before `b0.scn`.
+        (0, b0, &format!("{objs}{b0}"), true),
+        (0, objs, "", true),
+        // A material, before `b1.scn`.
+        (0, b1, &format!("{extra}{b1}"), true),
+        (3, b2_object, b2_moved, true),
+        (0, extra, "", true),
+        (3, b2_moved, b2_object, true),
+        // In an included file's middle: `b1.scn`, before its own include of `inner.scn`.
+        (2, inner, &format!("include \"../objs.scn\"\n{inner}"), true),
+        (2, "include \"../objs.scn\"\n", "", true),
+        // An error in `b2.scn` standing while files are read before it.
+        (3, b2_wrong, b2_unknown, true),
+        (0, head, &format!("{head}{objs}"), true),
+        (0, b1, &format!("{extra}{b1}"), true),
+        (0, objs, "", true),
+        (0, extra, "", true),
+        (3, b2_unknown, b2_wrong, true),
+        // `inner.scn` read before `b2.scn`: removed (`b2.scn`'s id moves down), put back.
+        (2, inner, "", true),
+        (3, b2_object, b2_moved, true),
+        (2, lift, &format!("{lift}{inner}"), true),
+        (3, b2_moved, b2_object, true),
+    ];
+    replay_file_edits(path, scene, WITH_INCLUDED, edits);
+}
+
+/// An included file holding `group`s (and `object`s) added, removed or pointed at
+/// (2026-11-29, eighteenth session; full compiles before): checked as an edit of placements
+/// is (`CheckMemo::recheck_placements`: the group names leave and enter the table), read last
+/// or before other files (their ids renumbered). Declined (a full compile): a file whose group
+/// name another file declares too (which declaration is the first would change). Every result
+/// compared with a fresh compile.
+#[test]
+fn an_included_file_of_groups_is_added_or_removed_in_place() {
+    let path = Path::new("scenes/edit.scn");
+    let scene = split_scene();
+    let head = "scnc 1\n";
+    let b2 = "include \"blocks/b2.scn\"\n";
+    let groups = "include \"groups.scn\"\n";
+    let objs = "include \"objs.scn\"\n";
+    let again = "include \"again.scn\"\n";
+    let edits: &[(usize, &str, &str, bool)] = &[
+        // Read last, after `b2.scn`.
+        (0, b2, &format!("{b2}{groups}"), true),
+        (3, "translate (3, k, 1)", "translate (3, k, 2)", true),
+        (0, groups, "", true),
+        // At the root's start: every included file's id moves.
+        (0, head, &format!("{head}{groups}"), true),
+        (3, "translate (3, k, 2)", "translate (3, k, 1)", true),
+        (0, groups, "", true),
+        // Pointed at from another file's include and back.
+        (0, b2, &format!("{b2}{objs}"), true),
+        (0, objs, groups, true),
+        (0, groups, objs, true),
+        (0, objs, "", true),
+        // In an included file's middle (`b1.scn`, before its include of `inner.scn`).
+        (
+            2,
+            "include \"inner.scn\"\n",
+            "include \"../groups.scn\"\ninclude \"inner.scn\"\n",
+            true,
+        ),
+        (2, "include \"../groups.scn\"\n", "", true),
+        // A group name declared in `b0.scn` too: declined.
+        (0, head, &format!("{head}{again}"), false),
+        (0, again, "", false),
     ];
     replay_file_edits(path, scene, WITH_INCLUDED, edits);
 }

@@ -50,7 +50,7 @@ use super::names::{Namespace, Table};
 use super::{Checker, PlacementStart, StmtRecord};
 use crate::diag::Diagnostic;
 use crate::ir;
-use crate::source::{Shift, SourceMap};
+use crate::source::{MoveSpans, Renumber, Shift, SourceMap};
 use crate::syntax::Stmt;
 use compact::Relowered;
 
@@ -237,13 +237,21 @@ impl CheckMemo {
 
     /// Moves every span by `shift`, for an edit whose statements nothing checks (the version
     /// header); `false` when one reaches into the edited bytes.
-    pub fn shift_spans(&mut self, shift: &Shift) -> bool {
+    pub fn shift_spans(&mut self, shift: &impl MoveSpans) -> bool {
         let nothing = Rechecked {
             diags: Vec::new(),
             objects: Vec::new(),
             records: Vec::new(),
         };
         self.splice(0..0, 0..0, 0..0, nothing, shift)
+    }
+
+    /// Every span's file named by its new id after `renumber` (an include added before other
+    /// files are read, or removed while others are read after it), the reading order's
+    /// included too; `false` when one names a file removed, or a `--define`'s value (whose
+    /// file is read after the scene's) is kept: the memo is then spoiled.
+    pub fn renumber_files(&mut self, renumber: &Renumber) -> bool {
+        self.defines.is_empty() && self.order.renumber(renumber) && self.shift_spans(renumber)
     }
 
     /// Cuts the old statements' results out, moves every other span, puts the new ones in.
@@ -253,7 +261,7 @@ impl CheckMemo {
         object_range: Range<usize>,
         old: Range<usize>,
         rechecked: Rechecked,
-        shift: &Shift,
+        shift: &impl MoveSpans,
     ) -> bool {
         let Rechecked {
             diags,

@@ -27,8 +27,9 @@
 //! else is a full compile, which is always correct: a file-level diagnostic (an include that
 //! cannot be read or closes a cycle), an include added, removed or pointed at another file
 //! but as `include_edit` takes it (its file's statements added or removed as a block, the
-//! file read last; an include of a file read before it, which reads nothing; a retarget as a
-//! removal and an addition), a syntax error in a
+//! later files' ids renumbered when it is not read last (`file_ids`); an include of a file
+//! read before it, which reads nothing; a retarget as a removal and an addition), a syntax
+//! error in a
 //! scene with includes that loses a declaration or breaks two files (a syntax error in one
 //! file of several is answered from that file's statements, seventh session) or one
 //! [`super::broken`] declines, a `let` or `group` added or removed among declarations, an edit of a
@@ -54,6 +55,7 @@ use std::sync::Arc;
 use super::broken;
 use super::dependents;
 
+mod file_ids;
 mod include_edit;
 use super::edit::{self, Region};
 use super::files;

@@ -123,9 +123,9 @@ impl Diagnostic {
         self.severity == Severity::Error
     }
 
-    /// Moves every label by an edit's [`crate::source::Shift`]; `false` when a label reaches
-    /// into the edited bytes (the incremental compile then compiles in full).
-    pub fn shift_spans(&mut self, shift: &crate::source::Shift) -> bool {
+    /// Moves every label by an edit's [`crate::source::Shift`] (or renumbered file ids); `false`
+    /// when a label reaches into the edited bytes (the incremental compile then compiles in full).
+    pub fn shift_spans(&mut self, shift: &impl crate::source::MoveSpans) -> bool {
         let mut ok = true;
         for label in self.primary.iter_mut().chain(&mut self.secondary) {
             ok &= shift.apply(&mut label.span);

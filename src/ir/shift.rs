@@ -1,13 +1,15 @@
 //! The IR after an edit (the incremental compile): every span of a [`SceneDesc`] moved by the
-//! edit's [`Shift`], so that a scene whose statements were not re-checked points into the new
-//! text exactly as a fresh check's would.
+//! edit's [`Shift`](crate::source::Shift) (or its files' ids by a
+//! [`Renumber`](crate::source::Renumber)), so that a scene whose statements were not re-checked
+//! points into the new text exactly as a fresh check's would.
 
 use super::{EnvSource, Light, Material, Mesh, MeshSource, SceneDesc, Texture, TextureSource};
-use crate::source::{Shift, Span};
+use crate::source::{MoveSpans, Span};
 
 impl SceneDesc {
-    /// Moves every span by `shift`; `false` when one reaches into the edited bytes.
-    pub fn shift_spans(&mut self, shift: &Shift) -> bool {
+    /// Moves every span by `shift`; `false` when one reaches into the edited bytes (or names
+    /// a file removed).
+    pub fn shift_spans(&mut self, shift: &impl MoveSpans) -> bool {
         let mut ok = true;
         for m in &mut self.meshes {
             ok &= m.shift_spans(shift);
@@ -46,7 +48,7 @@ impl SceneDesc {
 
 impl Mesh {
     /// Moves every span of the mesh by `shift`; `false` when one reaches into the edited bytes.
-    pub fn shift_spans(&mut self, shift: &Shift) -> bool {
+    pub fn shift_spans(&mut self, shift: &impl MoveSpans) -> bool {
         let mut ok = shift.apply(&mut self.span);
         if let MeshSource::Obj(path) = &mut self.source {
             ok &= shift.apply(&mut path.span);
@@ -60,7 +62,7 @@ impl Mesh {
 
 impl Texture {
     /// Moves every span of the texture by `shift` (as [`Mesh::shift_spans`]).
-    pub fn shift_spans(&mut self, shift: &Shift) -> bool {
+    pub fn shift_spans(&mut self, shift: &impl MoveSpans) -> bool {
         let mut ok = shift.apply(&mut self.span);
         if let TextureSource::Image { file, .. } = &mut self.source {
             ok &= shift.apply(&mut file.span);
@@ -71,7 +73,7 @@ impl Texture {
 
 impl Material {
     /// Moves the material's span by `shift` (as [`Mesh::shift_spans`]).
-    pub fn shift_spans(&mut self, shift: &Shift) -> bool {
+    pub fn shift_spans(&mut self, shift: &impl MoveSpans) -> bool {
         shift.apply(&mut self.span)
     }
 }

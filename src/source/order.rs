@@ -8,7 +8,7 @@
 //! added takes its place among those of its kind); `compile::Incremental` keeps it, moving the
 //! include statements' offsets with each edit.
 
-use super::{Shift, Span};
+use super::{MoveSpans, Renumber, Shift, Span};
 
 /// Where each file was included from, to order spans of different files.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -70,6 +70,34 @@ impl ReadingOrder {
     /// Forgets the files from the `len`th on (an include removed that read the last file).
     pub fn truncate(&mut self, len: usize) {
         self.included_at.truncate(len);
+    }
+
+    /// Forgets which include read `file` (an include removed that read a file before others:
+    /// its id goes when the check of the removal is done, [`ReadingOrder::renumber`]).
+    pub fn forget(&mut self, file: super::FileId) {
+        if let Some(at) = self.included_at.get_mut(file.0 as usize) {
+            *at = None;
+        }
+    }
+
+    /// The file ids renumbered: a file inserted gets an entry (none: the caller sets it), a
+    /// file removed loses its own, and every include's span names its file by the new id;
+    /// `false` when the table has no such place or an include lies in the file removed.
+    pub fn renumber(&mut self, renumber: &Renumber) -> bool {
+        match *renumber {
+            Renumber::Inserted(at) if at.0 as usize <= self.included_at.len() => {
+                self.included_at.insert(at.0 as usize, None);
+            }
+            Renumber::Removed(at) if (at.0 as usize) < self.included_at.len() => {
+                self.included_at.remove(at.0 as usize);
+            }
+            _ => return false,
+        }
+        let mut ok = true;
+        for span in self.included_at.iter_mut().flatten() {
+            ok &= renumber.apply(span);
+        }
+        ok
     }
 
     /// Whether any file was included (else byte offsets of file 0 order everything).

@@ -30,7 +30,7 @@ use std::sync::Arc;
 use super::super::names::{remap_textures, texture_inputs, Namespace};
 use super::CheckMemo;
 use crate::ir;
-use crate::source::{Shift, SourceMap, Span};
+use crate::source::{MoveSpans, SourceMap, Span};
 
 /// The lowered declarations the IR leaves out (nothing uses them), by table index, ascending.
 #[derive(Debug, Default)]
@@ -45,7 +45,7 @@ pub struct Dropped {
 
 impl Dropped {
     /// Moves every span by `shift`; `false` when one reaches into the edited bytes.
-    pub(super) fn shift_spans(&mut self, shift: &Shift) -> bool {
+    pub(super) fn shift_spans(&mut self, shift: &impl MoveSpans) -> bool {
         let mut ok = true;
         for (_, t) in &mut self.textures {
             ok &= t.shift_spans(shift);

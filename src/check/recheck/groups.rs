@@ -2,7 +2,9 @@
 //! that keeps its groups (renamed or not) — `group row { transform { translate (0, 2, 0) } ... }` →
 //! `... (0, 3, 0) ...`, an object inside a group moved, given another material, added or
 //! removed — checked again in place and spliced into the [`CheckMemo`] as
-//! [`CheckMemo::recheck`] splices `object`s.
+//! [`CheckMemo::recheck`] splices `object`s. An included file of `group`s and `object`s added or
+//! removed with its include is such an edit too, its version header and include checked in no
+//! phase (2026-11-29, eighteenth session).
 //!
 //! Why the result is the full check's: a group is checked in the placement phase, as an
 //! `object` is, and writes its diagnostics, its objects (flattened into the IR's list, one run
@@ -55,9 +57,11 @@ pub(super) fn declared_groups(stmts: &[Stmt]) -> Vec<(&str, Span)> {
     out
 }
 
-/// Whether `stmts` are all top-level placements (`object`s and `group`s).
+/// Whether `stmts` are all top-level placements (`object`s and `group`s), or statements the
+/// check reads in no phase: an included file's version header and the include that reads it,
+/// added or removed with its placements (`compile::Incremental`'s include edits).
 pub(super) fn placements(stmts: &[Stmt]) -> bool {
-    (stmts.iter()).all(|s| matches!(s, Stmt::Object(_) | Stmt::Group(_)))
+    (stmts.iter()).all(|s| matches!(s, Stmt::Object(_) | Stmt::Group(_)) || super::inert(s))
 }
 
 impl CheckMemo {
@@ -85,7 +89,16 @@ impl CheckMemo {
             Some(_) => Vec::new(),
             None => self.rename_groups(old_stmts, new)?,
         };
-        self.records.get(old.clone())?; // `old` lies inside the memo: `output_ranges` indexes it
+        // `old` lies inside the memo (`output_ranges` indexes it), and what the check reads in
+        // no phase gave nothing.
+        let old_records = self.records.get(old.clone())?;
+        let nothing =
+            |(s, r): (&Stmt, &StmtRecord)| !super::inert(s) || *r == StmtRecord::default();
+        old_stmts
+            .iter()
+            .zip(old_records)
+            .all(nothing)
+            .then_some(())?;
         let (diag_range, object_range) = self.output_ranges(&old);
         let was_used = (self.used_meshes(), self.used_materials());
         self.forget_uses(old_sources, old_stmts)?;

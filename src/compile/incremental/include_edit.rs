@@ -16,26 +16,30 @@
 //! file's removal, then the new file's addition at the same place (with no shift: the edit's
 //! moved every span already), each taken as above.
 //!
-//! Taken only where the file ids stay those of a fresh compile and no other file changes its
-//! reading: the file added is read last of the scene's files (no file is first read after the
-//! include) and the one removed was the last read, by this include, and no other include names
-//! it (its file name occurs in no other scene file); no `--define` (its file comes after the
-//! scene's). Declined (a full compile, which reports them): an include that cannot be read,
-//! closes a cycle, names a file read already or nests too deep; an included file with a
-//! syntax error, an include of its own, or a `let`, `group`, camera, light or render block
-//! (statements these paths do not add).
+//! Taken only where no other file changes its reading: the file added is not read yet, and
+//! the one removed was read by this include and no other include names it (its file name occurs
+//! in no other scene file); no `--define` (its file comes after the scene's). Where other files
+//! are read after the include (an include added at a file's start or middle, or removed there:
+//! full compiles before the eighteenth session), a fresh compile moves their ids up or down by
+//! one: the memo's are renumbered first for an addition, after the removal's check for a
+//! removal ([`super::file_ids`]). Declined (a full compile, which reports them): an include
+//! that cannot be read, closes a cycle, names a file read already (but wholly before it) or
+//! nests too deep; an included file with a syntax error, an include of its own, or a `let`,
+//! camera, light or render block (statements these paths do not add), or `group`s beside
+//! declarations. An included file of `group`s and `object`s is checked as an edit of them is
+//! ([`CheckMemo::recheck_placements`]; eighteenth session, a full compile before).
 
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use super::{scene_texts, supported_header, Memo};
+use super::{file_ids, scene_texts, supported_header, Memo};
 use crate::assets::Loader;
 use crate::check::{inert, CheckMemo};
 use crate::compile::dependents::SceneStatements;
 use crate::compile::edit::Region;
 use crate::compile::{decode, normalise, MAX_INCLUDE_DEPTH};
-use crate::source::{FileId, SourceMap};
+use crate::source::{FileId, Renumber, SourceMap};
 use crate::syntax::{self, Expr, ExprKind, Stmt};
 
 impl Memo {
@@ -114,18 +118,17 @@ impl Memo {
         }
         // Too deep: the driver's business.
         let depth = self.check.order.depth(file);
-        if self.sources.find(&path).is_some() || depth + 1 >= MAX_INCLUDE_DEPTH {
+        if depth + 1 >= MAX_INCLUDE_DEPTH {
             return None;
         }
-        if !none_first_read_from(&self.files, old.start) {
-            return None;
-        }
+        // The id after those of the files read before it (`file_ids`).
+        let at = file_ids::read_before(&self.files, old.start, self.scene_files)?;
+        let id = FileId(u32::try_from(at).ok()?);
         let bytes = loader.read(&path).ok()?;
         let text = decode(&bytes).ok()?;
         if text.trim().is_empty() {
             return None;
         }
-        let id = FileId(self.scene_files as u32);
         let (parsed, diags) = syntax::parse(id, text).into_parts();
         let mut block = parsed?.statements;
         match block.split_first() {
@@ -134,8 +137,12 @@ impl Memo {
             }
             _ => return None,
         }
+        if at < self.scene_files {
+            // Files are read after it: each of their ids moves up by one.
+            self.renumber(&Renumber::Inserted(id))?;
+        }
         let shown = path.display().to_string();
-        sources.add(path, shown, Arc::<str>::from(text));
+        sources.insert(id, path, shown, Arc::<str>::from(text))?;
         block.push(include.clone());
         if self.files.is_empty() {
             self.files = vec![FileId(0); self.spans.len()];
@@ -165,9 +172,11 @@ impl Memo {
             // A later include of a file read before it: it read nothing.
             return self.inert_include(region, old, std::slice::from_ref(include), &[], sources);
         }
-        // The last file read, and read by this include (not one before it of the same file).
-        let last = id.0 as usize + 1 == self.scene_files && id != FileId(0);
-        if !last || self.check.order.included_at(id) != Some(name.span) {
+        // Read by this include (not one before it of the same file); when other files are
+        // read after it, their ids move down by one once the removal is checked.
+        let last = id.0 as usize + 1 == self.scene_files;
+        let scene_file = id != FileId(0) && (id.0 as usize) < self.scene_files;
+        if !scene_file || !reader {
             return None;
         }
         // No other include reads it once this one is gone.
@@ -212,12 +221,19 @@ impl Memo {
                 Some(stmts)
             }
         };
-        self.check.order.truncate(id.0 as usize);
-        sources.truncate(id.0 as usize);
+        if last {
+            self.check.order.truncate(id.0 as usize);
+            sources.truncate(id.0 as usize);
+        } else {
+            // Its entries stay until the removal is checked (the other files' ids with them).
+            self.check.order.forget(id);
+        }
         self.move_spans(region, block.clone(), &[])?;
-        self.scene_files -= 1;
-        if self.scene_files == 1 {
-            self.files.clear();
+        if last {
+            self.scene_files -= 1;
+            if self.scene_files == 1 {
+                self.files.clear();
+            }
         }
         let checked = match old_stmts {
             None => {
@@ -229,6 +245,11 @@ impl Memo {
             }
             Some(stmts) => self.check_block(&sources, block, &stmts, &[], &region.shift)?,
         };
+        if !last {
+            self.renumber(&Renumber::Removed(id))?;
+            sources.remove(id)?;
+            self.scene_files -= 1;
+        }
         self.sources = sources;
         Some(checked)
     }
@@ -264,7 +285,7 @@ impl Memo {
     }
 
     /// Checks the block `new` in place of the old statements `old` (`old_stmts`): `object`s
-    /// alone, or declarations with them. The number of statements checked again.
+    /// alone, `object`s and `group`s, or declarations with `object`s. The number of statements checked again.
     fn check_block(
         &mut self,
         sources: &SourceMap,
@@ -274,8 +295,8 @@ impl Memo {
         shift: &crate::source::Shift,
     ) -> Option<usize> {
         let placed = |s: &&Stmt| !inert(s);
-        let mut kinds = old_stmts.iter().chain(new).filter(placed);
-        if kinds.all(|s| matches!(s, Stmt::Object(_))) {
+        let kinds = || old_stmts.iter().chain(new).filter(placed);
+        if kinds().all(|s| matches!(s, Stmt::Object(_))) {
             let inert_at: Vec<usize> = (old.start..)
                 .zip(old_stmts)
                 .filter(|(_, s)| inert(s))
@@ -285,6 +306,13 @@ impl Memo {
             return check
                 .recheck_block(sources, old, &inert_at, new, shift)
                 .then_some(new.len());
+        }
+        if kinds().all(|s| matches!(s, Stmt::Object(_) | Stmt::Group(_))) {
+            // `group`s among them (eighteenth session): checked as an edit of placements is, the
+            // old statements' uses counted against the old text (the memo's sources).
+            let old_sources = &self.sources;
+            let check = &mut self.check;
+            return check.recheck_placements(old_sources, sources, old, old_stmts, new, shift);
         }
         let files = scene_texts(&self.spans, &self.files, self.scene_files, sources);
         let mut naming = SceneStatements(files);
@@ -303,16 +331,6 @@ fn resolve(sources: &SourceMap, from: FileId, name: &Expr) -> Option<PathBuf> {
     Some(normalise(&dir.join(written)))
 }
 
-/// Whether every statement from the list index `at` on is of a file read before `at` (`files`:
-/// each statement's file, empty for one file): then a file included at `at` is the last read.
-fn none_first_read_from(files: &[FileId], at: usize) -> bool {
-    let (before, after) = files.split_at(at.min(files.len()));
-    let mut seen: Vec<FileId> = before.to_vec();
-    seen.sort_unstable();
-    seen.dedup();
-    after.iter().all(|f| seen.binary_search(f).is_ok())
-}
-
 /// Whether byte `at` of `text` lies in a line comment that reads nothing: its line starts
 /// (after blanks) with `//` and the line before it does not end with `\` (a string's escaped
 /// newline). Only for a text with no `/*` (a block comment could close on that line and an
@@ -326,20 +344,4 @@ fn in_line_comment(text: &str, at: usize) -> bool {
     let start = head.rfind('\n').map_or(0, |i| i + 1);
     let escaped = head[..start].trim_end_matches(['\n', '\r']).ends_with('\\');
     head[start..].trim_start().starts_with("//") && !escaped
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_file_included_is_read_last_when_no_file_is_first_read_after_it() {
-        // File 0: statements 0, 1, (file 1: 2, 3), 4 (the include), 5; then (file 2: 6), 7.
-        let files = [0, 0, 1, 1, 0, 0, 2, 0].map(FileId);
-        assert!(!none_first_read_from(&files, 1), "files 1 and 2 after");
-        assert!(!none_first_read_from(&files, 5), "file 2 after");
-        assert!(none_first_read_from(&files, 7));
-        assert!(none_first_read_from(&files, 8));
-        assert!(none_first_read_from(&[], 3), "one file");
-    }
 }
