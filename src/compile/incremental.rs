@@ -29,8 +29,7 @@
 //! but as `include_edit` takes it (its file's statements added or removed as a block, the
 //! later files' ids renumbered when it is not read last (`file_ids`); an include of a file
 //! read before it, which reads nothing; a retarget as a removal and an addition), a syntax
-//! error in a
-//! scene with includes that loses a declaration or breaks two files (a syntax error in one
+//! error in a scene with includes that loses a declaration or breaks two files (a syntax error in one
 //! file of several is answered from that file's statements, seventh session) or one
 //! [`super::broken`] declines, a `let` or `group` added or removed among declarations, an edit of a
 //! light, a camera or the render block that gives or takes away a diagnostic, or made while the

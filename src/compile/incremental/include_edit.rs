@@ -285,7 +285,8 @@ impl Memo {
     }
 
     /// Checks the block `new` in place of the old statements `old` (`old_stmts`): `object`s
-    /// alone, `object`s and `group`s, or declarations with `object`s. The number of statements checked again.
+    /// alone, `object`s and `group`s, or declarations with `object`s. The number of statements
+    /// checked again.
     fn check_block(
         &mut self,
         sources: &SourceMap,
