@@ -127,37 +127,28 @@ fn owen_scramble(v: u32, seed: u32) -> u32 {
 /// Sobol' dimension 1 of `i` (the upper-triangular Pascal matrix mod 2, as a 0.32 fraction),
 /// bit-reversed: the input of its scramble's hash.
 ///
-/// The product is linear over GF(2) (`f(a ^ b) = f(a) ^ f(b)`), so it is the XOR of the
-/// products of `i`'s four bytes, read from [`SOBOL_DIM1_REVERSED_BY_BYTE`]: four loads instead
-/// of a loop over 32 bits (the index is shuffled, so all 32 are in play), and the reversal is in
-/// the tables.
+/// Bit `k` of the reversed product is the XOR of `i`'s bits `j` with `C(j, k)` odd, that is (by
+/// Lucas's theorem) of the bits `j` whose position's binary digits include `k`'s: a sum over
+/// supersets of the 5-bit position, which five XOR-and-shift steps compute, one per digit of
+/// the position (each step adds to every position without that digit the bit at the position
+/// with it). Shifts, masks and XORs only, so the eight lanes of
+/// [`points_side_by_side`] run as vector instructions, where the table of the bytes' products
+/// this replaced took four scalar loads a lane (about 60 instructions a sample of an adaptive
+/// render, docs/quality.md, nineteenth session); the same bits (tested against
+/// [`sobol_dim1_by_bit`]).
 #[inline]
-fn sobol_dim1_reversed(i: u32) -> u32 {
-    let [b0, b1, b2, b3] = i.to_le_bytes();
-    SOBOL_DIM1_REVERSED_BY_BYTE[0][b0 as usize]
-        ^ SOBOL_DIM1_REVERSED_BY_BYTE[1][b1 as usize]
-        ^ SOBOL_DIM1_REVERSED_BY_BYTE[2][b2 as usize]
-        ^ SOBOL_DIM1_REVERSED_BY_BYTE[3][b3 as usize]
+fn sobol_dim1_reversed(mut i: u32) -> u32 {
+    i ^= (i >> 1) & 0x5555_5555;
+    i ^= (i >> 2) & 0x3333_3333;
+    i ^= (i >> 4) & 0x0f0f_0f0f;
+    i ^= (i >> 8) & 0x00ff_00ff;
+    i ^= (i >> 16) & 0x0000_ffff;
+    i
 }
-
-/// `SOBOL_DIM1_REVERSED_BY_BYTE[k][b]` is [`sobol_dim1_by_bit`] of `b << 8k`, bit-reversed
-/// (4 KiB, built at compile time).
-static SOBOL_DIM1_REVERSED_BY_BYTE: [[u32; 256]; 4] = {
-    let mut table = [[0u32; 256]; 4];
-    let mut k = 0;
-    while k < 4 {
-        let mut b = 0;
-        while b < 256 {
-            table[k][b] = sobol_dim1_by_bit((b as u32) << (8 * k)).reverse_bits();
-            b += 1;
-        }
-        k += 1;
-    }
-    table
-};
 
 /// Sobol' dimension 1 of `i` one bit at a time: the matrix's columns, `1 << 31` and each the
 /// one before XOR itself shifted right.
+#[cfg(test)]
 const fn sobol_dim1_by_bit(mut i: u32) -> u32 {
     let mut out = 0u32;
     let mut column = 1u32 << 31;
@@ -176,8 +167,8 @@ mod tests {
     use super::*;
 
     #[test]
-    fn sobol_dim1_by_bytes_is_the_bitwise_product() {
-        // The byte tables against the bit loop: every one- and two-bit index, then a spread of
+    fn sobol_dim1_by_supersets_is_the_bitwise_product() {
+        // The superset steps against the bit loop: every one- and two-bit index, then a spread of
         // hashed ones (the shuffled indices `point` feeds it).
         for a in 0..32 {
             for b in a..32 {

@@ -247,6 +247,25 @@ impl PixelSequences {
             if len == 0 {
                 break;
             }
+            let mut points = [Vec2::ZERO; LANES];
+            if len == LANES && next.is_multiple_of(REPLICATES) && next >= SHARED_ROUNDS * REPLICATES
+            {
+                // A whole run of replicates' samples from a round's start (every run of a
+                // batch of 16): lane `k` is replicate `k mod REPLICATES`'s point of round
+                // `k / REPLICATES`, as `slot_of` says, without its division and the table's
+                // gather per lane.
+                let round = next / REPLICATES - SHARED_ROUNDS;
+                let mut each = [OwenSobol::default(); REPLICATES as usize];
+                for (slot, scramble) in each.iter_mut().enumerate() {
+                    *scramble = scramble_of(slot);
+                }
+                let scrambles = std::array::from_fn(|k| each[k % REPLICATES as usize]);
+                let indices = std::array::from_fn(|k| round + k as u32 / REPLICATES);
+                points_side_by_side(&scrambles, &indices, &mut points);
+                out.copy_from_slice(&points);
+                next += LANES as u32;
+                continue;
+            }
             // Each sequence the run touches resolved once (its cell read, its key derived
             // only if the cell is empty), then handed to its lanes: not a cell and a key per
             // lane.
@@ -266,7 +285,6 @@ impl PixelSequences {
                 }
             }
             let scrambles: [OwenSobol; LANES] = std::array::from_fn(|k| table[slots[k]]);
-            let mut points = [Vec2::ZERO; LANES];
             points_side_by_side(&scrambles, &indices, &mut points);
             out[..len].copy_from_slice(&points[..len]);
             next += len as u32;
