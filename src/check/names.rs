@@ -1,7 +1,9 @@
 //! Stage 2, check: declaration tables, reference resolution with did-you-mean, and the final
 //! pass that reports unused declarations, drops them and compacts the IR's indices.
 
-use std::hash::{BuildHasher, RandomState};
+use std::hash::BuildHasher;
+
+use foldhash::fast::FixedState;
 
 use hashbrown::HashTable;
 
@@ -70,12 +72,18 @@ pub struct Table {
     /// Where each name ends in `names`.
     ends: Vec<u32>,
     pub spans: Vec<Span>,
-    hasher: RandomState,
+    /// foldhash with a fixed seed: a table is made for every statement the pre-check offers
+    /// (std's `RandomState` read its thread-local keys each time, and SipHash was ≈ 4 % of a
+    /// statement-dense compile; docs/frontend-bench.md, nineteenth session). Names only index
+    /// the table, they never order anything the user sees.
+    hasher: FixedState,
     /// The last unknown name looked up, what its kind is called and its help: the 1,000
     /// objects of a renamed material ask for the same did-you-mean over the same names (10 ms
     /// of edit distances per re-check; 2026-11-26, seventh session). Only [`Table::declare`]
     /// changes the names (the others make the table again), and it forgets this.
-    last_help: Option<(String, &'static str, String)>,
+    /// Boxed: a table is made and dropped for every statement the pre-check offers, and this
+    /// is rarely set.
+    last_help: Option<Box<(String, &'static str, String)>>,
 }
 
 impl Table {
@@ -165,13 +173,13 @@ impl Table {
     /// [`suggest::help_for`] `name` among the names (`what` they are), from the last
     /// look-up when it was the same.
     fn help_for_unknown(&mut self, name: &str, what: &'static str) -> String {
-        if let Some((last, last_what, help)) = &self.last_help {
+        if let Some((last, last_what, help)) = self.last_help.as_deref() {
             if last == name && *last_what == what {
                 return help.clone();
             }
         }
         let help = suggest::help_for(name, &self.names(), what);
-        self.last_help = Some((name.to_string(), what, help.clone()));
+        self.last_help = Some(Box::new((name.to_string(), what, help.clone())));
         help
     }
 
