@@ -43,7 +43,7 @@ impl Checker<'_> {
             }
         };
         Some(ir::Mesh {
-            name: d.name.name.clone(),
+            name: d.name.name.to_string(),
             source,
             span: d.name.span,
             obj: (!obj.is_default()).then(|| Box::new(obj)),
@@ -152,7 +152,7 @@ impl Checker<'_> {
             };
             let obj_name = match &v[0].kind {
                 ExprKind::Str(s) => s.clone(),
-                ExprKind::Name(n) => n.clone(),
+                ExprKind::Name(n) => n.to_string(),
                 _ => {
                     self.error(
                         Diagnostic::error(
