@@ -101,9 +101,9 @@ impl Table {
             hasher,
             ..
         } = self;
-        let hash = hasher.hash_one(name);
+        let hash = hasher.hash_one(name.as_bytes());
         index.insert_unique(hash, ends.len() as u32, |&i| {
-            hasher.hash_one(name_at(names, ends, i as usize))
+            hasher.hash_one(name_at(names, ends, i as usize).as_bytes())
         });
         names.push_str(name);
         ends.push(names.len() as u32);
@@ -113,10 +113,16 @@ impl Table {
 
     /// The declaration number of `name`, if it is declared.
     pub fn get(&self, name: &str) -> Option<usize> {
+        self.get_bytes(name.as_bytes())
+    }
+
+    /// [`Table::get`] by the name's bytes (names are hashed as bytes: a `syntax::Name` is
+    /// looked up without the UTF-8 check of its `as_str`).
+    pub fn get_bytes(&self, name: &[u8]) -> Option<usize> {
         let hash = self.hasher.hash_one(name);
         self.index
             .find(hash, |&i| {
-                name_at(&self.names, &self.ends, i as usize) == name
+                name_at(&self.names, &self.ends, i as usize).as_bytes() == name
             })
             .map(|&i| i as usize)
     }
@@ -131,7 +137,9 @@ impl Table {
             hasher,
             ..
         } = self;
-        index.reserve(n, |&i| hasher.hash_one(name_at(names, ends, i as usize)));
+        index.reserve(n, |&i| {
+            hasher.hash_one(name_at(names, ends, i as usize).as_bytes())
+        });
         self.ends.reserve_exact(n);
         self.spans.reserve_exact(n);
     }
@@ -225,6 +233,12 @@ fn name_at<'a>(names: &'a str, ends: &[u32], i: usize) -> &'a str {
 impl Checker<'_> {
     /// Resolves a reference written as a bare name.
     pub fn resolve(&mut self, ns: Namespace, e: &Expr) -> Option<usize> {
+        if let crate::syntax::ExprKind::Name(name) = &e.kind {
+            // The common case, a known name, by its bytes (no UTF-8 check).
+            if let Some(i) = self.table(ns).get_bytes(name.as_bytes()) {
+                return Some(i);
+            }
+        }
         let Some(name) = e.as_name() else {
             self.error(
                 Diagnostic::error(
@@ -236,6 +250,15 @@ impl Checker<'_> {
             return None;
         };
         self.resolve_name(ns, name, e.span)
+    }
+
+    /// [`Checker::resolve_name`] for a declared name as written (by its bytes first: no UTF-8
+    /// check when it is known).
+    pub fn resolve_ident(&mut self, ns: Namespace, name: &crate::syntax::Ident) -> Option<usize> {
+        if let Some(i) = self.table(ns).get_bytes(name.name.as_bytes()) {
+            return Some(i);
+        }
+        self.resolve_name(ns, &name.name, name.span)
     }
 
     /// Resolves `name` in `ns`, or reports it as unknown with a did-you-mean.

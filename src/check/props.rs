@@ -296,10 +296,11 @@ impl Checker<'_> {
 
 /// The static key an item names, if it is one of `keys`.
 fn static_key(e: &Expr, keys: &[&'static str]) -> Option<&'static str> {
+    // Bytes, not `&str`: a `Name`'s `as_str` checks UTF-8 (`syntax::Name::as_bytes`).
     let name = match &e.kind {
-        ExprKind::Name(n) => n.as_str(),
-        ExprKind::Call(call) => call.func.name.as_str(),
+        ExprKind::Name(n) => n.as_bytes(),
+        ExprKind::Call(call) => call.func.name.as_bytes(),
         _ => return None,
     };
-    keys.iter().copied().find(|k| *k == name)
+    keys.iter().copied().find(|k| k.as_bytes() == name)
 }

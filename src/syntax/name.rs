@@ -42,6 +42,16 @@ impl Name {
         }
     }
 
+    /// The text's bytes, read without the UTF-8 check [`Name::as_str`] makes: for hot
+    /// comparisons (a block's keys, the name tables), where that check cost more than the
+    /// comparison.
+    pub fn as_bytes(&self) -> &[u8] {
+        match &self.0 {
+            Repr::Inline { len, bytes } => bytes.get(..*len as usize).unwrap_or_default(),
+            Repr::Heap(s) => s.as_bytes(),
+        }
+    }
+
     /// The text.
     pub fn as_str(&self) -> &str {
         match &self.0 {
@@ -101,7 +111,7 @@ impl From<Name> for String {
 
 impl PartialEq for Name {
     fn eq(&self, other: &Name) -> bool {
-        self.as_str() == other.as_str()
+        self.as_bytes() == other.as_bytes()
     }
 }
 
@@ -109,19 +119,19 @@ impl Eq for Name {}
 
 impl PartialEq<str> for Name {
     fn eq(&self, other: &str) -> bool {
-        self.as_str() == other
+        self.as_bytes() == other.as_bytes()
     }
 }
 
 impl PartialEq<&str> for Name {
     fn eq(&self, other: &&str) -> bool {
-        self.as_str() == *other
+        self.as_bytes() == other.as_bytes()
     }
 }
 
 impl PartialEq<String> for Name {
     fn eq(&self, other: &String) -> bool {
-        self.as_str() == other
+        self.as_bytes() == other.as_bytes()
     }
 }
 
@@ -151,7 +161,14 @@ mod tests {
 
     #[test]
     fn short_and_long_names_read_back_as_written() {
-        for text in ["", "y", "leaf12", "exactly_twenty_two_ch", "é_ünïcode", &"n".repeat(23)] {
+        for text in [
+            "",
+            "y",
+            "leaf12",
+            "exactly_twenty_two_ch",
+            "é_ünïcode",
+            &"n".repeat(23),
+        ] {
             let name = Name::new(text);
             assert_eq!(name.as_str(), text);
             assert_eq!(format!("{name:?}"), format!("{text:?}"));

@@ -108,7 +108,8 @@ impl CheckMemo {
                 return false;
             };
             let reserved = matches!(name.name.as_str(), "true" | "false" | "frame");
-            let taken = cx.lets.contains_key(name.name.as_str()) || cx.defines.contains_key(name.name.as_str());
+            let taken = cx.lets.contains_key(name.name.as_str())
+                || cx.defines.contains_key(name.name.as_str());
             if reserved || taken || !super::reevaluate::names_only_earlier(&cx, value, name.span) {
                 return false;
             }
