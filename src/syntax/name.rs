@@ -15,7 +15,9 @@ use std::ops::Deref;
 /// The longest name held inline.
 const INLINE: usize = 22;
 
-/// A name's text: read it as a `&str` (`Deref`, [`Name::as_str`]).
+/// A name's text: read it as a `&str` (`Deref`, [`Name::as_str`]). To own it, write
+/// `as_str().to_owned()`: `to_string()` goes through `Display` and may leave spare capacity
+/// (the IR's names are kept to the peak heap's byte).
 #[derive(Clone)]
 pub struct Name(Repr);
 

@@ -68,7 +68,7 @@ pub(super) fn reevaluate(
         }
         None => {
             cx.lets.remove(&name.name);
-            cx.poisoned.insert(name.name.to_string());
+            cx.poisoned.insert(name.name.as_str().to_owned());
         }
     }
     Some(true)
