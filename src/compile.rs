@@ -495,7 +495,7 @@ fn parse_define(id: FileId, text: &str) -> (Vec<(String, syntax::Expr)>, Vec<Dia
     let lets = file.into_iter().flat_map(|f| f.statements);
     let defines = lets
         .filter_map(|stmt| match stmt {
-            Stmt::Let { name, value, .. } => Some((name.name, value)),
+            Stmt::Let { name, value, .. } => Some((name.name.as_str().to_owned(), value)),
             _ => None,
         })
         .collect();

@@ -38,7 +38,7 @@ impl Checker<'_> {
         let right = self.camera_right(forward, &placed)?;
         let up = right.cross(forward);
         Some(ir::Camera {
-            name: name.name.clone(),
+            name: name.name.as_str().to_owned(),
             eye: placed.eye,
             forward: forward.as_vec3(),
             up: up.as_vec3(),

@@ -8,14 +8,17 @@
 
 use std::collections::HashMap;
 
+use foldhash::fast::FixedState;
+
 use super::value::Value;
 use crate::source::Span;
 
 /// `let` constants: name → (value, the name's span in its `let`).
 #[derive(Debug, Default)]
 pub struct Constants {
-    /// Name → index in `values`.
-    index: HashMap<Box<str>, u32>,
+    /// Name → index in `values` (foldhash, fixed seed: a `Constants` is made for every
+    /// statement the pre-check offers, and the names never order anything the user sees).
+    index: HashMap<Box<str>, u32, FixedState>,
     /// Values and spans, in the order they were inserted (names are the index's keys).
     values: Vec<(Value, Span)>,
 }

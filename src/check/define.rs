@@ -14,7 +14,7 @@ impl Checker<'_> {
     /// The value of `let name = …` whose scene value is `scene`: `--define`'s if given (and of
     /// the same type), else `scene`. `None` when the define is in error.
     pub(super) fn define_override(&mut self, name: &Ident, scene: Value) -> Option<Value> {
-        let Some((expr, used)) = self.defines.get_mut(&name.name) else {
+        let Some((expr, used)) = self.defines.get_mut(name.name.as_str()) else {
             return Some(scene);
         };
         *used = true;

@@ -167,11 +167,12 @@ impl PreCheck {
 
     /// Checks a top-level `object` or `group`: `None` when it was placed.
     fn place(&mut self, cx: &mut Checker, index: u32, stmt: Stmt) -> Option<Stmt> {
-        cx.tables = std::mem::take(&mut self.tables);
+        // Swapped in and out (the checker's own are empty): no tables made per statement.
+        std::mem::swap(&mut cx.tables, &mut self.tables);
         let names_before = cx.tables[Namespace::Group as usize].spans.len();
         // Not counted: the pre-check has no use lists (the placement phase counts them).
         let _ = cx.placement(&stmt);
-        self.tables = std::mem::take(&mut cx.tables);
+        std::mem::swap(&mut cx.tables, &mut self.tables);
         let failed =
             !cx.diags.is_empty() || matches!(stmt, Stmt::Object(_)) && cx.objects.is_empty();
         if failed {

@@ -91,7 +91,7 @@ impl Checker<'_> {
         let intensity = intensity?.as_vec3();
         self.dark_warning(d, intensity);
         Some(ir::Light::Point(ir::PointLight {
-            name: d.name.name.clone(),
+            name: d.name.name.as_str().to_owned(),
             position: position?,
             intensity,
             span: d.name.span,
@@ -129,7 +129,7 @@ impl Checker<'_> {
         let radiance = radiance?.as_vec3();
         self.dark_warning(d, radiance);
         Some(ir::Light::Area(ir::AreaLight {
-            name: d.name.name.clone(),
+            name: d.name.name.as_str().to_owned(),
             mesh: mesh? as u32,
             world_from_object: world.unwrap_or(DMat4::IDENTITY),
             radiance,
@@ -261,7 +261,7 @@ impl Checker<'_> {
         };
         self.dark_warning(d, emitted);
         Some(ir::Light::Environment(ir::EnvironmentLight {
-            name: d.name.name.clone(),
+            name: d.name.name.as_str().to_owned(),
             source: source?,
             intensity,
             rotation_y_rad: rotation? as f32,

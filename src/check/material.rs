@@ -48,7 +48,7 @@ impl Checker<'_> {
             return (None, textures);
         };
         let m = ir::Material {
-            name: d.name.name.clone(),
+            name: d.name.name.as_str().to_owned(),
             diffuse,
             specular,
             shininess,

@@ -43,7 +43,7 @@ impl Checker<'_> {
             }
         };
         Some(ir::Mesh {
-            name: d.name.name.clone(),
+            name: d.name.name.as_str().to_owned(),
             source,
             span: d.name.span,
             obj: (!obj.is_default()).then(|| Box::new(obj)),
@@ -152,7 +152,7 @@ impl Checker<'_> {
             };
             let obj_name = match &v[0].kind {
                 ExprKind::Str(s) => s.clone(),
-                ExprKind::Name(n) => n.clone(),
+                ExprKind::Name(n) => n.as_str().to_owned(),
                 _ => {
                     self.error(
                         Diagnostic::error(

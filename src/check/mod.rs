@@ -176,7 +176,7 @@ impl<'s> Checker<'s> {
                 self.lets.insert(&name.name, v, name.span);
             }
             None => {
-                self.poisoned.insert(name.name.clone());
+                self.poisoned.insert(name.name.as_str().to_owned());
             }
         }
     }

@@ -1,7 +1,9 @@
 //! Stage 2, check: declaration tables, reference resolution with did-you-mean, and the final
 //! pass that reports unused declarations, drops them and compacts the IR's indices.
 
-use std::hash::{BuildHasher, RandomState};
+use std::hash::BuildHasher;
+
+use foldhash::fast::FixedState;
 
 use hashbrown::HashTable;
 
@@ -70,12 +72,18 @@ pub struct Table {
     /// Where each name ends in `names`.
     ends: Vec<u32>,
     pub spans: Vec<Span>,
-    hasher: RandomState,
+    /// foldhash with a fixed seed: a table is made for every statement the pre-check offers
+    /// (std's `RandomState` read its thread-local keys each time, and SipHash was ≈ 4 % of a
+    /// statement-dense compile; docs/frontend-bench.md, nineteenth session). Names only index
+    /// the table, they never order anything the user sees.
+    hasher: FixedState,
     /// The last unknown name looked up, what its kind is called and its help: the 1,000
     /// objects of a renamed material ask for the same did-you-mean over the same names (10 ms
     /// of edit distances per re-check; 2026-11-26, seventh session). Only [`Table::declare`]
     /// changes the names (the others make the table again), and it forgets this.
-    last_help: Option<(String, &'static str, String)>,
+    /// Boxed: a table is made and dropped for every statement the pre-check offers, and this
+    /// is rarely set.
+    last_help: Option<Box<(String, &'static str, String)>>,
 }
 
 impl Table {
@@ -93,9 +101,9 @@ impl Table {
             hasher,
             ..
         } = self;
-        let hash = hasher.hash_one(name);
+        let hash = hasher.hash_one(name.as_bytes());
         index.insert_unique(hash, ends.len() as u32, |&i| {
-            hasher.hash_one(name_at(names, ends, i as usize))
+            hasher.hash_one(name_at(names, ends, i as usize).as_bytes())
         });
         names.push_str(name);
         ends.push(names.len() as u32);
@@ -105,10 +113,16 @@ impl Table {
 
     /// The declaration number of `name`, if it is declared.
     pub fn get(&self, name: &str) -> Option<usize> {
+        self.get_bytes(name.as_bytes())
+    }
+
+    /// [`Table::get`] by the name's bytes (names are hashed as bytes: a `syntax::Name` is
+    /// looked up without the UTF-8 check of its `as_str`).
+    pub fn get_bytes(&self, name: &[u8]) -> Option<usize> {
         let hash = self.hasher.hash_one(name);
         self.index
             .find(hash, |&i| {
-                name_at(&self.names, &self.ends, i as usize) == name
+                name_at(&self.names, &self.ends, i as usize).as_bytes() == name
             })
             .map(|&i| i as usize)
     }
@@ -123,7 +137,9 @@ impl Table {
             hasher,
             ..
         } = self;
-        index.reserve(n, |&i| hasher.hash_one(name_at(names, ends, i as usize)));
+        index.reserve(n, |&i| {
+            hasher.hash_one(name_at(names, ends, i as usize).as_bytes())
+        });
         self.ends.reserve_exact(n);
         self.spans.reserve_exact(n);
     }
@@ -165,13 +181,13 @@ impl Table {
     /// [`suggest::help_for`] `name` among the names (`what` they are), from the last
     /// look-up when it was the same.
     fn help_for_unknown(&mut self, name: &str, what: &'static str) -> String {
-        if let Some((last, last_what, help)) = &self.last_help {
+        if let Some((last, last_what, help)) = self.last_help.as_deref() {
             if last == name && *last_what == what {
                 return help.clone();
             }
         }
         let help = suggest::help_for(name, &self.names(), what);
-        self.last_help = Some((name.to_string(), what, help.clone()));
+        self.last_help = Some(Box::new((name.to_string(), what, help.clone())));
         help
     }
 
@@ -217,6 +233,12 @@ fn name_at<'a>(names: &'a str, ends: &[u32], i: usize) -> &'a str {
 impl Checker<'_> {
     /// Resolves a reference written as a bare name.
     pub fn resolve(&mut self, ns: Namespace, e: &Expr) -> Option<usize> {
+        if let crate::syntax::ExprKind::Name(name) = &e.kind {
+            // The common case, a known name, by its bytes (no UTF-8 check).
+            if let Some(i) = self.table(ns).get_bytes(name.as_bytes()) {
+                return Some(i);
+            }
+        }
         let Some(name) = e.as_name() else {
             self.error(
                 Diagnostic::error(
@@ -228,6 +250,15 @@ impl Checker<'_> {
             return None;
         };
         self.resolve_name(ns, name, e.span)
+    }
+
+    /// [`Checker::resolve_name`] for a declared name as written (by its bytes first: no UTF-8
+    /// check when it is known).
+    pub fn resolve_ident(&mut self, ns: Namespace, name: &crate::syntax::Ident) -> Option<usize> {
+        if let Some(i) = self.table(ns).get_bytes(name.name.as_bytes()) {
+            return Some(i);
+        }
+        self.resolve_name(ns, &name.name, name.span)
     }
 
     /// Resolves `name` in `ns`, or reports it as unknown with a did-you-mean.

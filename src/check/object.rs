@@ -86,7 +86,7 @@ impl Checker<'_> {
             &["transform"],
         );
         let local = self.transforms(&props.transforms, "an object");
-        let mesh = self.resolve_name(Namespace::Mesh, &o.mesh.name, o.mesh.span);
+        let mesh = self.resolve_ident(Namespace::Mesh, &o.mesh);
         let material = match props.get("material") {
             Some(p) => self
                 .one(p, "material NAME")

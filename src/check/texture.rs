@@ -90,7 +90,7 @@ impl Checker<'_> {
             }
         };
         Some(ir::Texture {
-            name: d.name.name.clone(),
+            name: d.name.name.as_str().to_owned(),
             source,
             span: d.name.span,
         })

@@ -120,11 +120,14 @@ impl Checker<'_> {
     }
 
     fn axis(&mut self, e: &Expr) -> Option<DVec3> {
-        match e.as_name() {
-            Some("x") => return Some(DVec3::X),
-            Some("y") => return Some(DVec3::Y),
-            Some("z") => return Some(DVec3::Z),
-            _ => {}
+        if let ExprKind::Name(n) = &e.kind {
+            // Bytes: a `Name`'s `as_str` checks UTF-8.
+            match n.as_bytes() {
+                b"x" => return Some(DVec3::X),
+                b"y" => return Some(DVec3::Y),
+                b"z" => return Some(DVec3::Z),
+                _ => {}
+            }
         }
         let v = self.vec3(e)?;
         let n = v.try_normalize();

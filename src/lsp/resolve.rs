@@ -73,17 +73,17 @@ impl Resolver {
         if kind == SymbolKind::Constant && RESERVED.contains(&name.name.as_str()) {
             return;
         }
-        let key = (kind, name.name.clone());
+        let key = (kind, name.name.as_str().to_owned());
         if self.by_name.contains_key(&key) {
             return;
         }
         self.by_name.insert(key, SymbolId(self.symbols.len()));
         self.symbols.push(Symbol {
-            name: name.name.clone(),
+            name: name.name.as_str().to_owned(),
             kind,
             name_span: name.span,
             span,
-            detail: detail.map(|d| d.name.clone()),
+            detail: detail.map(|d| d.name.as_str().to_owned()),
         });
     }
 

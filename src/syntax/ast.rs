@@ -6,12 +6,13 @@
 //! vectors, so a million-vertex mesh never exists as a million AST nodes.
 
 use crate::source::Span;
+pub use crate::syntax::name::Name;
 
 /// A name as written, with its span.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Ident {
     /// The name's text.
-    pub name: String,
+    pub name: Name,
     /// Where it is written.
     pub span: Span,
 }
@@ -57,7 +58,7 @@ pub enum ExprKind {
     /// A string literal, unescaped.
     Str(String),
     /// A name: a `let` constant, a declaration, or a keyword value (`true`, `repeat`, `y`).
-    Name(String),
+    Name(Name),
     /// `(e)`.
     Paren(Box<Expr>),
     /// `(a, b)` or `(a, b, c)` (any arity here; `check` accepts 2 and 3).

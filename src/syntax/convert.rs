@@ -88,7 +88,7 @@ impl Converter {
 
     fn ident(&self, pair: Pair<Rule>) -> Ident {
         Ident {
-            name: pair.as_str().to_string(),
+            name: Name::new(pair.as_str()),
             span: self.span(&pair),
         }
     }

@@ -16,6 +16,7 @@ pub mod ast;
 mod convert;
 mod errors;
 mod fast;
+mod name;
 pub mod scan;
 mod tail;
 

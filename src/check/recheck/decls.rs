@@ -138,7 +138,7 @@ impl CheckMemo {
             let names = [was.name.as_str(), now.name.as_str()];
             changed = self.rename_dependents(sources, ns, &names, shift, dependents)?;
             renamed_at = Some((ns, at, now.span));
-            renaming = Some((ns, at, was.name.clone()));
+            renaming = Some((ns, at, was.name.as_str().to_owned()));
         }
         // The old statements' own diagnostics go (their spans lie in the old text), then the
         // names and constants move to the new text: the re-check reports against them.

@@ -100,7 +100,8 @@ impl CheckMemo {
         };
         let twice = (self.diagnostics.iter()).any(|d| d.code == Code::CheckDuplicateName);
         let reserved = matches!(now.name.as_str(), "true" | "false" | "frame");
-        let taken = self.lets.contains_key(&now.name) || self.poisoned.contains(&now.name);
+        let taken =
+            self.lets.contains_key(now.name.as_str()) || self.poisoned.contains(now.name.as_str());
         if !old.is_empty() || !self.defines.is_empty() || twice || reserved || taken {
             return None;
         }

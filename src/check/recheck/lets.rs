@@ -79,7 +79,7 @@ impl CheckMemo {
                 return None;
             };
             let declared = self.lets.get(&name.name).map(|(_, at)| *at);
-            let overridden = self.defines.contains_key(&name.name);
+            let overridden = self.defines.contains_key(name.name.as_str());
             if declared != Some(name.span)
                 || overridden
                 || !dependents.naming(&name.name)?.is_empty()
@@ -108,7 +108,8 @@ impl CheckMemo {
                 return false;
             };
             let reserved = matches!(name.name.as_str(), "true" | "false" | "frame");
-            let taken = cx.lets.contains_key(&name.name) || cx.defines.contains_key(&name.name);
+            let taken = cx.lets.contains_key(name.name.as_str())
+                || cx.defines.contains_key(name.name.as_str());
             if reserved || taken || !super::reevaluate::names_only_earlier(&cx, value, name.span) {
                 return false;
             }

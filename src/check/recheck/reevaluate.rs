@@ -37,10 +37,10 @@ pub(super) fn reevaluate(
     let old = match cx.lets.get(&name.name) {
         Some((old, at)) => (*at == name.span).then(|| Some(old.clone()))?,
         // Failed before: the first `let` of its name (another would be in the table).
-        None if clean && cx.poisoned.contains(&name.name) => None,
+        None if clean && cx.poisoned.contains(name.name.as_str()) => None,
         None => return None,
     };
-    let overridden = cx.defines.contains_key(&name.name);
+    let overridden = cx.defines.contains_key(name.name.as_str());
     if overridden {
         return None;
     }
@@ -63,12 +63,12 @@ pub(super) fn reevaluate(
     }
     match new {
         Some(new) => {
-            cx.poisoned.remove(&name.name);
+            cx.poisoned.remove(name.name.as_str());
             cx.lets.insert(&name.name, new, name.span);
         }
         None => {
             cx.lets.remove(&name.name);
-            cx.poisoned.insert(name.name.clone());
+            cx.poisoned.insert(name.name.as_str().to_owned());
         }
     }
     Some(true)

@@ -104,7 +104,7 @@ impl Converter {
                 }
             }
             Rule::array => ExprKind::Array,
-            _ => ExprKind::Name(pair.as_str().to_string()),
+            _ => ExprKind::Name(Name::new(pair.as_str())),
         };
         Expr { kind, span }
     }

@@ -6,7 +6,7 @@
 //! statement to pest.
 
 use crate::source::{FileId, Span};
-use crate::syntax::ast::{Ident, Item};
+use crate::syntax::ast::{Ident, Item, Name};
 
 /// Where the fast parser is in the text.
 pub(super) struct Cursor<'t> {
@@ -130,7 +130,7 @@ impl<'t> Cursor<'t> {
         let end = self.word_end()?;
         self.pos = end;
         Some(Ident {
-            name: self.text[start..end].to_string(),
+            name: Name::new(&self.text[start..end]),
             span: self.span(start, end),
         })
     }

@@ -104,7 +104,7 @@ impl Cursor<'_> {
                     ExprKind::Call(Box::new(Call { func, args }))
                 } else {
                     self.pos = end;
-                    ExprKind::Name(self.text[start..end].to_string())
+                    ExprKind::Name(Name::new(&self.text[start..end]))
                 }
             }
             b'0'..=b'9' | b'.' => self.number()?,
