@@ -167,7 +167,7 @@ mod tests {
             "",
             "y",
             "leaf12",
-            "exactly_twenty_two_ch",
+            "exactly_twenty_two_chr",
             "é_ünïcode",
             &"n".repeat(23),
         ] {
