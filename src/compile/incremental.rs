@@ -29,13 +29,13 @@
 //! but as `include_edit` takes it (its file's statements added or removed as a block, the
 //! later files' ids renumbered when it is not read last (`file_ids`); an include of a file
 //! read before it, which reads nothing; a retarget as a removal and an addition), a syntax
-//! error in a scene with includes that loses a declaration or breaks two files (a syntax error in one
-//! file of several is answered from that file's statements, seventh session) or one
-//! [`super::broken`] declines, a `let` or `group` added or removed among declarations, an edit of a
-//! light, a camera or the render block that gives or takes away a diagnostic, or made while the
-//! scene has an error (or of a constant one of them names), a `let` that fails (or failed) while another error
-//! stands, and any edit where a kept span
-//! would reach into the edited bytes. An edit that makes a mesh or material used or unused, or a
+//! error in a scene with includes that loses a declaration or breaks two files (a syntax error
+//! in one file of several is answered from that file's statements, seventh session) or one
+//! [`super::broken`] declines, a `let` or `group` added or removed among declarations, an edit
+//! of a light, a camera or the render block that gives or takes away a diagnostic, or made
+//! while the scene has an error (or of a constant one of them names), a `let` that fails (or
+//! failed) while another error stands, and any edit where a kept span would reach into the
+//! edited bytes. An edit that makes a mesh or material used or unused, or a
 //! declaration fail to lower or lower again, compacts the IR's indices again from the memo
 //! (`check::recheck::compact`). `scnc watch` and `scnc lsp` compile through it;
 //! `tests/incremental.rs` replays seeded edits and compares every result with a fresh compile.
