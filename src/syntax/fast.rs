@@ -13,6 +13,7 @@
 //! example and on seeded mutations) holds the two parsers to identical output.
 
 mod cursor;
+mod decimal;
 mod expr;
 
 use pest::Parser;

@@ -127,8 +127,8 @@ impl Cursor<'_> {
     fn number(&mut self) -> Option<ExprKind> {
         let end = self.digits_end()?;
         // The grammar only admits well-formed decimal literals, which f64 parses (as in the
-        // converter).
-        let value = self.text[self.pos..end].parse::<f64>().unwrap_or(f64::NAN);
+        // converter; `decimal` gives the same bits, the short ones without `str::parse`).
+        let value = super::decimal::value(&self.text[self.pos..end]);
         self.pos = end;
         let suffix = match self.peek() {
             Some(b) if super::cursor::is_ident_start(b) => Some(Box::new(self.ident()?)),
