@@ -158,22 +158,26 @@ impl Cursor<'_> {
     /// `( e, e, ... )` with an optional trailing comma, possibly empty, the cursor on `(`.
     fn list(&mut self) -> Option<Vec<Expr>> {
         self.eat(b'(')?;
+        self.open()?;
         self.skip();
-        let mut parts = Vec::new();
         if self.eat(b')').is_some() {
-            return Some(parts);
+            self.close();
+            return Some(Vec::new());
         }
+        let mut parts = Vec::new();
         loop {
             parts.push(self.expr()?);
             self.skip();
             if self.eat(b')').is_some() {
-                return Some(parts);
+                break;
             }
             self.eat(b',')?;
             self.skip();
             if self.eat(b')').is_some() {
-                return Some(parts);
+                break;
             }
         }
+        self.close();
+        Some(parts)
     }
 }
