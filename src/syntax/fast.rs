@@ -450,7 +450,20 @@ impl Cursor<'_> {
     /// `item`: `transform { }`, a nested `object` or `group`, or a term.
     fn item(&mut self) -> Option<Item> {
         let start = self.pos;
-        let word = self.word();
+        let Some(end) = self.word_end() else {
+            return Some(Item::Value(self.top_term()?));
+        };
+        let word = &self.text[start..end];
+        if !matches!(word, "transform" | "object" | "group") && self.at(end) != Some(b'(') {
+            // A bare name, as `top_term` parses it (no sign before it, not a call), without
+            // reading the word again.
+            self.pos = end;
+            return Some(Item::Value(Expr {
+                kind: ExprKind::Name(Name::new(word)),
+                span: self.span(start, end),
+            }));
+        }
+        let word = Some(word);
         let keyword = |this: &mut Self, kw: &str| {
             this.pos += kw.len();
             this.skip();

@@ -37,8 +37,31 @@ pub(super) fn is_ident_start(b: u8) -> bool {
 }
 
 pub(super) fn is_ident_char(b: u8) -> bool {
-    b.is_ascii_alphanumeric() || b == b'_'
+    IDENT_CHARS[b as usize]
 }
+
+/// `ident_raw`'s bytes after the first (`ASCII_ALPHANUMERIC | "_"`), one load per byte.
+const IDENT_CHARS: [bool; 256] = {
+    let mut t = [false; 256];
+    let mut b = 0;
+    while b < 256 {
+        t[b] = (b as u8).is_ascii_alphanumeric() || b == b'_' as usize;
+        b += 1;
+    }
+    t
+};
+
+/// The bytes [`Cursor::skip`] may pass: blanks, and the first bytes of a comment and a BOM.
+const SKIPPABLE: [bool; 256] = {
+    let mut t = [false; 256];
+    let starts = b" \n\t\r/\xEF";
+    let mut k = 0;
+    while k < starts.len() {
+        t[starts[k] as usize] = true;
+        k += 1;
+    }
+    t
+};
 
 impl<'t> Cursor<'t> {
     pub fn new(file: FileId, text: &'t str) -> Cursor<'t> {
@@ -112,7 +135,17 @@ impl<'t> Cursor<'t> {
 
     /// pest's implicit `(WHITESPACE | COMMENT)*`: an unterminated block comment is left in
     /// place (pest's skip fails on it too, and whatever comes next then fails at its `/`).
+    ///
+    /// Inlined up to the first byte: most calls stand on a token already.
+    #[inline]
     pub fn skip(&mut self) {
+        if self.peek().is_some_and(|b| SKIPPABLE[b as usize]) {
+            self.skip_some();
+        }
+    }
+
+    /// [`Cursor::skip`] past its first check.
+    fn skip_some(&mut self) {
         loop {
             match self.peek() {
                 Some(b' ' | b'\n' | b'\t' | b'\r') => self.pos += 1,

@@ -164,7 +164,9 @@ impl Cursor<'_> {
             self.close();
             return Some(Vec::new());
         }
-        let mut parts = Vec::new();
+        // Room for a vector or a colour at once (the capacity the first push would give),
+        // without the general growth path a push into an empty `Vec` takes.
+        let mut parts = Vec::with_capacity(4);
         loop {
             parts.push(self.expr()?);
             self.skip();
