@@ -351,6 +351,23 @@ mod tests {
     }
 
     #[test]
+    fn a_unit_suffix_is_held_inline_without_growing_the_nodes() {
+        // `Number`'s suffix was a `Box<Ident>`; inline, it must not make every node larger.
+        assert_eq!(std::mem::size_of::<Expr>(), 48);
+        assert_eq!(std::mem::size_of::<Item>(), 48);
+        let f = parse_ok("scnc 1 let a = 30deg + 2");
+        let Stmt::Let { value, .. } = &f.statements[1] else {
+            panic!("expected let")
+        };
+        let ExprKind::Binary { lhs, .. } = &value.kind else {
+            panic!("expected binary")
+        };
+        let suffix = lhs.suffix().expect("a suffix");
+        assert_eq!(suffix.name, "deg");
+        assert_eq!((suffix.span.start, suffix.span.end), (17, 20));
+    }
+
+    #[test]
     fn long_expressions_are_capped() {
         let src = format!("scnc 1\nlet a = 1{}\n", " + 1".repeat(300));
         let (_, d) = parse(FileId(0), &src).into_parts();

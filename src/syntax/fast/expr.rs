@@ -131,7 +131,7 @@ impl Cursor<'_> {
         let value = super::decimal::value(&self.text[self.pos..end]);
         self.pos = end;
         let suffix = match self.peek() {
-            Some(b) if super::cursor::is_ident_start(b) => Some(Box::new(self.ident()?)),
+            Some(b) if super::cursor::is_ident_start(b) => Some(self.ident()?.name),
             _ => None,
         };
         Some(ExprKind::Number { value, suffix })
