@@ -47,6 +47,12 @@ fn corpus() -> Vec<String> {
 
 fn assert_same(text: &str) {
     let fast = fast::parse(FileId(0), text);
+    if crate::syntax::scan::too_deep(text).is_some() {
+        // The fast parser counts depth and gives up where the scan does (pest would parse
+        // the text, but no parse of a file reaches pest before the depth check).
+        assert!(fast.is_none(), "{text}");
+        return;
+    }
     let pest = parse_with_pest(FileId(0), text).map(|(f, d)| (f.statements, d));
     if fast == pest {
         return;
