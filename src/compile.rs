@@ -229,8 +229,8 @@ impl<'l> Driver<'l> {
     fn add_streamed(&mut self, id: FileId, text: &str) {
         if let Some(pre) = &mut self.pre {
             let count = |word: &[u8]| memchr::memmem::find_iter(text.as_bytes(), word).count();
-            let decls = [count(b"\nmaterial"), count(b"\nmesh"), count(b"group")];
-            pre.reserve(count(b"object"), count(b"\nlet"), decls);
+            let [materials, meshes, lets] = count_line_starts(text, [b"material", b"mesh", b"let"]);
+            pre.reserve(count(b"object"), lets, [materials, meshes, count(b"group")]);
         }
         let mut first = true;
         let ok = syntax::parse_each(id, text, &mut |stmt| {
@@ -481,6 +481,20 @@ impl<'l> Driver<'l> {
             diagnostics: diags,
         }
     }
+}
+
+/// How many times each of `words` follows a newline in `text` (as many as the matches of
+/// `"\n" + word`), counted in one pass over the lines instead of one search per word.
+fn count_line_starts<const N: usize>(text: &str, words: [&[u8]; N]) -> [usize; N] {
+    let bytes = text.as_bytes();
+    let mut counts = [0; N];
+    for newline in memchr::memchr_iter(b'\n', bytes) {
+        let line = &bytes[newline + 1..];
+        for (count, word) in counts.iter_mut().zip(words) {
+            *count += usize::from(line.starts_with(word));
+        }
+    }
+    counts
 }
 
 /// The source a `--define NAME=VALUE` is parsed as.

@@ -57,10 +57,12 @@ impl Checker<'_> {
             ExprKind::Error => None,
             ExprKind::Number { value, suffix } => match suffix {
                 None => Some(Value::Num(*value)),
-                Some(s) if s.name == "deg" => Some(Value::Angle(value.to_radians())),
-                Some(s) if s.name == "rad" => Some(Value::Angle(*value)),
-                Some(s) => {
-                    self.unknown_unit(s);
+                Some(s) if s.as_bytes() == b"deg" => Some(Value::Angle(value.to_radians())),
+                Some(s) if s.as_bytes() == b"rad" => Some(Value::Angle(*value)),
+                Some(_) => {
+                    if let Some(s) = e.suffix() {
+                        self.unknown_unit(&s);
+                    }
                     None
                 }
             },

@@ -49,9 +49,10 @@ pub enum ExprKind {
     Number {
         /// The number's value.
         value: f64,
-        /// The unit glued to it, if any (boxed: most numbers have none, and every expression
-        /// node is as large as its largest kind).
-        suffix: Option<Box<Ident>>,
+        /// The unit glued to it, if any: it ends where the number does ([`Expr::suffix`] has
+        /// its span). Held inline, as names are: a box was an allocation and a free for
+        /// every angle of a scene.
+        suffix: Option<Name>,
     },
     /// `#rgb` / `#rrggbb`, the text after `#` (validated by `check`).
     HexColor(String),
@@ -101,6 +102,22 @@ pub struct Expr {
 }
 
 impl Expr {
+    /// The unit suffix of a number literal, with its span (the last bytes of the number's).
+    pub fn suffix(&self) -> Option<Ident> {
+        match &self.kind {
+            ExprKind::Number {
+                suffix: Some(name), ..
+            } => {
+                let end = self.span.end as usize;
+                Some(Ident {
+                    name: name.clone(),
+                    span: Span::new(self.span.file, end - name.len(), end),
+                })
+            }
+            _ => None,
+        }
+    }
+
     /// The name, if this expression is a bare name.
     pub fn as_name(&self) -> Option<&str> {
         match &self.kind {

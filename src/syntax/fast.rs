@@ -13,6 +13,7 @@
 //! example and on seeded mutations) holds the two parsers to identical output.
 
 mod cursor;
+mod decimal;
 mod expr;
 
 use pest::Parser;
@@ -24,7 +25,8 @@ use super::{Rule, SceneParser};
 use crate::diag::Diagnostic;
 use crate::source::FileId;
 
-/// Parses a whole file; `None` when it has a syntax error (pest failed on a statement).
+/// Parses a whole file; `None` when it has a syntax error (pest failed on a statement) or
+/// nests deeper than `scan::MAX_NESTING` (`scan::too_deep`, checked while parsing).
 pub(super) fn parse(file: FileId, text: &str) -> Option<(Vec<Stmt>, Vec<Diagnostic>)> {
     let mut statements = Vec::new();
     let diags = parse_each(file, text, &mut |s| statements.push(s), Fallback::Whole)?;
@@ -45,25 +47,47 @@ pub(super) enum Fallback {
 }
 
 /// [`parse`], handing each statement to `each` as soon as it is parsed instead of gathering
-/// them. On `None` (a syntax error, or giving up under [`Fallback::Line`]) the statements
-/// before it were handed out already.
+/// them. On `None` (a syntax error, nesting too deep, or giving up under [`Fallback::Line`])
+/// the statements before it were handed out already.
 pub(super) fn parse_each(
     file: FileId,
     text: &str,
     each: &mut dyn FnMut(Stmt),
     fallback: Fallback,
 ) -> Option<Vec<Diagnostic>> {
-    let mut c = Cursor::new(file, text);
+    parse_each_from(Cursor::counting_depth(file, text), each, fallback)
+}
+
+/// [`parse_each`] with the cursor `c` at the start of its text: one that counts depth, or (for
+/// the tests, as the parse was before the depth was counted while parsing) one over a text
+/// scanned first.
+fn parse_each_from(
+    mut c: Cursor,
+    each: &mut dyn FnMut(Stmt),
+    fallback: Fallback,
+) -> Option<Vec<Diagnostic>> {
+    let (file, text) = (c.file, c.text);
     let mut diags = Vec::new();
     loop {
         c.skip();
+        if c.too_deep {
+            return None;
+        }
         if c.pos >= text.len() {
             return Some(diags);
         }
         let start = c.pos;
-        match c.statement() {
+        let parsed = c.statement();
+        if c.too_deep {
+            return None;
+        }
+        match parsed {
             Some(s) => each(s),
             None => {
+                // pest is recursive: it parses nothing before the whole text's depth is known.
+                if !c.scan_depth() {
+                    return None;
+                }
                 match fallback {
                     Fallback::Line => {
                         pest_statement(file, within_line(text, start), start, &mut Vec::new())?;
@@ -402,10 +426,12 @@ impl Cursor<'_> {
     fn block(&mut self) -> Option<Block> {
         let start = self.pos;
         self.eat(b'{')?;
+        self.open()?;
         let mark = self.items.len();
         loop {
             self.skip();
             if self.eat(b'}').is_some() {
+                self.close();
                 return Some(Block {
                     items: self.items.drain(mark..).collect(),
                     span: self.span(start, self.pos),
@@ -424,7 +450,20 @@ impl Cursor<'_> {
     /// `item`: `transform { }`, a nested `object` or `group`, or a term.
     fn item(&mut self) -> Option<Item> {
         let start = self.pos;
-        let word = self.word();
+        let Some(end) = self.word_end() else {
+            return Some(Item::Value(self.top_term()?));
+        };
+        let word = &self.text[start..end];
+        if !matches!(word, "transform" | "object" | "group") && self.at(end) != Some(b'(') {
+            // A bare name, as `top_term` parses it (no sign before it, not a call), without
+            // reading the word again.
+            self.pos = end;
+            return Some(Item::Value(Expr {
+                kind: ExprKind::Name(Name::new(word)),
+                span: self.span(start, end),
+            }));
+        }
+        let word = Some(word);
         let keyword = |this: &mut Self, kw: &str| {
             this.pos += kw.len();
             this.skip();

@@ -9,8 +9,10 @@
 //! the checker: by the fast parser when it accepts the chunk whole, by pest (the source of every
 //! syntax error) otherwise, so a file with one error costs about what a clean one does. A
 //! failing chunk whose tail is `object`s and `group`s (a `{` left open over them) has its error
-//! told without parsing that tail (`tail.rs`). Before either parser runs, nesting depth is checked by a linear pre-scan so deep
-//! input cannot overflow the stack.
+//! told without parsing that tail (`tail.rs`). Nesting depth is checked so that deep input cannot
+//! overflow the stack: by the fast parser as it parses (it stops where the linear pre-scan
+//! `scan::too_deep` would find the text too deep, and has the pre-scan read the whole text
+//! before pest parses anything), by the pre-scan before the error recovery and a region's parse.
 
 pub mod ast;
 mod convert;
@@ -51,25 +53,20 @@ pub fn parse(file: FileId, text: &str) -> Staged<SceneFile> {
 }
 
 fn parse_recovering(file: FileId, text: &str) -> (SceneFile, Vec<Diagnostic>) {
-    if scan::too_deep(text).is_none() {
-        if let Some((statements, diags)) = fast::parse(file, text) {
-            return (SceneFile { statements }, diags);
-        }
+    if let Some((statements, diags)) = fast::parse(file, text) {
+        return (SceneFile { statements }, diags);
     }
     parse_chunks(file, text, &scan::scan(text), Chunks::Fast)
 }
 
 /// [`parse`] for a file without syntax errors or diagnostics, handing each statement to `each`
 /// as soon as it is parsed (so that the caller may lower it and drop its AST at once). `false`
-/// when the file has any syntax error or diagnostic, or a statement the fast parser leaves to
-/// pest does not parse before the next line that starts with a word (`fast::Fallback::Line`:
-/// an object cut inside its braces is not read over the rest of the file): some statements
-/// may have been handed out already, and the caller must start over with [`parse`] (which
-/// reports them).
+/// when the file has any syntax error or diagnostic, nests too deep, or a statement the fast
+/// parser leaves to pest does not parse before the next line that starts with a word
+/// (`fast::Fallback::Line`: an object cut inside its braces is not read over the rest of the
+/// file): some statements may have been handed out already, and the caller must start over
+/// with [`parse`] (which reports them).
 pub fn parse_each(file: FileId, text: &str, each: &mut dyn FnMut(Stmt)) -> bool {
-    if scan::too_deep(text).is_some() {
-        return false;
-    }
     fast::parse_each(file, text, each, fast::Fallback::Line).is_some_and(|diags| diags.is_empty())
 }
 
@@ -351,6 +348,23 @@ mod tests {
         );
         let (_, d) = parse(FileId(0), &src).into_parts();
         assert_eq!(d[0].code, Code::SyntaxTooDeep);
+    }
+
+    #[test]
+    fn a_unit_suffix_is_held_inline_without_growing_the_nodes() {
+        // `Number`'s suffix was a `Box<Ident>`; inline, it must not make every node larger.
+        assert_eq!(std::mem::size_of::<Expr>(), 48);
+        assert_eq!(std::mem::size_of::<Item>(), 48);
+        let f = parse_ok("scnc 1 let a = 30deg + 2");
+        let Stmt::Let { value, .. } = &f.statements[1] else {
+            panic!("expected let")
+        };
+        let ExprKind::Binary { lhs, .. } = &value.kind else {
+            panic!("expected binary")
+        };
+        let suffix = lhs.suffix().expect("a suffix");
+        assert_eq!(suffix.name, "deg");
+        assert_eq!((suffix.span.start, suffix.span.end), (17, 20));
     }
 
     #[test]

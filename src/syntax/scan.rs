@@ -333,7 +333,7 @@ const CODE_BYTES: [bool; 256] = {
 };
 
 /// The bytes that can change [`too_deep`]'s state: quotes, comment starts and brackets.
-const DEPTH_BYTES: [bool; 256] = {
+pub(crate) const DEPTH_BYTES: [bool; 256] = {
     let mut t = [false; 256];
     let mut k = 0;
     let interesting = b"\"/([{)]}";

@@ -83,7 +83,7 @@ impl Converter {
                 // The grammar only admits well-formed decimal literals, which f64 parses; the
                 // fallback is for literals too long to matter.
                 let value = digits.as_str().parse::<f64>().unwrap_or(f64::NAN);
-                let suffix = inner.next().map(|s| Box::new(self.ident(s)));
+                let suffix = inner.next().map(|s| self.ident(s).name);
                 ExprKind::Number { value, suffix }
             }
             Rule::hex_color => ExprKind::HexColor(pair.as_str()[1..].to_string()),

@@ -7,6 +7,7 @@
 
 use crate::source::{FileId, Span};
 use crate::syntax::ast::{Ident, Item, Name};
+use crate::syntax::scan::{too_deep, DEPTH_BYTES, MAX_NESTING};
 
 /// Where the fast parser is in the text.
 pub(super) struct Cursor<'t> {
@@ -19,6 +20,16 @@ pub(super) struct Cursor<'t> {
     pub nodes: usize,
     /// Items of the blocks being parsed, innermost last (see `block`).
     pub items: Vec<Item>,
+    /// Brackets open at the cursor, as `scan::too_deep` counts them: `(`, `{` and `[` the parser
+    /// has opened, within the statement being parsed (a parsed statement closes all it opens).
+    pub depth: usize,
+    /// Whether the nesting depth is still to be checked here ([`Cursor::counting_depth`]):
+    /// until the whole text has been scanned, or the parser has passed every byte of it.
+    pub counting: bool,
+    /// Nesting went deeper than [`MAX_NESTING`] (as `scan::too_deep` finds it) at or before the
+    /// cursor: the parse must give up, as it gave up before it began when the text was scanned
+    /// first.
+    pub too_deep: bool,
 }
 
 pub(super) fn is_ident_start(b: u8) -> bool {
@@ -26,8 +37,31 @@ pub(super) fn is_ident_start(b: u8) -> bool {
 }
 
 pub(super) fn is_ident_char(b: u8) -> bool {
-    b.is_ascii_alphanumeric() || b == b'_'
+    IDENT_CHARS[b as usize]
 }
+
+/// `ident_raw`'s bytes after the first (`ASCII_ALPHANUMERIC | "_"`), one load per byte.
+const IDENT_CHARS: [bool; 256] = {
+    let mut t = [false; 256];
+    let mut b = 0;
+    while b < 256 {
+        t[b] = (b as u8).is_ascii_alphanumeric() || b == b'_' as usize;
+        b += 1;
+    }
+    t
+};
+
+/// The bytes [`Cursor::skip`] may pass: blanks, and the first bytes of a comment and a BOM.
+const SKIPPABLE: [bool; 256] = {
+    let mut t = [false; 256];
+    let starts = b" \n\t\r/\xEF";
+    let mut k = 0;
+    while k < starts.len() {
+        t[starts[k] as usize] = true;
+        k += 1;
+    }
+    t
+};
 
 impl<'t> Cursor<'t> {
     pub fn new(file: FileId, text: &'t str) -> Cursor<'t> {
@@ -38,7 +72,48 @@ impl<'t> Cursor<'t> {
             file,
             nodes: 0,
             items: Vec::new(),
+            depth: 0,
+            counting: false,
+            too_deep: false,
         }
+    }
+
+    /// A cursor for a text whose nesting depth was not checked before: it counts brackets and
+    /// block comments as it parses them and sets [`Cursor::too_deep`] exactly where
+    /// `scan::too_deep` would find the text too deep, so the depth check costs no second pass
+    /// over the text. Where the parser cannot tell (an array whose inside holds brackets,
+    /// quotes or a `/`, a statement it does not accept, which pest would then parse), it
+    /// scans the whole text once, as before, and counts no more ([`Cursor::scan_depth`]).
+    pub fn counting_depth(file: FileId, text: &'t str) -> Cursor<'t> {
+        Cursor {
+            counting: true,
+            ..Cursor::new(file, text)
+        }
+    }
+
+    /// Opens a bracket (or the `[` of an array); `None` once nesting is too deep.
+    pub fn open(&mut self) -> Option<()> {
+        self.depth += 1;
+        if self.counting && self.depth > MAX_NESTING {
+            self.too_deep = true;
+            return None;
+        }
+        Some(())
+    }
+
+    /// Closes a bracket.
+    pub fn close(&mut self) {
+        self.depth = self.depth.saturating_sub(1);
+    }
+
+    /// Whether the whole text nests no deeper than allowed, scanned once (`scan::too_deep`)
+    /// the first time it is asked while counting; afterwards nothing is counted.
+    pub fn scan_depth(&mut self) -> bool {
+        if self.counting {
+            self.counting = false;
+            self.too_deep = too_deep(self.text).is_some();
+        }
+        !self.too_deep
     }
 
     pub fn peek(&self) -> Option<u8> {
@@ -60,7 +135,17 @@ impl<'t> Cursor<'t> {
 
     /// pest's implicit `(WHITESPACE | COMMENT)*`: an unterminated block comment is left in
     /// place (pest's skip fails on it too, and whatever comes next then fails at its `/`).
+    ///
+    /// Inlined up to the first byte: most calls stand on a token already.
+    #[inline]
     pub fn skip(&mut self) {
+        if self.peek().is_some_and(|b| SKIPPABLE[b as usize]) {
+            self.skip_some();
+        }
+    }
+
+    /// [`Cursor::skip`] past its first check.
+    fn skip_some(&mut self) {
         loop {
             match self.peek() {
                 Some(b' ' | b'\n' | b'\t' | b'\r') => self.pos += 1,
@@ -73,8 +158,8 @@ impl<'t> Cursor<'t> {
                             .map_or(self.bytes.len(), |n| self.pos + n);
                     }
                     Some(b'*') => match self.block_comment_end(self.pos) {
-                        Some(end) => self.pos = end,
-                        None => return,
+                        Some(end) if !self.too_deep => self.pos = end,
+                        _ => return,
                     },
                     _ => return,
                 },
@@ -84,13 +169,18 @@ impl<'t> Cursor<'t> {
     }
 
     /// The end of the (nested) block comment opening at `start`, or `None` if it never closes.
-    fn block_comment_end(&self, start: usize) -> Option<usize> {
+    /// While counting depth, its nesting adds to the brackets open (as in `scan::too_deep`).
+    fn block_comment_end(&mut self, start: usize) -> Option<usize> {
         let mut depth = 0usize;
         let mut i = start;
         while i + 1 < self.bytes.len() {
             match (self.bytes[i], self.bytes[i + 1]) {
                 (b'/', b'*') => {
                     depth += 1;
+                    if self.counting && self.depth + depth > MAX_NESTING {
+                        self.too_deep = true;
+                        return None;
+                    }
                     i += 2;
                 }
                 (b'*', b'/') => {
@@ -196,6 +286,16 @@ impl<'t> Cursor<'t> {
     /// `array`: `[` up to the first `]`; the cursor left after it.
     pub fn array(&mut self) -> Option<()> {
         let n = memchr::memchr(b']', &self.bytes[self.pos..])?;
+        if self.counting {
+            // The `[` nests like a bracket; an inside that `scan::too_deep` reads as more than
+            // numbers (a bracket, a quote, a comment) is left to the scan of the whole text.
+            self.open()?;
+            self.close();
+            let inside = &self.bytes[self.pos + 1..self.pos + n];
+            if inside.iter().any(|&b| DEPTH_BYTES[b as usize]) && !self.scan_depth() {
+                return None;
+            }
+        }
         self.pos += n + 1;
         Some(())
     }

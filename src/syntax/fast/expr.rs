@@ -127,11 +127,11 @@ impl Cursor<'_> {
     fn number(&mut self) -> Option<ExprKind> {
         let end = self.digits_end()?;
         // The grammar only admits well-formed decimal literals, which f64 parses (as in the
-        // converter).
-        let value = self.text[self.pos..end].parse::<f64>().unwrap_or(f64::NAN);
+        // converter; `decimal` gives the same bits, the short ones without `str::parse`).
+        let value = super::decimal::value(&self.text[self.pos..end]);
         self.pos = end;
         let suffix = match self.peek() {
-            Some(b) if super::cursor::is_ident_start(b) => Some(Box::new(self.ident()?)),
+            Some(b) if super::cursor::is_ident_start(b) => Some(self.ident()?.name),
             _ => None,
         };
         Some(ExprKind::Number { value, suffix })
@@ -158,22 +158,28 @@ impl Cursor<'_> {
     /// `( e, e, ... )` with an optional trailing comma, possibly empty, the cursor on `(`.
     fn list(&mut self) -> Option<Vec<Expr>> {
         self.eat(b'(')?;
+        self.open()?;
         self.skip();
-        let mut parts = Vec::new();
         if self.eat(b')').is_some() {
-            return Some(parts);
+            self.close();
+            return Some(Vec::new());
         }
+        // Room for a vector or a colour at once (the capacity the first push would give),
+        // without the general growth path a push into an empty `Vec` takes.
+        let mut parts = Vec::with_capacity(4);
         loop {
             parts.push(self.expr()?);
             self.skip();
             if self.eat(b')').is_some() {
-                return Some(parts);
+                break;
             }
             self.eat(b',')?;
             self.skip();
             if self.eat(b')').is_some() {
-                return Some(parts);
+                break;
             }
         }
+        self.close();
+        Some(parts)
     }
 }

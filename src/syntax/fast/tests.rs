@@ -47,6 +47,12 @@ fn corpus() -> Vec<String> {
 
 fn assert_same(text: &str) {
     let fast = fast::parse(FileId(0), text);
+    if crate::syntax::scan::too_deep(text).is_some() {
+        // The fast parser counts depth and gives up where the scan does (pest would parse
+        // the text, but no parse of a file reaches pest before the depth check).
+        assert!(fast.is_none(), "{text}");
+        return;
+    }
     let pest = parse_with_pest(FileId(0), text).map(|(f, d)| (f.statements, d));
     if fast == pest {
         return;
@@ -192,6 +198,77 @@ fn mutate(rng: &mut Rng, text: &str) -> String {
         }
     }
     out
+}
+
+/// The depth counted while parsing (`Cursor::counting_depth`) gives up exactly where the
+/// pre-scan `scan::too_deep` did before the parse: on every text the scan finds too deep, and
+/// on no other (the same statements and diagnostics as the parse of a scanned text), around
+/// the limit, in every construct that nests (brackets, blocks, nested groups, block comments,
+/// arrays with brackets or comment starts inside, strings with brackets), and on seeded
+/// mutations of every scene.
+#[test]
+fn depth_counted_while_parsing_gives_up_where_the_scan_does() {
+    use super::{parse_each, parse_each_from, Cursor, Fallback};
+    let run = |text: &str, fallback: Fallback, counting: bool| {
+        let mut statements = Vec::new();
+        let diags = if counting {
+            parse_each(FileId(0), text, &mut |s| statements.push(s), fallback)
+        } else if crate::syntax::scan::too_deep(text).is_some() {
+            None
+        } else {
+            let c = Cursor::new(FileId(0), text);
+            parse_each_from(c, &mut |s| statements.push(s), fallback)
+        };
+        diags.map(|d| (statements, format!("{d:?}")))
+    };
+    let mut texts = Vec::new();
+    for n in 44..=50 {
+        let (open, close) = ("(".repeat(n), ")".repeat(n));
+        let comments = "/* ".repeat(n);
+        let groups = "group g { ".repeat(n);
+        let ends = "} ".repeat(n);
+        let nested = "/* ".repeat(3) + &" */".repeat(3);
+        texts.extend([
+            format!("scnc 1\nlet a = {open}1{close}\nlet b = 2\n"),
+            format!("scnc 1\nlet a = f({open}1{close}, 2)\n"),
+            format!("scnc 1\n{groups}object m {{ material x }} {ends}\n"),
+            format!("scnc 1\n{groups}/* {nested} */ object m {{ }} {ends}\n"),
+            format!("scnc 1\n{groups}object m {{ a [ 1 2 ] }} {ends}\n"),
+            format!("scnc 1\n{groups}object m {{ a [ ( ] }} {ends}\nlet k = 1\n"),
+            format!("scnc 1\n{groups}object m {{ a [ 1 // ] }} {ends}\n"),
+            format!("scnc 1\n{groups}object m {{ a [ \"(( ] }} {ends}\n"),
+            format!("scnc 1\n{groups}object m {{ a \"{open}\" }} {ends}\n"),
+            format!("scnc 1\nlet a = {open}1 /* {open} */{close}\n"),
+            format!("scnc 1\nlet a = {comments}1\n"),
+            format!("scnc 1\nlet a = 1 {comments} */\n"),
+            format!("scnc 1\nlet a = {open}1 = {close}\n"),
+            format!("scnc 1\nlet a = 1 =\nlet b = {open}1{close}\n"),
+            format!("scnc 1\nlet a = [ {open} ] + {open}1{close}\n"),
+        ]);
+    }
+    let mut rng = Rng(0x5851_f42d_4c95_7f2d);
+    let base = texts.clone();
+    for text in base.iter().chain(corpus().iter()) {
+        for _ in 0..12 {
+            texts.push(mutate(&mut rng, text));
+        }
+    }
+    let mut deep = 0;
+    for text in &texts {
+        deep += usize::from(crate::syntax::scan::too_deep(text).is_some());
+        for fallback in [Fallback::Whole, Fallback::Line] {
+            assert_eq!(
+                run(text, fallback, true),
+                run(text, fallback, false),
+                "{text}"
+            );
+        }
+    }
+    assert!(
+        deep > texts.len() / 20 && deep < texts.len() / 2,
+        "{deep}/{}",
+        texts.len()
+    );
 }
 
 #[test]
