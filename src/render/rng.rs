@@ -291,6 +291,19 @@ impl PixelSequences {
         }
     }
 
+    /// Sample `global`'s lane of a run gathered from several pixels ([`RunLanes::set`]): its
+    /// index in its sequence and that sequence's scrambles of the [`CACHED_POINT_STREAMS`],
+    /// kept for the pixel's later runs as [`PixelSequences::points_2d`] keeps them.
+    #[inline(always)]
+    fn lane(&self, global: u32) -> (u32, [OwenSobol; CACHED_POINT_STREAMS.len()]) {
+        let (slot, index) = Self::slot_of(global);
+        let scramble = |c: usize| {
+            *self.scrambles[c][slot]
+                .get_or_init(|| OwenSobol::of(self.key_of_slot(slot), CACHED_POINT_STREAMS[c]))
+        };
+        (index, std::array::from_fn(scramble))
+    }
+
     /// Sample `global`'s slot among the replicates' sequences and the shared one's, and its
     /// index in that sequence.
     #[inline]
@@ -326,6 +339,46 @@ impl PixelSequences {
     #[inline]
     pub fn replicate(global: u32) -> Option<usize> {
         (global >= SHARED_ROUNDS * REPLICATES).then_some((global % REPLICATES) as usize)
+    }
+}
+
+/// The lanes of a run whose samples come from several pixels' sequences (`render::rect_lit`'s
+/// side-by-side runs: an adaptive render's batches of 2 samples, four pixels a run): each
+/// lane's sequence and index, so that the run's points of a stream are one eight-lane
+/// computation (`owen_sobol::points_side_by_side`) where each pixel's
+/// [`PixelSequences::points_2d`] computed eight lanes for its two, four times a run
+/// (docs/quality.md, twentieth session). Lane `k`'s point is
+/// `sequences.points_2d(stream, g..g + 1)`'s, bit for bit.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct RunLanes {
+    index: [u32; RUN_LANES],
+    /// By stream (in the order of [`CACHED_POINT_STREAMS`]), then lane.
+    scrambles: [[OwenSobol; RUN_LANES]; CACHED_POINT_STREAMS.len()],
+}
+
+/// The lanes of a [`RunLanes`] (`shade::light::rect_lanes::LANES`).
+const RUN_LANES: usize = 8;
+
+impl RunLanes {
+    /// Lane `k` takes sample `global` of the pixel of `sequences`.
+    #[inline(always)]
+    pub fn set(&mut self, k: usize, sequences: &PixelSequences, global: u32) {
+        let (index, scrambles) = sequences.lane(global);
+        self.index[k] = index;
+        for (lanes, scramble) in self.scrambles.iter_mut().zip(scrambles) {
+            lanes[k] = scramble;
+        }
+    }
+
+    /// Stream `stream`'s points of the lanes (one of the [`CACHED_POINT_STREAMS`]: the
+    /// sub-pixel position or the light point). Lanes never [`RunLanes::set`] give some point
+    /// (computed, not meant to be read).
+    #[inline(always)]
+    pub fn points_2d(&self, stream: u64, out: &mut [Vec2; RUN_LANES]) {
+        let c = CACHED_POINT_STREAMS.iter().position(|&s| s == stream);
+        debug_assert!(c.is_some(), "stream {stream} is not one of a run's");
+        let scrambles = &self.scrambles[c.unwrap_or(0)];
+        points_side_by_side(scrambles, &self.index, out);
     }
 }
 
@@ -787,6 +840,35 @@ mod tests {
                         assert_eq!(out[k], one, "sample {g}, stream {stream}");
                     }
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn a_runs_lanes_gathered_from_several_pixels_are_each_pixels_points() {
+        let pixels = [(0, 0), (3, 10), (511, 3), (4, 4)].map(|(x, y)| PixelSequences::new(9, x, y));
+        for (first, each) in [(0, 2), (2, 2), (0, 1), (1, 3), (4, 4), (20, 8), (17, 2)] {
+            let mut lanes = RunLanes::default();
+            let mut expected = [[Vec2::ZERO; RUN_LANES]; 2];
+            for k in 0..RUN_LANES / each {
+                let samples = first..first + each as u32;
+                for (i, g) in (k * each..).zip(samples.clone()) {
+                    lanes.set(i, &pixels[k % pixels.len()], g);
+                }
+                for (c, stream) in CACHED_POINT_STREAMS.into_iter().enumerate() {
+                    let out = &mut expected[c][k * each..(k + 1) * each];
+                    pixels[k % pixels.len()].points_2d(stream, samples.clone(), out);
+                }
+            }
+            for (c, stream) in CACHED_POINT_STREAMS.into_iter().enumerate() {
+                let mut out = [Vec2::splat(-1.0); RUN_LANES];
+                lanes.points_2d(stream, &mut out);
+                let filled = RUN_LANES / each * each;
+                assert_eq!(
+                    out[..filled],
+                    expected[c][..filled],
+                    "{first}, {each}, {stream}"
+                );
             }
         }
     }
