@@ -163,12 +163,14 @@ pub struct PixelSequences {
     replicate_keys: OnceCell<[u64; REPLICATES as usize]>,
     /// The scramble of the shared rounds' sequence (samples `0..SHARED_ROUNDS·REPLICATES`).
     shared_key: u64,
-    /// The scrambles of the [`CACHED_POINT_STREAMS`] of each sequence (indexed by the slot of
-    /// [`PixelSequences::sequence_of`]), each derived at its first point and kept for the
-    /// pixel's later runs: before, each run of up to 8 samples derived them again (two 64-bit
-    /// hashes a sequence and stream, 5.7% of an adaptive profile with the points themselves,
-    /// docs/quality.md, thirteenth session).
-    scrambles: [[OnceCell<OwenSobol>; REPLICATES as usize + 1]; CACHED_POINT_STREAMS.len()],
+    /// The scrambles of the [`CACHED_POINT_STREAMS`] (by stream) of the shared rounds'
+    /// sequence, and of the replicates' (by stream, then replicate), each set derived at its
+    /// first point and kept for the pixel's later runs: before, each run of up to 8 samples
+    /// derived them again (two 64-bit hashes a sequence and stream, 5.7% of an adaptive profile
+    /// with the points themselves, docs/quality.md, thirteenth session). One cell a set, so a
+    /// run of 8 reads one cell, not four a stream (docs/quality.md, twentieth session).
+    shared_scrambles: OnceCell<[OwenSobol; CACHED_POINT_STREAMS.len()]>,
+    replicate_scrambles: OnceCell<[[OwenSobol; REPLICATES as usize]; CACHED_POINT_STREAMS.len()]>,
 }
 
 /// The streams whose points [`PixelSequences::points_2d`] takes run after run (the sub-pixel
@@ -189,7 +191,8 @@ impl PixelSequences {
             pixel_hash,
             replicate_keys: OnceCell::new(),
             shared_key: mix64(key_of(pixel_hash, u32::MAX - REPLICATES) ^ 0x2f1d_83a5_c3b9_0e47),
-            scrambles: Default::default(),
+            shared_scrambles: OnceCell::new(),
+            replicate_scrambles: OnceCell::new(),
         }
     }
 
@@ -234,7 +237,7 @@ impl PixelSequences {
         let mut uncached = [None::<OwenSobol>; REPLICATES as usize + 1];
         let scramble = |slot: usize| OwenSobol::of(self.key_of_slot(slot), stream);
         let mut scramble_of = |slot: usize| match cached {
-            Some(c) => *self.scrambles[c][slot].get_or_init(|| scramble(slot)),
+            Some(c) => self.cached_scrambles(slot)[c],
             None => *uncached[slot].get_or_insert_with(|| scramble(slot)),
         };
         // Eight at a time side by side (`owen_sobol::points_side_by_side`); lanes past the
@@ -255,10 +258,10 @@ impl PixelSequences {
                 // `k / REPLICATES`, as `slot_of` says, without its division and the table's
                 // gather per lane.
                 let round = next / REPLICATES - SHARED_ROUNDS;
-                let mut each = [OwenSobol::default(); REPLICATES as usize];
-                for (slot, scramble) in each.iter_mut().enumerate() {
-                    *scramble = scramble_of(slot);
-                }
+                let each = match cached {
+                    Some(c) => self.replicate_scrambles()[c],
+                    None => std::array::from_fn(&mut scramble_of),
+                };
                 let scrambles = std::array::from_fn(|k| each[k % REPLICATES as usize]);
                 let indices = std::array::from_fn(|k| round + k as u32 / REPLICATES);
                 points_side_by_side(&scrambles, &indices, &mut points);
@@ -297,11 +300,31 @@ impl PixelSequences {
     #[inline(always)]
     fn lane(&self, global: u32) -> (u32, [OwenSobol; CACHED_POINT_STREAMS.len()]) {
         let (slot, index) = Self::slot_of(global);
-        let scramble = |c: usize| {
-            *self.scrambles[c][slot]
-                .get_or_init(|| OwenSobol::of(self.key_of_slot(slot), CACHED_POINT_STREAMS[c]))
-        };
-        (index, std::array::from_fn(scramble))
+        (index, self.cached_scrambles(slot))
+    }
+
+    /// The scrambles of the [`CACHED_POINT_STREAMS`] of the sequence in `slot`.
+    #[inline(always)]
+    fn cached_scrambles(&self, slot: usize) -> [OwenSobol; CACHED_POINT_STREAMS.len()] {
+        if slot == REPLICATES as usize {
+            *self.shared_scrambles.get_or_init(|| {
+                CACHED_POINT_STREAMS.map(|stream| OwenSobol::of(self.shared_key, stream))
+            })
+        } else {
+            let replicates = self.replicate_scrambles();
+            std::array::from_fn(|c| replicates[c][slot])
+        }
+    }
+
+    /// The replicates' scrambles of the [`CACHED_POINT_STREAMS`] (by stream, then replicate).
+    #[inline(always)]
+    fn replicate_scrambles(
+        &self,
+    ) -> &[[OwenSobol; REPLICATES as usize]; CACHED_POINT_STREAMS.len()] {
+        self.replicate_scrambles.get_or_init(|| {
+            let keys = self.replicate_keys();
+            CACHED_POINT_STREAMS.map(|stream| keys.map(|key| OwenSobol::of(key, stream)))
+        })
     }
 
     /// Sample `global`'s slot among the replicates' sequences and the shared one's, and its
