@@ -37,7 +37,7 @@ use glam::{Affine3A, Vec2, Vec3};
 use super::camera::PinholeCamera;
 use super::estimate::Accumulator;
 use super::integrator::{divided, RayCounts, STREAM_LIGHTS};
-use super::rng::{self, PixelBatch, PixelSequences, STREAM_SUBPIXEL};
+use super::rng::{self, PixelBatch, PixelSequences, RunLanes, STREAM_SUBPIXEL};
 use crate::bvh::Hit;
 use crate::bvh::{Accel, Scratch};
 use crate::geom::avx2::{Avx2, Kernel};
@@ -600,20 +600,23 @@ where
         let run = samples.start..samples.start + each as u32;
         let eye = camera.eye();
         let mut lanes = Run::default();
-        let mut offsets = [Vec2::ZERO; LANES];
-        let mut at = [Vec2::ZERO; LANES];
+        // The run's lanes gathered from its pixels, then each stream's points in one eight-lane
+        // computation (lanes past the run: some point, unread).
+        let mut gathered = RunLanes::default();
+        let mut film = [Vec2::ZERO; LANES];
         let mut len = 0;
         for (k, lane) in (0..n).zip((0..LANES).step_by(each)) {
             let ((x, y), sequences) = pixel(k);
-            let lanes_of = lane..lane + each;
-            sequences.points_2d(STREAM_SUBPIXEL, run.clone(), &mut offsets[lanes_of.clone()]);
-            sequences.points_2d(STREAM_LIGHTS, run.clone(), &mut lanes.u[lanes_of.clone()]);
-            let film = Vec2::new(x as f32, y as f32);
-            for (a, o) in at[lanes_of.clone()].iter_mut().zip(&offsets[lanes_of]) {
-                *a = film + *o;
+            for (i, g) in (lane..lane + each).zip(run.clone()) {
+                gathered.set(i, sequences, g);
+                film[i] = Vec2::new(x as f32, y as f32);
             }
             len = lane + each;
         }
+        let mut offsets = [Vec2::ZERO; LANES];
+        gathered.points_2d(STREAM_SUBPIXEL, &mut offsets);
+        gathered.points_2d(STREAM_LIGHTS, &mut lanes.u);
+        let at: [Vec2; LANES] = std::array::from_fn(|i| film[i] + offsets[i]);
         let start = run.start;
         let add = |i: usize, l: Vec3| {
             let replicate = PixelSequences::replicate(start + (i % each) as u32);

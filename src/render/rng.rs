@@ -163,12 +163,14 @@ pub struct PixelSequences {
     replicate_keys: OnceCell<[u64; REPLICATES as usize]>,
     /// The scramble of the shared rounds' sequence (samples `0..SHARED_ROUNDS·REPLICATES`).
     shared_key: u64,
-    /// The scrambles of the [`CACHED_POINT_STREAMS`] of each sequence (indexed by the slot of
-    /// [`PixelSequences::sequence_of`]), each derived at its first point and kept for the
-    /// pixel's later runs: before, each run of up to 8 samples derived them again (two 64-bit
-    /// hashes a sequence and stream, 5.7% of an adaptive profile with the points themselves,
-    /// docs/quality.md, thirteenth session).
-    scrambles: [[OnceCell<OwenSobol>; REPLICATES as usize + 1]; CACHED_POINT_STREAMS.len()],
+    /// The scrambles of the [`CACHED_POINT_STREAMS`] (by stream) of the shared rounds'
+    /// sequence, and of the replicates' (by stream, then replicate), each set derived at its
+    /// first point and kept for the pixel's later runs: before, each run of up to 8 samples
+    /// derived them again (two 64-bit hashes a sequence and stream, 5.7% of an adaptive profile
+    /// with the points themselves, docs/quality.md, thirteenth session). One cell a set, so a
+    /// run of 8 reads one cell, not four a stream (docs/quality.md, twentieth session).
+    shared_scrambles: OnceCell<[OwenSobol; CACHED_POINT_STREAMS.len()]>,
+    replicate_scrambles: OnceCell<[[OwenSobol; REPLICATES as usize]; CACHED_POINT_STREAMS.len()]>,
 }
 
 /// The streams whose points [`PixelSequences::points_2d`] takes run after run (the sub-pixel
@@ -189,7 +191,8 @@ impl PixelSequences {
             pixel_hash,
             replicate_keys: OnceCell::new(),
             shared_key: mix64(key_of(pixel_hash, u32::MAX - REPLICATES) ^ 0x2f1d_83a5_c3b9_0e47),
-            scrambles: Default::default(),
+            shared_scrambles: OnceCell::new(),
+            replicate_scrambles: OnceCell::new(),
         }
     }
 
@@ -234,7 +237,7 @@ impl PixelSequences {
         let mut uncached = [None::<OwenSobol>; REPLICATES as usize + 1];
         let scramble = |slot: usize| OwenSobol::of(self.key_of_slot(slot), stream);
         let mut scramble_of = |slot: usize| match cached {
-            Some(c) => *self.scrambles[c][slot].get_or_init(|| scramble(slot)),
+            Some(c) => self.cached_scrambles(slot)[c],
             None => *uncached[slot].get_or_insert_with(|| scramble(slot)),
         };
         // Eight at a time side by side (`owen_sobol::points_side_by_side`); lanes past the
@@ -255,10 +258,10 @@ impl PixelSequences {
                 // `k / REPLICATES`, as `slot_of` says, without its division and the table's
                 // gather per lane.
                 let round = next / REPLICATES - SHARED_ROUNDS;
-                let mut each = [OwenSobol::default(); REPLICATES as usize];
-                for (slot, scramble) in each.iter_mut().enumerate() {
-                    *scramble = scramble_of(slot);
-                }
+                let each = match cached {
+                    Some(c) => self.replicate_scrambles()[c],
+                    None => std::array::from_fn(&mut scramble_of),
+                };
                 let scrambles = std::array::from_fn(|k| each[k % REPLICATES as usize]);
                 let indices = std::array::from_fn(|k| round + k as u32 / REPLICATES);
                 points_side_by_side(&scrambles, &indices, &mut points);
@@ -289,6 +292,39 @@ impl PixelSequences {
             out[..len].copy_from_slice(&points[..len]);
             next += len as u32;
         }
+    }
+
+    /// Sample `global`'s lane of a run gathered from several pixels ([`RunLanes::set`]): its
+    /// index in its sequence and that sequence's scrambles of the [`CACHED_POINT_STREAMS`],
+    /// kept for the pixel's later runs as [`PixelSequences::points_2d`] keeps them.
+    #[inline(always)]
+    fn lane(&self, global: u32) -> (u32, [OwenSobol; CACHED_POINT_STREAMS.len()]) {
+        let (slot, index) = Self::slot_of(global);
+        (index, self.cached_scrambles(slot))
+    }
+
+    /// The scrambles of the [`CACHED_POINT_STREAMS`] of the sequence in `slot`.
+    #[inline(always)]
+    fn cached_scrambles(&self, slot: usize) -> [OwenSobol; CACHED_POINT_STREAMS.len()] {
+        if slot == REPLICATES as usize {
+            *self.shared_scrambles.get_or_init(|| {
+                CACHED_POINT_STREAMS.map(|stream| OwenSobol::of(self.shared_key, stream))
+            })
+        } else {
+            let replicates = self.replicate_scrambles();
+            std::array::from_fn(|c| replicates[c][slot])
+        }
+    }
+
+    /// The replicates' scrambles of the [`CACHED_POINT_STREAMS`] (by stream, then replicate).
+    #[inline(always)]
+    fn replicate_scrambles(
+        &self,
+    ) -> &[[OwenSobol; REPLICATES as usize]; CACHED_POINT_STREAMS.len()] {
+        self.replicate_scrambles.get_or_init(|| {
+            let keys = self.replicate_keys();
+            CACHED_POINT_STREAMS.map(|stream| keys.map(|key| OwenSobol::of(key, stream)))
+        })
     }
 
     /// Sample `global`'s slot among the replicates' sequences and the shared one's, and its
@@ -326,6 +362,46 @@ impl PixelSequences {
     #[inline]
     pub fn replicate(global: u32) -> Option<usize> {
         (global >= SHARED_ROUNDS * REPLICATES).then_some((global % REPLICATES) as usize)
+    }
+}
+
+/// The lanes of a run whose samples come from several pixels' sequences (`render::rect_lit`'s
+/// side-by-side runs: an adaptive render's batches of 2 samples, four pixels a run): each
+/// lane's sequence and index, so that the run's points of a stream are one eight-lane
+/// computation (`owen_sobol::points_side_by_side`) where each pixel's
+/// [`PixelSequences::points_2d`] computed eight lanes for its two, four times a run
+/// (docs/quality.md, twentieth session). Lane `k`'s point is
+/// `sequences.points_2d(stream, g..g + 1)`'s, bit for bit.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct RunLanes {
+    index: [u32; RUN_LANES],
+    /// By stream (in the order of [`CACHED_POINT_STREAMS`]), then lane.
+    scrambles: [[OwenSobol; RUN_LANES]; CACHED_POINT_STREAMS.len()],
+}
+
+/// The lanes of a [`RunLanes`] (`shade::light::rect_lanes::LANES`).
+const RUN_LANES: usize = 8;
+
+impl RunLanes {
+    /// Lane `k` takes sample `global` of the pixel of `sequences`.
+    #[inline(always)]
+    pub fn set(&mut self, k: usize, sequences: &PixelSequences, global: u32) {
+        let (index, scrambles) = sequences.lane(global);
+        self.index[k] = index;
+        for (lanes, scramble) in self.scrambles.iter_mut().zip(scrambles) {
+            lanes[k] = scramble;
+        }
+    }
+
+    /// Stream `stream`'s points of the lanes (one of the [`CACHED_POINT_STREAMS`]: the
+    /// sub-pixel position or the light point). Lanes never [`RunLanes::set`] give some point
+    /// (computed, not meant to be read).
+    #[inline(always)]
+    pub fn points_2d(&self, stream: u64, out: &mut [Vec2; RUN_LANES]) {
+        let c = CACHED_POINT_STREAMS.iter().position(|&s| s == stream);
+        debug_assert!(c.is_some(), "stream {stream} is not one of a run's");
+        let scrambles = &self.scrambles[c.unwrap_or(0)];
+        points_side_by_side(scrambles, &self.index, out);
     }
 }
 
@@ -787,6 +863,35 @@ mod tests {
                         assert_eq!(out[k], one, "sample {g}, stream {stream}");
                     }
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn a_runs_lanes_gathered_from_several_pixels_are_each_pixels_points() {
+        let pixels = [(0, 0), (3, 10), (511, 3), (4, 4)].map(|(x, y)| PixelSequences::new(9, x, y));
+        for (first, each) in [(0, 2), (2, 2), (0, 1), (1, 3), (4, 4), (20, 8), (17, 2)] {
+            let mut lanes = RunLanes::default();
+            let mut expected = [[Vec2::ZERO; RUN_LANES]; 2];
+            for k in 0..RUN_LANES / each {
+                let samples = first..first + each as u32;
+                for (i, g) in (k * each..).zip(samples.clone()) {
+                    lanes.set(i, &pixels[k % pixels.len()], g);
+                }
+                for (c, stream) in CACHED_POINT_STREAMS.into_iter().enumerate() {
+                    let out = &mut expected[c][k * each..(k + 1) * each];
+                    pixels[k % pixels.len()].points_2d(stream, samples.clone(), out);
+                }
+            }
+            for (c, stream) in CACHED_POINT_STREAMS.into_iter().enumerate() {
+                let mut out = [Vec2::splat(-1.0); RUN_LANES];
+                lanes.points_2d(stream, &mut out);
+                let filled = RUN_LANES / each * each;
+                assert_eq!(
+                    out[..filled],
+                    expected[c][..filled],
+                    "{first}, {each}, {stream}"
+                );
             }
         }
     }
