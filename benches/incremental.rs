@@ -213,6 +213,16 @@ fn material_line(m: usize, shade: usize) -> String {
 }
 
 /// Object `i`, lifted by `y`.
+/// The lines of `text` (one statement each in these scenes) that name one of `names` as a
+/// whole word (letters, digits and `_` on neither side), as the incremental compile's search
+/// finds them.
+fn lines_naming(text: &str, names: &[&str]) -> usize {
+    let word = |c: char| c.is_ascii_alphanumeric() || c == '_';
+    text.lines()
+        .filter(|l| l.split(|c| !word(c)).any(|w| names.contains(&w)))
+        .count()
+}
+
 fn object_line(i: usize, y: usize) -> String {
     let meshes = ["tree", "rock", "post"];
     format!(
@@ -932,7 +942,8 @@ fn front_end(objects: usize, edits: usize) {
             assert!(r.value.is_some(), "the line put in compiles");
         }
         for k in 0..count {
-            let loader = loader_with(&files(&edit(&mut lines, objects, kind, k)), &assets);
+            let text = edit(&mut lines, objects, kind, k);
+            let loader = loader_with(&files(&text), &assets);
             if (errs(kind) || kind == Kind::FirstEdited) && k == 0 {
                 let t = Instant::now();
                 let r = compile_with(path, &loader, &mut SourceMap::new(), &overrides);
@@ -975,10 +986,12 @@ fn front_end(objects: usize, edits: usize) {
                     // The 100 materials that name `gloss`; put back, the `let` too.
                     Kind::GlossCommented => 100 + k % 2,
                     Kind::LetError => checked(Kind::Let, k),
-                    // The material and the objects that name `m5` (or `m5x`).
-                    Kind::Rename => 1 + objects / 100 + usize::from(objects % 100 > 5),
+                    // The material and the objects that name `m5` (or `m5x`), counted in the
+                    // text: the `Insert` and `Delete` kinds before it leave other lines in the
+                    // middle than the scene began with (one object naming `m5` fewer).
+                    Kind::Rename => lines_naming(&text, &["m5", "m5x"]),
                     // The objects that name `m5`; put back, the material too.
-                    Kind::Removed => k % 2 + objects / 100 + usize::from(objects % 100 > 5),
+                    Kind::Removed => lines_naming(&text, &["m5"]),
                     // The material, the objects that name `m0` and the group.
                     Kind::GroupedRename => 2 + objects.div_ceil(100),
                     // The `let` and the 100 materials that name it.
